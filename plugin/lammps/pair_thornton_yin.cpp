@@ -1,0 +1,736 @@
+/* ----------------------------------------------------------------------
+   pair_style thornton/yin — see docs/pair_thornton_yin.md and docs/theory.md.
+   Physics: plugin/core/thornton_yin.hpp (tycore). Conventions follow pair granular:
+   del = x_i - x_j, n = del/r points from j to i, P > 0 repulsive.
+------------------------------------------------------------------------- */
+
+#include "pair_thornton_yin.h"
+
+#include "thornton_yin.hpp"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "fix_dummy.h"
+#include "fix_neigh_history.h"
+#include "force.h"
+#include "math_const.h"
+#include "memory.h"
+#include "modify.h"
+#include "neigh_list.h"
+#include "neigh_request.h"
+#include "neighbor.h"
+#include "update.h"
+
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using MathConst::MY_PI;
+
+namespace {
+
+constexpr int HISTORY_SIZE = tycore::history_size;
+const char *const FIX_HISTORY_ID = "NEIGH_HISTORY_THORNTON_YIN";
+const char *const FIX_DUMMY_ID = "NEIGH_HISTORY_THORNTON_YIN_DUMMY";
+
+inline tycore::ContactHistory load_history(const double *slot)
+{
+  tycore::ContactHistory h;
+  std::memcpy(&h, slot, sizeof(h));
+  return h;
+}
+
+inline void store_history(double *slot, const tycore::ContactHistory &h)
+{
+  std::memcpy(slot, &h, sizeof(h));
+}
+
+}    // namespace
+
+/* ---------------------------------------------------------------------- */
+
+PairThorntonYin::PairThorntonYin(LAMMPS *lmp) : Pair(lmp)
+{
+  single_enable = 1;
+  no_virial_fdotr_compute = 1;
+  centroidstressflag = CENTROID_NOTAVAIL;
+  finitecutflag = 1;
+  restartinfo = 1;
+
+  history = 1;
+  size_history = HISTORY_SIZE;
+  beyond_contact = 1;                  // adhesive contacts live beyond zero overlap
+  nondefault_history_transfer = 1;     // scalars of the history keep their sign
+
+  nextra = N_PVECTOR;
+  pvector = new double[nextra];
+  for (int k = 0; k < nextra; ++k) pvector[k] = 0.0;
+  single_extra = N_SVECTOR;
+  svector = new double[single_extra];
+
+  youngs = poisson = nullptr;
+  material_set = nullptr;
+  E_star = G_star = friction = surface_energy = nullptr;
+  damp_n = damp_t = nullptr;
+  cut = nullptr;
+  maxrad_type = nullptr;
+  adhesive = damped = 0;
+  neighprev = 0;
+  dt = 0.0;
+
+  // placeholder keeps the history fix at the position of the pair_style command
+  fix_history = nullptr;
+  fix_dummy = (FixDummy *) modify->add_fix(std::string(FIX_DUMMY_ID) + " all DUMMY");
+}
+
+/* ---------------------------------------------------------------------- */
+
+PairThorntonYin::~PairThorntonYin()
+{
+  if (copymode) return;
+  delete[] pvector;
+  delete[] svector;
+  if (!fix_history) modify->delete_fix(FIX_DUMMY_ID);
+  else modify->delete_fix(FIX_HISTORY_ID);
+
+  if (allocated) {
+    memory->destroy(setflag);
+    memory->destroy(cutsq);
+    memory->destroy(cut);
+    memory->destroy(E_star);
+    memory->destroy(G_star);
+    memory->destroy(friction);
+    memory->destroy(surface_energy);
+    memory->destroy(damp_n);
+    memory->destroy(damp_t);
+    delete[] youngs;
+    delete[] poisson;
+    delete[] material_set;
+    delete[] maxrad_type;
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairThorntonYin::allocate()
+{
+  allocated = 1;
+  const int n = atom->ntypes;
+  memory->create(setflag, n + 1, n + 1, "pair:setflag");
+  memory->create(cutsq, n + 1, n + 1, "pair:cutsq");
+  memory->create(cut, n + 1, n + 1, "pair:cut");
+  memory->create(E_star, n + 1, n + 1, "pair:E_star");
+  memory->create(G_star, n + 1, n + 1, "pair:G_star");
+  memory->create(friction, n + 1, n + 1, "pair:friction");
+  memory->create(surface_energy, n + 1, n + 1, "pair:surface_energy");
+  memory->create(damp_n, n + 1, n + 1, "pair:damp_n");
+  memory->create(damp_t, n + 1, n + 1, "pair:damp_t");
+  youngs = new double[n + 1];
+  poisson = new double[n + 1];
+  material_set = new int[n + 1];
+  maxrad_type = new double[n + 1];
+  for (int i = 0; i <= n; ++i) {
+    youngs[i] = poisson[i] = maxrad_type[i] = 0.0;
+    material_set[i] = 0;
+    for (int j = 0; j <= n; ++j) {
+      setflag[i][j] = 0;
+      cut[i][j] = cutsq[i][j] = 0.0;
+      E_star[i][j] = G_star[i][j] = friction[i][j] = surface_energy[i][j] = 0.0;
+      damp_n[i][j] = damp_t[i][j] = 0.0;
+    }
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairThorntonYin::settings(int narg, char **arg)
+{
+  if (narg != 0)
+    error->all(FLERR, "pair_style thornton/yin takes no arguments (got '{}'); material "
+               "parameters go in pair_coeff I J E nu mu Gamma [damping beta_n beta_t]", arg[0]);
+}
+
+/* ----------------------------------------------------------------------
+   pair_coeff I J E nu mu Gamma [damping beta_n beta_t]   (SI: Pa, -, -, J/m^2)
+------------------------------------------------------------------------- */
+
+void PairThorntonYin::coeff(int narg, char **arg)
+{
+  const char *usage = "pair_coeff I J E nu mu Gamma [damping beta_n beta_t]";
+  if (narg < 6)
+    error->all(FLERR, "Incorrect args for pair coefficients of thornton/yin: expected '{}'",
+               usage);
+  if (!allocated) allocate();
+
+  int ilo, ihi, jlo, jhi;
+  utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
+  utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
+
+  const double E = utils::numeric(FLERR, arg[2], false, lmp);
+  const double nu = utils::numeric(FLERR, arg[3], false, lmp);
+  const double mu = utils::numeric(FLERR, arg[4], false, lmp);
+  const double Gamma = utils::numeric(FLERR, arg[5], false, lmp);
+  if (!(E > 0.0))
+    error->all(FLERR, "pair_coeff thornton/yin: Young's modulus E must be > 0 (got {})", E);
+  if (!(nu > -1.0 && nu < 0.5))
+    error->all(FLERR, "pair_coeff thornton/yin: Poisson's ratio nu must lie in (-1, 0.5) "
+               "(got {})", nu);
+  if (!(mu >= 0.0))
+    error->all(FLERR, "pair_coeff thornton/yin: friction coefficient mu must be >= 0 (got {})",
+               mu);
+  if (!(Gamma >= 0.0))
+    error->all(FLERR, "pair_coeff thornton/yin: interface energy Gamma must be >= 0 J/m^2 "
+               "(got {})", Gamma);
+
+  double beta_n = 0.0, beta_t = 0.0;
+  for (int iarg = 6; iarg < narg;) {
+    if (strcmp(arg[iarg], "damping") == 0) {
+      if (iarg + 3 > narg)
+        error->all(FLERR, "pair_coeff thornton/yin: 'damping' needs two values beta_n beta_t");
+      beta_n = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      beta_t = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+      if (!(beta_n >= 0.0) || !(beta_t >= 0.0))
+        error->all(FLERR, "pair_coeff thornton/yin: damping ratios must be >= 0 (got {} {})",
+                   beta_n, beta_t);
+      iarg += 3;
+    } else {
+      error->all(FLERR, "Unknown pair_coeff keyword '{}' for pair thornton/yin (expected '{}')",
+                 arg[iarg], usage);
+    }
+  }
+
+  int count = 0;
+  for (int i = ilo; i <= ihi; ++i) {
+    for (int j = MAX(jlo, i); j <= jhi; ++j) {
+      // an explicit I J line describes both spheres as made of the given material
+      E_star[i][j] = tycore::effective_modulus(E, nu, E, nu);
+      G_star[i][j] = tycore::effective_shear_modulus(E, nu, E, nu);
+      friction[i][j] = mu;
+      surface_energy[i][j] = Gamma;
+      damp_n[i][j] = beta_n;
+      damp_t[i][j] = beta_t;
+      if (i == j) {
+        youngs[i] = E;
+        poisson[i] = nu;
+        material_set[i] = 1;
+      }
+      setflag[i][j] = 1;
+      ++count;
+    }
+  }
+  if (count == 0) error->all(FLERR, "Incorrect args for pair coefficients of thornton/yin");
+}
+
+/* ----------------------------------------------------------------------
+   unlike types I != J without an explicit pair_coeff: physics.md §0
+------------------------------------------------------------------------- */
+
+void PairThorntonYin::mix_pair(int i, int j)
+{
+  if (!material_set[i] || !material_set[j])
+    error->all(FLERR, "pair thornton/yin: coefficients for types {} {} are not set and cannot "
+               "be mixed: give 'pair_coeff {} {} ...' and 'pair_coeff {} {} ...'", i, j, i, i,
+               j, j);
+  E_star[i][j] = tycore::effective_modulus(youngs[i], poisson[i], youngs[j], poisson[j]);
+  G_star[i][j] = tycore::effective_shear_modulus(youngs[i], poisson[i], youngs[j], poisson[j]);
+  friction[i][j] = std::sqrt(friction[i][i] * friction[j][j]);
+  // work of adhesion of unlike surfaces ~ geometric mean (Berthelot rule)
+  surface_energy[i][j] = std::sqrt(surface_energy[i][i] * surface_energy[j][j]);
+  damp_n[i][j] = 0.5 * (damp_n[i][i] + damp_n[j][j]);
+  damp_t[i][j] = 0.5 * (damp_t[i][i] + damp_t[j][j]);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairThorntonYin::init_style()
+{
+  if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
+    error->all(FLERR, "pair thornton/yin requires atom style sphere (per-atom radius, rmass, "
+               "omega and torque)");
+  if (comm->ghost_velocity == 0)
+    error->all(FLERR, "pair thornton/yin requires ghost velocities: add 'comm_modify vel yes' "
+               "before the run");
+  const std::string units = update->unit_style;
+  if (units != "si" && units != "cgs" && units != "micro" && units != "nano")
+    error->all(FLERR, "pair thornton/yin needs a mechanically consistent unit system "
+               "(units si, cgs, micro or nano), got 'units {}'", units);
+
+  const int irequest = neighbor->request(this, instance_me);
+  neighbor->requests[irequest]->size = 1;
+  neighbor->requests[irequest]->history = 1;
+
+  dt = update->dt;
+
+  if (fix_history == nullptr) {
+    fix_history = (FixNeighHistory *) modify->replace_fix(
+        FIX_DUMMY_ID, fmt::format("{} all NEIGH_HISTORY {}", FIX_HISTORY_ID, HISTORY_SIZE), 1);
+    fix_history->pair = this;
+  } else {
+    const int ifix = modify->find_fix(FIX_HISTORY_ID);
+    if (ifix < 0) error->all(FLERR, "pair thornton/yin: could not find its history fix");
+    fix_history = (FixNeighHistory *) modify->fix[ifix];
+  }
+
+  // largest radius per type, over all ranks (used by init_one and the checks below)
+  const int ntypes = atom->ntypes;
+  double *local_max = new double[ntypes + 1];
+  for (int t = 0; t <= ntypes; ++t) local_max[t] = 0.0;
+  for (int i = 0; i < atom->nlocal; ++i)
+    local_max[atom->type[i]] = MAX(local_max[atom->type[i]], atom->radius[i]);
+  MPI_Allreduce(local_max, maxrad_type, ntypes + 1, MPI_DOUBLE, MPI_MAX, world);
+  delete[] local_max;
+
+  check_break_against_skin();
+  check_timestep_against_rayleigh();
+}
+
+/* ----------------------------------------------------------------------
+   A tensile JKR contact survives to delta_f < 0 (physics.md §1.2). The size neighbor
+   list keeps a pair only within radsum + skin at a rebuild, so skin > |delta_f| is
+   required, otherwise adhesive contacts are silently lost.
+------------------------------------------------------------------------- */
+
+void PairThorntonYin::check_break_against_skin()
+{
+  const int ntypes = atom->ntypes;
+  for (int i = 1; i <= ntypes; ++i) {
+    for (int j = i; j <= ntypes; ++j) {
+      if (maxrad_type[i] <= 0.0 || maxrad_type[j] <= 0.0) continue;
+      const double R = tycore::effective_radius(maxrad_type[i], maxrad_type[j]);
+      const double gap = -tycore::jkr::break_overlap(R, E_star[i][j], surface_energy[i][j]);
+      if (gap > 0.0 && neighbor->skin <= gap)
+        error->all(FLERR, "pair thornton/yin: neighbor skin {:.6g} is not larger than the JKR "
+                   "break separation |delta_f| = {:.6g} of types {} {}; adhesive contacts would "
+                   "be lost at a neighbor-list rebuild. Use e.g. 'neighbor {:.3g} bin'",
+                   neighbor->skin, gap, i, j, 2.0 * gap);
+    }
+  }
+}
+
+/* ----------------------------------------------------------------------
+   Rayleigh time of the smallest sphere (physics.md §4, Li, Xu & Thornton 2005):
+   dt_R = pi R sqrt(rho/G) / (0.1631 nu + 0.8766)
+------------------------------------------------------------------------- */
+
+void PairThorntonYin::check_timestep_against_rayleigh()
+{
+  double local_min = BIG;
+  for (int i = 0; i < atom->nlocal; ++i) {
+    const int t = atom->type[i];
+    const double r = atom->radius[i];
+    if (!(r > 0.0) || !material_set[t]) continue;
+    const double rho = atom->rmass[i] / (4.0 / 3.0 * MY_PI * r * r * r);
+    const double G = youngs[t] / (2.0 * (1.0 + poisson[t]));
+    const double t_rayleigh = MY_PI * r * std::sqrt(rho / G) / (0.1631 * poisson[t] + 0.8766);
+    local_min = MIN(local_min, t_rayleigh);
+  }
+  double t_rayleigh;
+  MPI_Allreduce(&local_min, &t_rayleigh, 1, MPI_DOUBLE, MPI_MIN, world);
+  if (t_rayleigh < BIG && update->dt > RAYLEIGH_WARN_FRACTION * t_rayleigh && comm->me == 0)
+    error->warning(FLERR, "pair thornton/yin: timestep {:.4g} exceeds {} x the Rayleigh time "
+                   "{:.4g} of the smallest sphere; reduce the timestep to at most {:.4g} "
+                   "(or scale the density up)", update->dt, RAYLEIGH_WARN_FRACTION, t_rayleigh,
+                   RAYLEIGH_WARN_FRACTION * t_rayleigh);
+}
+
+/* ---------------------------------------------------------------------- */
+
+double PairThorntonYin::init_one(int i, int j)
+{
+  if (setflag[i][j] == 0) mix_pair(i, j);
+  E_star[j][i] = E_star[i][j];
+  G_star[j][i] = G_star[i][j];
+  friction[j][i] = friction[i][j];
+  surface_energy[j][i] = surface_energy[i][j];
+  damp_n[j][i] = damp_n[i][j];
+  damp_t[j][i] = damp_t[i][j];
+
+  // cutoff: touching largest spheres plus the adhesive tensile range
+  double rad_i = maxrad_type[i], rad_j = maxrad_type[j];
+  double rad_any = 0.0;
+  for (int t = 1; t <= atom->ntypes; ++t) rad_any = MAX(rad_any, maxrad_type[t]);
+  if (rad_i <= 0.0) rad_i = rad_any;
+  if (rad_j <= 0.0) rad_j = rad_any;
+  double cutoff = rad_i + rad_j;
+  if (cutoff > 0.0)
+    cutoff -= tycore::jkr::break_overlap(tycore::effective_radius(rad_i, rad_j), E_star[i][j],
+                                         surface_energy[i][j]);
+  cut[i][j] = cut[j][i] = cutoff;
+  return cutoff;
+}
+
+/* ----------------------------------------------------------------------
+   Mean-field velocity gradient L = Hdot H^-1 of a deforming box (fix deform remap x,
+   fix cell/servo). With remap x particle velocities are fluctuations, so the affine
+   relative velocity L (x_i - x_j) must be added to the contact velocity (physics.md §7).
+   Returns max |L_ab| (0 when the box does not deform or velocities already stream).
+------------------------------------------------------------------------- */
+
+double PairThorntonYin::affine_velocity_gradient(double L[3][3]) const
+{
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) L[a][b] = 0.0;
+  if (domain->deform_vremap) return 0.0;
+  const double *hd = domain->h_rate, *hi = domain->h_inv;
+  L[0][0] = hd[0] * hi[0];
+  L[0][1] = hd[0] * hi[5] + hd[5] * hi[1];
+  L[0][2] = hd[0] * hi[4] + hd[5] * hi[3] + hd[4] * hi[2];
+  L[1][1] = hd[1] * hi[1];
+  L[1][2] = hd[1] * hi[3] + hd[3] * hi[2];
+  L[2][2] = hd[2] * hi[2];
+  double largest = 0.0;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) largest = MAX(largest, std::fabs(L[a][b]));
+  return largest;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairThorntonYin::compute(int eflag, int vflag)
+{
+  // model only what the scene needs: specialised loops chosen once per call
+  adhesive = damped = 0;
+  for (int i = 1; i <= atom->ntypes; ++i)
+    for (int j = i; j <= atom->ntypes; ++j) {
+      if (surface_energy[i][j] > 0.0) adhesive = 1;
+      if (damp_n[i][j] > 0.0 || damp_t[i][j] > 0.0) damped = 1;
+    }
+  if (adhesive) {
+    if (damped) eval<true, true>(eflag, vflag);
+    else eval<true, false>(eflag, vflag);
+  } else {
+    if (damped) eval<false, true>(eflag, vflag);
+    else eval<false, false>(eflag, vflag);
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int vflag)
+{
+  ev_init(eflag, vflag);
+
+  // in setup the forces are recomputed at unchanged positions: no history increment
+  const bool history_update = !update->setupflag;
+  dt = update->dt;
+
+  double L[3][3];
+  const bool affine = affine_velocity_gradient(L) > 0.0;
+
+  double **x = atom->x;
+  double **v = atom->v;
+  double **f = atom->f;
+  double **omega = atom->omega;
+  double **torque = atom->torque;
+  const double *radius = atom->radius;
+  const double *rmass = atom->rmass;
+  const int *type = atom->type;
+  const int nlocal = atom->nlocal;
+  const int newton_pair = force->newton_pair;
+
+  const int inum = list->inum;
+  const int *ilist = list->ilist;
+  const int *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+  int **firsttouch = fix_history->firstflag;
+  double **firsthistory = fix_history->firstvalue;
+
+  double dissipated_friction = 0.0, dissipated_break = 0.0, dissipated_damping = 0.0;
+
+  for (int ii = 0; ii < inum; ++ii) {
+    const int i = ilist[ii];
+    const int itype = type[i];
+    const double radi = radius[i];
+    int *touch = firsttouch[i];
+    double *allhistory = firsthistory[i];
+    const int *jlist = firstneigh[i];
+    const int jnum = numneigh[i];
+
+    for (int jj = 0; jj < jnum; ++jj) {
+      const int j = jlist[jj] & NEIGHMASK;
+      const int jtype = type[j];
+      double *slot = &allhistory[HISTORY_SIZE * jj];
+
+      const double delx = x[i][0] - x[j][0];
+      const double dely = x[i][1] - x[j][1];
+      const double delz = x[i][2] - x[j][2];
+      const double rsq = delx * delx + dely * dely + delz * delz;
+      const double radj = radius[j];
+      const double radsum = radi + radj;
+
+      if (!touch[jj] && rsq >= radsum * radsum) continue;    // apart, never touched
+
+      const tycore::PairCoefficients c{E_star[itype][jtype], G_star[itype][jtype],
+                                       friction[itype][jtype], surface_energy[itype][jtype]};
+      const double R = radi * radj / radsum;
+      const double r = std::sqrt(rsq);
+      const double delta = radsum - r;
+      const double share = (newton_pair || j < nlocal) ? 1.0 : 0.5;
+
+      if (touch[jj]) {
+        const double delta_break = ADHESIVE ? tycore::jkr::break_overlap(R, c.E_star, c.Gamma)
+                                            : 0.0;
+        if (delta < delta_break) {    // Thornton & Yin (1991): separation at delta_f
+          if (history_update) {
+            const tycore::ContactHistory h = load_history(slot);
+            double stored = tycore::tangential_energy(c, R, h.P_prev, h);
+            if (ADHESIVE) {
+              const double a_break = tycore::jkr::contact_radius(delta_break, R, c.E_star,
+                                                                 c.Gamma);
+              stored += tycore::jkr::stored_energy(a_break, R, c.E_star, c.Gamma);
+            }
+            dissipated_break += share * stored;
+          }
+          touch[jj] = 0;
+          for (int k = 0; k < HISTORY_SIZE; ++k) slot[k] = 0.0;
+          continue;
+        }
+      }
+
+      tycore::ContactHistory h;
+      if (!touch[jj]) {    // first touch at delta >= 0: JKR snap-on, no work done
+        touch[jj] = 1;
+        const double a = ADHESIVE ? tycore::jkr::contact_radius(delta, R, c.E_star, c.Gamma)
+                                  : std::sqrt(R * delta);
+        tycore::begin_contact(h, tycore::jkr::normal_force(a, R, c.E_star, c.Gamma), ADHESIVE);
+      } else {
+        h = load_history(slot);
+      }
+
+      const double rinv = 1.0 / r;
+      const double nx = delx * rinv, ny = dely * rinv, nz = delz * rinv;
+
+      // relative velocity of i with respect to j at the contact point (physics.md §7.1)
+      double vr1 = v[i][0] - v[j][0];
+      double vr2 = v[i][1] - v[j][1];
+      double vr3 = v[i][2] - v[j][2];
+      if (affine) {
+        vr1 += L[0][0] * delx + L[0][1] * dely + L[0][2] * delz;
+        vr2 += L[1][1] * dely + L[1][2] * delz;
+        vr3 += L[2][2] * delz;
+      }
+      const double vn = vr1 * nx + vr2 * ny + vr3 * nz;
+      const double lever_i = radi - 0.5 * delta, lever_j = radj - 0.5 * delta;
+      const double wr1 = lever_i * omega[i][0] + lever_j * omega[j][0];
+      const double wr2 = lever_i * omega[i][1] + lever_j * omega[j][1];
+      const double wr3 = lever_i * omega[i][2] + lever_j * omega[j][2];
+      const double vt1 = vr1 - vn * nx + (ny * wr3 - nz * wr2);
+      const double vt2 = vr2 - vn * ny + (nz * wr1 - nx * wr3);
+      const double vt3 = vr3 - vn * nz + (nx * wr2 - ny * wr1);
+
+      const Eigen::Vector3d normal(nx, ny, nz);
+      double P, contact_radius, stored_energy = 0.0;
+      if (history_update) {
+        const double twist = 0.5 * dt *
+            ((omega[i][0] + omega[j][0]) * nx + (omega[i][1] + omega[j][1]) * ny +
+             (omega[i][2] + omega[j][2]) * nz);
+        tycore::rotate_history(h, normal, twist);
+        // tangential displacement of j relative to i at the contact this step
+        const Eigen::Vector3d ds(-vt1 * dt, -vt2 * dt, -vt3 * dt);
+        const tycore::ContactResult res = tycore::evaluate_contact<ADHESIVE>(c, R, delta, ds, h);
+        P = res.P;
+        contact_radius = res.contact_radius;
+        stored_energy = res.normal_energy + res.tangential_energy;
+        dissipated_friction += share * res.dissipation;
+      } else {
+        contact_radius = ADHESIVE ? tycore::jkr::contact_radius(delta, R, c.E_star, c.Gamma)
+                                  : std::sqrt(R * delta);
+        P = tycore::jkr::normal_force(contact_radius, R, c.E_star, c.Gamma);
+        if (eflag)
+          stored_energy = tycore::jkr::stored_energy(contact_radius, R, c.E_star, c.Gamma) +
+              tycore::tangential_energy(c, R, P, h);
+      }
+      store_history(slot, h);
+
+      double Fn = P;
+      double fs1 = h.T[0], fs2 = h.T[1], fs3 = h.T[2];
+      if (DAMPED) {
+        // viscous damping outside the elastic history: eta = 2 beta sqrt(m* k)
+        const double m_star = rmass[i] * rmass[j] / (rmass[i] + rmass[j]);
+        const double eta_n =
+            2.0 * damp_n[itype][jtype] * std::sqrt(m_star * 2.0 * c.E_star * contact_radius);
+        const double eta_t =
+            2.0 * damp_t[itype][jtype] * std::sqrt(m_star * 8.0 * c.G_star * contact_radius);
+        Fn -= eta_n * vn;
+        fs1 -= eta_t * vt1;
+        fs2 -= eta_t * vt2;
+        fs3 -= eta_t * vt3;
+        if (history_update)
+          dissipated_damping += share * dt *
+              (eta_n * vn * vn + eta_t * (vt1 * vt1 + vt2 * vt2 + vt3 * vt3));
+      }
+
+      const double fx = nx * Fn + fs1;
+      const double fy = ny * Fn + fs2;
+      const double fz = nz * Fn + fs3;
+      f[i][0] += fx;
+      f[i][1] += fy;
+      f[i][2] += fz;
+      // torque of the tangential force applied at the contact point
+      const double tor1 = ny * fs3 - nz * fs2;
+      const double tor2 = nz * fs1 - nx * fs3;
+      const double tor3 = nx * fs2 - ny * fs1;
+      torque[i][0] -= lever_i * tor1;
+      torque[i][1] -= lever_i * tor2;
+      torque[i][2] -= lever_i * tor3;
+      if (newton_pair || j < nlocal) {
+        f[j][0] -= fx;
+        f[j][1] -= fy;
+        f[j][2] -= fz;
+        torque[j][0] -= lever_j * tor1;
+        torque[j][1] -= lever_j * tor2;
+        torque[j][2] -= lever_j * tor3;
+      }
+      if (evflag)
+        ev_tally_xyz(i, j, nlocal, newton_pair, stored_energy, 0.0, fx, fy, fz, delx, dely,
+                     delz);
+    }
+  }
+
+  pvector[DISSIPATION_FRICTION] += dissipated_friction;
+  pvector[DISSIPATION_BREAK] += dissipated_break;
+  pvector[DISSIPATION_DAMPING] += dissipated_damping;
+}
+
+template void PairThorntonYin::eval<true, true>(int, int);
+template void PairThorntonYin::eval<true, false>(int, int);
+template void PairThorntonYin::eval<false, true>(int, int);
+template void PairThorntonYin::eval<false, false>(int, int);
+
+/* ----------------------------------------------------------------------
+   history seen from the partner: vectors flip sign, scalars do not
+------------------------------------------------------------------------- */
+
+void PairThorntonYin::transfer_history(double *source, double *target)
+{
+  for (int k = 0; k < HISTORY_SIZE; ++k)
+    target[k] = tycore::history_transfer_sign[k] * source[k];
+}
+
+/* ----------------------------------------------------------------------
+   for compute pair/local: never changes the history
+------------------------------------------------------------------------- */
+
+double PairThorntonYin::single(int i, int j, int itype, int jtype, double rsq,
+                               double /*factor_coul*/, double /*factor_lj*/, double &fforce)
+{
+  for (int k = 0; k < single_extra; ++k) svector[k] = 0.0;
+  fforce = 0.0;
+
+  const double radi = atom->radius[i], radj = atom->radius[j];
+  const double radsum = radi + radj;
+  const double R = radi * radj / radsum;
+  const tycore::PairCoefficients c{E_star[itype][jtype], G_star[itype][jtype],
+                                   friction[itype][jtype], surface_energy[itype][jtype]};
+  svector[S_PULL_OFF_FORCE] = tycore::jkr::pull_off_force(c.Gamma, R);
+  svector[S_BREAK_OVERLAP] = tycore::jkr::break_overlap(R, c.E_star, c.Gamma);
+
+  // find the contact's history slot in the pair's own neighbor list
+  const int jnum = list->numneigh[i];
+  const int *jlist = list->firstneigh[i];
+  int found = -1;
+  for (int k = 0; k < jnum; ++k) {
+    neighprev = (neighprev + 1 < jnum) ? neighprev + 1 : 0;
+    if ((jlist[neighprev] & NEIGHMASK) == j) {
+      found = neighprev;
+      break;
+    }
+  }
+  if (found < 0 || !fix_history->firstflag[i][found]) return 0.0;
+  const tycore::ContactHistory h = load_history(&fix_history->firstvalue[i][HISTORY_SIZE * found]);
+
+  const double r = std::sqrt(rsq);
+  const double delta = radsum - r;
+  if (delta < svector[S_BREAK_OVERLAP]) return 0.0;
+  const double a = (c.Gamma > 0.0) ? tycore::jkr::contact_radius(delta, R, c.E_star, c.Gamma)
+                                   : std::sqrt(R * MAX(delta, 0.0));
+  const double P = tycore::jkr::normal_force(a, R, c.E_star, c.Gamma);
+  fforce = P / r;
+  svector[S_NORMAL_FORCE] = P;
+  svector[S_TANGENTIAL_FORCE] = std::sqrt(h.T[0] * h.T[0] + h.T[1] * h.T[1] + h.T[2] * h.T[2]);
+  svector[S_CONTACT_RADIUS] = a;
+  svector[S_OVERLAP] = delta;
+  svector[S_SLIDING] = h.sliding;
+  svector[S_PEELING] = h.peeling;
+  return tycore::jkr::stored_energy(a, R, c.E_star, c.Gamma) +
+      tycore::tangential_energy(c, R, P, h);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairThorntonYin::write_restart(FILE *fp)
+{
+  const int n = atom->ntypes;
+  fwrite(material_set + 1, sizeof(int), n, fp);
+  fwrite(youngs + 1, sizeof(double), n, fp);
+  fwrite(poisson + 1, sizeof(double), n, fp);
+  for (int i = 1; i <= n; ++i)
+    for (int j = i; j <= n; ++j) {
+      fwrite(&setflag[i][j], sizeof(int), 1, fp);
+      if (setflag[i][j]) {
+        const double values[6] = {E_star[i][j],         G_star[i][j], friction[i][j],
+                                  surface_energy[i][j], damp_n[i][j], damp_t[i][j]};
+        fwrite(values, sizeof(double), 6, fp);
+      }
+    }
+}
+
+void PairThorntonYin::read_restart(FILE *fp)
+{
+  allocate();
+  const int n = atom->ntypes;
+  const int me = comm->me;
+  if (me == 0) {
+    utils::sfread(FLERR, material_set + 1, sizeof(int), n, fp, nullptr, error);
+    utils::sfread(FLERR, youngs + 1, sizeof(double), n, fp, nullptr, error);
+    utils::sfread(FLERR, poisson + 1, sizeof(double), n, fp, nullptr, error);
+  }
+  MPI_Bcast(material_set + 1, n, MPI_INT, 0, world);
+  MPI_Bcast(youngs + 1, n, MPI_DOUBLE, 0, world);
+  MPI_Bcast(poisson + 1, n, MPI_DOUBLE, 0, world);
+  for (int i = 1; i <= n; ++i)
+    for (int j = i; j <= n; ++j) {
+      if (me == 0) utils::sfread(FLERR, &setflag[i][j], sizeof(int), 1, fp, nullptr, error);
+      MPI_Bcast(&setflag[i][j], 1, MPI_INT, 0, world);
+      if (setflag[i][j]) {
+        double values[6];
+        if (me == 0) utils::sfread(FLERR, values, sizeof(double), 6, fp, nullptr, error);
+        MPI_Bcast(values, 6, MPI_DOUBLE, 0, world);
+        E_star[i][j] = values[0];
+        G_star[i][j] = values[1];
+        friction[i][j] = values[2];
+        surface_energy[i][j] = values[3];
+        damp_n[i][j] = values[4];
+        damp_t[i][j] = values[5];
+      }
+    }
+}
+
+void PairThorntonYin::write_restart_settings(FILE *) {}
+void PairThorntonYin::read_restart_settings(FILE *) {}
+
+/* ---------------------------------------------------------------------- */
+
+double PairThorntonYin::memory_usage()
+{
+  return Pair::memory_usage();
+}
+
+void *PairThorntonYin::extract(const char *name, int &dim)
+{
+  if (strcmp(name, "cut") == 0) {
+    dim = 2;
+    return (void *) cut;
+  }
+  if (strcmp(name, "mu") == 0) {
+    dim = 2;
+    return (void *) friction;
+  }
+  if (strcmp(name, "Gamma") == 0) {
+    dim = 2;
+    return (void *) surface_energy;
+  }
+  return nullptr;
+}

@@ -1,0 +1,73 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   pair_style thornton/yin: JKR adhesive elastic spheres with Thornton's tangential law
+   (Thornton & Yin 1991; Thornton 1991; Thornton & Randall 1988).
+   The contact physics lives in plugin/core (tycore); this class is the LAMMPS plumbing:
+   neighbor loop, contact history, affine relative velocity, energy and virial tallies.
+------------------------------------------------------------------------- */
+
+#ifndef LMP_PAIR_THORNTON_YIN_H
+#define LMP_PAIR_THORNTON_YIN_H
+
+#include "pair.h"
+
+namespace LAMMPS_NS {
+
+class PairThorntonYin : public Pair {
+ public:
+  PairThorntonYin(class LAMMPS *);
+  ~PairThorntonYin() override;
+
+  void compute(int, int) override;
+  void settings(int, char **) override;
+  void coeff(int, char **) override;
+  void init_style() override;
+  double init_one(int, int) override;
+  void write_restart(FILE *) override;
+  void read_restart(FILE *) override;
+  void write_restart_settings(FILE *) override;
+  void read_restart_settings(FILE *) override;
+  double single(int, int, int, int, double, double, double, double &) override;
+  void transfer_history(double *, double *) override;
+  double memory_usage() override;
+  void *extract(const char *, int &) override;
+
+  // indices of pvector (cumulative energies, J; read with compute pair thornton/yin)
+  enum { DISSIPATION_FRICTION, DISSIPATION_BREAK, DISSIPATION_DAMPING, N_PVECTOR };
+  // indices of svector (single(), for compute pair/local p1 ... p8)
+  enum {
+    S_NORMAL_FORCE, S_TANGENTIAL_FORCE, S_CONTACT_RADIUS, S_OVERLAP, S_SLIDING, S_PEELING,
+    S_PULL_OFF_FORCE, S_BREAK_OVERLAP, N_SVECTOR
+  };
+
+  // fraction of the Rayleigh time above which init() warns (physics.md §4)
+  static constexpr double RAYLEIGH_WARN_FRACTION = 0.3;
+
+ protected:
+  // per type: material as given by pair_coeff I I
+  double *youngs, *poisson;
+  int *material_set;
+  // per type pair (mixed for I != J unless given explicitly)
+  double **E_star, **G_star, **friction, **surface_energy;
+  double **cut;
+
+  double **damp_n, **damp_t;                     // damping ratios beta_n, beta_t; 0 = off
+  int adhesive, damped;                          // chosen once per compute()
+  double *maxrad_type;                           // largest radius per type (init_style)
+
+  class FixDummy *fix_dummy;
+  class FixNeighHistory *fix_history;
+  int neighprev;
+  double dt;
+
+  void allocate();
+  void mix_pair(int, int);
+  void check_break_against_skin();
+  void check_timestep_against_rayleigh();
+  double affine_velocity_gradient(double L[3][3]) const;
+
+  template <bool ADHESIVE, bool DAMPED> void eval(int eflag, int vflag);
+};
+
+}    // namespace LAMMPS_NS
+
+#endif

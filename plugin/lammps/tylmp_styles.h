@@ -1,0 +1,12 @@
+// The list of styles this library provides: one line per LAMMPS style.
+#ifndef TYLMP_STYLES_H
+#define TYLMP_STYLES_H
+
+#include "fix_damping_cundall.h"
+#include "pair_thornton_yin.h"
+
+#define TYLMP_STYLE_LIST                                    \
+  TYLMP_PAIR("thornton/yin", LAMMPS_NS::PairThorntonYin)    \
+  TYLMP_FIX("damping/cundall", LAMMPS_NS::FixDampingCundall)
+
+#endif

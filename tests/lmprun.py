@@ -1,0 +1,42 @@
+"""Run LAMMPS decks with the stock Debian `lmp` and read what they wrote.
+
+LAMMPS is built without exceptions: an input error ends the process, so every deck runs
+in its own `lmp` process and errors are asserted on its output.
+"""
+import os
+import subprocess
+
+import numpy as np
+
+LOAD_TYLMP = (
+    'python tylmp_load input 1 SELF format p here "from tylmp import load as tylmp_load"\n'
+    "python tylmp_load invoke\n")
+
+
+def run_deck(text, workdir, name="in.test", np_ranks=1, variables=None, timeout=600):
+    """Write `text` to workdir/name, run it; return (returncode, combined output)."""
+    path = os.path.join(str(workdir), name)
+    with open(path, "w") as fh:
+        fh.write(text)
+    cmd = ["lmp", "-in", name, "-log", "none", "-nocite"]
+    for key, value in (variables or {}).items():
+        cmd += ["-var", key, str(value)]
+    if np_ranks > 1:
+        cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(np_ranks)] + cmd
+    proc = subprocess.run(cmd, cwd=str(workdir), capture_output=True, text=True,
+                          timeout=timeout, env=dict(os.environ, OMPI_MCA_btl_vader_single_copy_mechanism="none"))
+    return proc.returncode, proc.stdout + proc.stderr
+
+
+def run_ok(text, workdir, **kw):
+    rc, out = run_deck(text, workdir, **kw)
+    assert rc == 0 and "ERROR" not in out, out[-3000:]
+    return out
+
+
+def read_table(path):
+    """Whitespace table with a '#' header line naming the columns -> dict of arrays."""
+    with open(path) as fh:
+        header = fh.readline().lstrip("#").split()
+    data = np.loadtxt(path, comments="#", ndmin=2)
+    return {name: data[:, k] for k, name in enumerate(header)}

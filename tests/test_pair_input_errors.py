@@ -1,0 +1,68 @@
+"""Bad input to pair thornton/yin stops LAMMPS with an error that names the problem."""
+import pytest
+
+from lmprun import LOAD_TYLMP, run_deck
+
+R = 1.0e-4
+
+
+def deck(pair_coeff="pair_coeff * * 70e9 0.3 0.3 0.3", atom_style="sphere",
+         comm="comm_modify vel yes", neighbor="neighbor 1e-6 bin", pair_style="pair_style thornton/yin"):
+    return f"""
+units si
+atom_style {atom_style}
+boundary p p p
+{comm}
+region box block 0 2e-3 0 2e-3 0 2e-3
+create_box 1 box
+create_atoms 1 single 1e-3 1e-3 1e-3
+create_atoms 1 single {1e-3 + 2 * R - 1e-8} 1e-3 1e-3
+{"set atom * diameter 2e-4 density 2650" if atom_style == "sphere" else "mass 1 1e-8"}
+{LOAD_TYLMP}
+{pair_style}
+{pair_coeff}
+{neighbor}
+timestep 1e-9
+run 0
+"""
+
+
+CASES = {
+    # each: deck keyword arguments -> text the error must contain
+    "E_zero": (dict(pair_coeff="pair_coeff * * 0 0.3 0.3 0.3"), "Young's modulus E must be > 0"),
+    "E_negative": (dict(pair_coeff="pair_coeff * * -1e9 0.3 0.3 0.3"), "Young's modulus E must be > 0"),
+    "nu_half": (dict(pair_coeff="pair_coeff * * 70e9 0.5 0.3 0.3"), "Poisson's ratio nu must lie in (-1, 0.5)"),
+    "nu_minus_one": (dict(pair_coeff="pair_coeff * * 70e9 -1 0.3 0.3"), "Poisson's ratio nu must lie in (-1, 0.5)"),
+    "mu_negative": (dict(pair_coeff="pair_coeff * * 70e9 0.3 -0.1 0.3"), "friction coefficient mu must be >= 0"),
+    "Gamma_negative": (dict(pair_coeff="pair_coeff * * 70e9 0.3 0.3 -0.3"), "interface energy Gamma must be >= 0"),
+    "too_few": (dict(pair_coeff="pair_coeff * * 70e9 0.3 0.3"), "expected 'pair_coeff I J E nu mu Gamma"),
+    "unknown_keyword": (dict(pair_coeff="pair_coeff * * 70e9 0.3 0.3 0.3 stiff 2"), "Unknown pair_coeff keyword 'stiff'"),
+    "damping_missing_value": (dict(pair_coeff="pair_coeff * * 70e9 0.3 0.3 0.3 damping 0.1"), "'damping' needs two values"),
+    "pair_style_args": (dict(pair_style="pair_style thornton/yin 1.0"), "pair_style thornton/yin takes no arguments"),
+    "no_radius": (dict(atom_style="atomic"), "requires atom style sphere"),
+    "no_ghost_velocity": (dict(comm=""), "comm_modify vel yes"),
+    "skin_too_small": (dict(pair_coeff="pair_coeff * * 70e9 0.3 0.3 3.0", neighbor="neighbor 1e-8 bin"),
+                       "is not larger than the JKR break separation"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_bad_input_is_rejected_with_named_error(name, tmp_path):
+    kwargs, message = CASES[name]
+    rc, out = run_deck(deck(**kwargs), tmp_path)
+    assert "ERROR" in out, out[-2000:]
+    assert message in out, out[-2000:]
+
+
+def test_good_input_runs(tmp_path):
+    # the reference deck above is accepted as it stands (so the cases differ only by their fault)
+    rc, out = run_deck(deck(), tmp_path)
+    assert rc == 0 and "ERROR" not in out, out[-2000:]
+
+
+def test_timestep_near_rayleigh_limit_warns(tmp_path):
+    # R = 0.1 mm, rho = 2650: Rayleigh time 1.065e-7 s (physics.md §4); dt = 1e-7 must warn
+    text = deck().replace("timestep 1e-9", "timestep 1e-7")
+    rc, out = run_deck(text, tmp_path)
+    assert rc == 0
+    assert "exceeds 0.3 x the Rayleigh time" in out and "reduce the timestep" in out, out[-2000:]
