@@ -51,15 +51,18 @@ def normal_cycle(tmp_path, pair_lines, gap, delta_max, delta_end, speed, dt):
     """Atom 2 starts `gap` apart, approaches to overlap delta_max, retracts to delta_end."""
     t_in = (gap + delta_max) / speed
     t_total = t_in + (delta_max - delta_end) / speed
-    x0 = 2 * R + gap
+    x0 = 0.0                        # fix move variable: displacement from the start, 2R + gap
     pos = f"({x0}-{speed}*step*dt*(step*dt<{t_in})-({speed}*{t_in}-{speed}*(step*dt-{t_in}))*(step*dt>={t_in}))"
     vel = f"(-{speed}*(step*dt<{t_in})+{speed}*(step*dt>={t_in}))"
     motion = f"move variable v_px NULL NULL v_vx NULL NULL"
     extra = f"variable px equal {pos}\nvariable vx equal {vel}"
     cols = {"t": "step*dt", "d": f"{2 * R}-x[2]", "fx": "fx[2]", "f1x": "fx[1]"}
     nsteps = int(t_total / dt) + 1
-    run_ok(two_sphere_deck(pair_lines, motion, nsteps, dt, cols, extra=extra), tmp_path)
-    return read_table(tmp_path / "out.txt")
+    deck = two_sphere_deck(pair_lines, motion, nsteps, dt, cols, extra=extra)
+    deck = deck.replace(f"create_atoms 2 single {2 * R} 0 0", f"create_atoms 2 single {2 * R + gap} 0 0")
+    run_ok(deck, tmp_path)
+    table = read_table(tmp_path / "out.txt")
+    return {k: v[1:] for k, v in table.items()}    # row 0 is printed before fix move acts
 
 
 @pytest.mark.parametrize("Gamma", [0.3, 3.0])
@@ -88,7 +91,9 @@ def test_adhesive_normal_cycle_follows_jkr_and_breaks_at_delta_f(tmp_path, Gamma
     assert P[alive].min() / Pc == pytest.approx(-1.0, abs=1e-4)        # load-controlled pull-off
     last = np.nonzero(alive)[0][-1]
     assert d[last] >= delta_f and d[last + 1] < delta_f                 # breaks exactly past delta_f
-    assert P[last] / Pc == pytest.approx(-5 / 9, abs=5e-3)
+    # -5/9 Pc is reached at delta_f itself; one step before it P - P_f grows like
+    # sqrt(delta - delta_f) (fold of the JKR curve), i.e. ~0.04 Pc for steps of delta_u/2000
+    assert P[last] / Pc == pytest.approx(-5 / 9, abs=0.03)
     assert np.all(P[last + 1:] == 0.0)
 
 
@@ -125,16 +130,25 @@ def tangential_cycle(tmp_path, Gamma, mu, delta, amplitudes, speed, dt):
         terms_y.append(f"({y0}+{s}*(step*dt-{t0}))*{window}")
         terms_v.append(f"{s}*{window}")
     extra = (f"variable py equal {'+'.join(terms_y)}+{pos[-1]}*(step*dt>={times[-1]})\n"
-             f"variable vy equal {'+'.join(terms_v)}")
-    motion = "move variable NULL v_py NULL NULL v_vy NULL"
+             f"variable vy equal {'+'.join(terms_v)}\n"
+             "variable zero equal 0\n"
+             "compute torque all property/atom tqz")
+    motion = "move variable v_zero v_py v_zero v_zero v_vy v_zero"    # x, z held: constant overlap
     cols = {"t": "step*dt", "y": "y[2]", "fx": "fx[2]", "fy": "fy[2]", "f1y": "fy[1]",
-            "tz1": "tqz[1]", "tz2": "tqz[2]"}
+            "tz1": "c_torque[1]", "tz2": "c_torque[2]"}
     nsteps = int(times[-1] / dt)
     deck = two_sphere_deck(f"pair_style thornton/yin\npair_coeff * * {E} {NU} {mu} {Gamma}",
                            motion, nsteps, dt, cols, extra=extra)
     deck = deck.replace(f"create_atoms 2 single {2 * R} 0 0", f"create_atoms 2 single {2 * R - delta} 0 0")
     run_ok(deck, tmp_path)
-    return read_table(tmp_path / "out.txt")
+    data = read_table(tmp_path / "out.txt")
+    # normal and tangential components on atom 2: n = (2R - delta, y)/r tilts as atom 2 moves
+    x_sep = 2 * R - delta
+    r = np.hypot(x_sep, data["y"])
+    data["P"] = (data["fx"] * x_sep + data["fy"] * data["y"]) / r
+    data["T"] = -(data["fy"] * x_sep - data["fx"] * data["y"]) / r    # on atom 1, along +y
+    data["delta"] = 2 * R - r
+    return data
 
 
 def test_tangential_loading_follows_mindlin_and_slides_at_mu_P(tmp_path):
@@ -144,16 +158,18 @@ def test_tangential_loading_follows_mindlin_and_slides_at_mu_P(tmp_path):
     P = 4 / 3 * E_STAR * math.sqrt(R_STAR) * delta**1.5
     slide = 3 * mu * P / (16 * G_STAR * a)
     data = tangential_cycle(tmp_path, 0.0, mu, delta, [1.5 * slide], speed=1e-3, dt=slide / 1e-3 / 4000)
-    y, T = data["y"], data["fy"]          # force on atom 2 opposes its displacement: T = -fy
+    y, T = data["y"], data["T"]           # force on atom 2 opposes its displacement
     assert np.allclose(data["fy"], -data["f1y"], rtol=0, atol=1e-12 * P)   # third law
     loading = (y > 0) & (y < 0.999 * slide)
     mindlin = mu * P * (1 - (1 - y[loading] / slide) ** 1.5)
-    assert np.max(np.abs(-T[loading] - mindlin)) <= 2e-3 * mu * P
-    assert np.allclose(-T[y > 1.01 * slide], mu * P, rtol=1e-9)              # Coulomb limit
+    assert np.max(np.abs(T[loading] - mindlin)) <= 2e-3 * mu * P
+    sliding = y > 1.01 * slide
+    assert np.allclose(T[sliding], mu * data["P"][sliding], rtol=1e-9)     # Coulomb limit
+    assert np.allclose(data["P"], 4 / 3 * E_STAR * math.sqrt(R_STAR) * data["delta"] ** 1.5, rtol=1e-9)
     # torques: each sphere feels lever*T about z, same sign (physics.md; LAMMPS convention)
-    lever = R - delta / 2
+    lever = R - data["delta"] / 2
     assert np.allclose(data["tz1"], data["tz2"], rtol=1e-9, atol=1e-20)
-    assert np.allclose(np.abs(data["tz2"]), lever * np.abs(data["fy"]), rtol=1e-6, atol=1e-20)
+    assert np.allclose(np.abs(data["tz2"]), lever * np.abs(T), rtol=1e-9, atol=1e-20)
 
 
 def test_tangential_unloading_is_masing(tmp_path):
@@ -165,7 +181,7 @@ def test_tangential_unloading_is_masing(tmp_path):
     y_star = 0.6 * slide
     data = tangential_cycle(tmp_path, 0.0, mu, delta, [y_star, -y_star, y_star], speed=1e-3,
                             dt=slide / 1e-3 / 4000)
-    y, T = data["y"], -data["fy"]
+    y, T = data["y"], data["T"]
     loading_curve = lambda s: mu * P * (1 - (1 - s / slide) ** 1.5)
     T_star = loading_curve(y_star)
     t = data["t"]
@@ -188,9 +204,11 @@ def test_adhesive_contact_slides_at_mu_P_plus_2Pc(tmp_path):
     a = ref.contact_radius(delta, R_STAR, E_STAR, Gamma)
     reach = 3 * limit / (8 * G_STAR * a)
     data = tangential_cycle(tmp_path, Gamma, mu, delta, [reach], speed=1e-3, dt=reach / 1e-3 / 4000)
-    T = -data["fy"]
-    assert T.max() == pytest.approx(limit, rel=1e-9)
-    assert data["fx"][-1] == pytest.approx(P, rel=1e-5)               # normal force stays JKR
+    T = data["T"]
+    k = -1                                                            # sliding at the end
+    P_k = ref.normal_force(data["delta"][k], R_STAR, E_STAR, Gamma)
+    assert T[k] == pytest.approx(mu * (P_k + 2 * Pc), rel=1e-9)
+    assert data["P"][-1] == pytest.approx(P_k, rel=1e-9)              # normal force stays JKR
     # initial stiffness is 8 G* a with the JKR contact radius (peeling starts at a(P))
     y = data["y"]
     k0 = np.polyfit(y[1:20], T[1:20], 1)[0]

@@ -32,6 +32,7 @@ using MathConst::MY_PI;
 namespace {
 
 constexpr int HISTORY_SIZE = tycore::history_size;
+constexpr double BIG = 1.0e20;
 const char *const FIX_HISTORY_ID = "NEIGH_HISTORY_THORNTON_YIN";
 const char *const FIX_DUMMY_ID = "NEIGH_HISTORY_THORNTON_YIN_DUMMY";
 
@@ -59,8 +60,6 @@ PairThorntonYin::PairThorntonYin(LAMMPS *lmp) : Pair(lmp)
   finitecutflag = 1;
   restartinfo = 1;
 
-  history = 1;
-  size_history = HISTORY_SIZE;
   beyond_contact = 1;                  // adhesive contacts live beyond zero overlap
   nondefault_history_transfer = 1;     // scalars of the history keep their sign
 
@@ -79,6 +78,11 @@ PairThorntonYin::PairThorntonYin(LAMMPS *lmp) : Pair(lmp)
   adhesive = damped = 0;
   neighprev = 0;
   dt = 0.0;
+  tally_cell = 0;
+  for (double &t : cell_tallies) t = 0.0;
+  contact_count = nullptr;
+  nmax_count = 0;
+  comm_reverse = 1;
 
   // placeholder keeps the history fix at the position of the pair_style command
   fix_history = nullptr;
@@ -92,6 +96,7 @@ PairThorntonYin::~PairThorntonYin()
   if (copymode) return;
   delete[] pvector;
   delete[] svector;
+  memory->destroy(contact_count);
   if (!fix_history) modify->delete_fix(FIX_DUMMY_ID);
   else modify->delete_fix(FIX_HISTORY_ID);
 
@@ -439,6 +444,18 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
 
   double dissipated_friction = 0.0, dissipated_break = 0.0, dissipated_damping = 0.0;
 
+  const bool tally = tally_cell != 0;
+  if (tally) {
+    for (double &t : cell_tallies) t = 0.0;
+    const int nall = nlocal + atom->nghost;
+    if (atom->nmax > nmax_count) {
+      memory->destroy(contact_count);
+      nmax_count = atom->nmax;
+      memory->create(contact_count, nmax_count, "pair:contact_count");
+    }
+    for (int k = 0; k < nall; ++k) contact_count[k] = 0.0;
+  }
+
   for (int ii = 0; ii < inum; ++ii) {
     const int i = ilist[ii];
     const int itype = type[i];
@@ -460,7 +477,7 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
       const double radj = radius[j];
       const double radsum = radi + radj;
 
-      if (!touch[jj] && rsq >= radsum * radsum) continue;    // apart, never touched
+      if (!touch[jj] && rsq > radsum * radsum) continue;    // apart, never touched (delta < 0)
 
       const tycore::PairCoefficients c{E_star[itype][jtype], G_star[itype][jtype],
                                        friction[itype][jtype], surface_energy[itype][jtype]};
@@ -586,8 +603,28 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
       if (evflag)
         ev_tally_xyz(i, j, nlocal, newton_pair, stored_energy, 0.0, fx, fy, fz, delx, dely,
                      delz);
+      if (tally) {
+        // affine stiffness of this contact (physics.md §5.2), k_T = 8 G* a_T(P + 2Pc)
+        const double k_N = tycore::jkr::normal_stiffness(contact_radius, R, c.E_star, c.Gamma);
+        const double Pc = ADHESIVE ? tycore::jkr::pull_off_force(c.Gamma, R) : 0.0;
+        const double k_T =
+            8.0 * c.G_star * tycore::micro_slip_radius(R, c.E_star, P + 2.0 * Pc);
+        const double n2[3] = {nx * nx, ny * ny, nz * nz};
+        const int a_of[6] = {0, 1, 2, 0, 0, 1}, b_of[6] = {0, 1, 2, 1, 2, 2};
+        for (int k = 0; k < 6; ++k) {
+          const double nn = n2[a_of[k]] * n2[b_of[k]];
+          cell_tallies[TALLY_STIFFNESS + k] +=
+              share * rsq * (k_N * nn + k_T * ((k < 3 ? n2[a_of[k]] : 0.0) - nn));
+        }
+        cell_tallies[TALLY_CONTACTS] += share;
+        cell_tallies[TALLY_SLIDING] += share * h.sliding;
+        cell_tallies[TALLY_FORCE] += share * std::sqrt(fx * fx + fy * fy + fz * fz);
+        contact_count[i] += 1.0;
+        if (newton_pair || j < nlocal) contact_count[j] += 1.0;
+      }
     }
   }
+  if (tally && newton_pair) comm->reverse_comm_pair(this);
 
   pvector[DISSIPATION_FRICTION] += dissipated_friction;
   pvector[DISSIPATION_BREAK] += dissipated_break;
@@ -718,8 +755,31 @@ double PairThorntonYin::memory_usage()
   return Pair::memory_usage();
 }
 
+int PairThorntonYin::pack_reverse_comm(int n, int first, double *buf)
+{
+  for (int k = 0; k < n; ++k) buf[k] = contact_count[first + k];
+  return n;
+}
+
+void PairThorntonYin::unpack_reverse_comm(int n, int *list, double *buf)
+{
+  for (int k = 0; k < n; ++k) contact_count[list[k]] += buf[k];
+}
+
 void *PairThorntonYin::extract(const char *name, int &dim)
 {
+  if (strcmp(name, "tally_cell") == 0) {
+    dim = 0;
+    return (void *) &tally_cell;
+  }
+  if (strcmp(name, "cell_tallies") == 0) {
+    dim = 1;
+    return (void *) cell_tallies;
+  }
+  if (strcmp(name, "contact_count") == 0) {
+    dim = 1;
+    return (void *) contact_count;
+  }
   if (strcmp(name, "cut") == 0) {
     dim = 2;
     return (void *) cut;

@@ -30,6 +30,18 @@ class PairThorntonYin : public Pair {
   void transfer_history(double *, double *) override;
   double memory_usage() override;
   void *extract(const char *, int &) override;
+  int pack_reverse_comm(int, int, double *) override;
+  void unpack_reverse_comm(int, int *, double *) override;
+
+  // per-rank sums over the contacts of the last compute(), for fix cell/servo (extract
+  // "cell_tallies"; made only while extract "tally_cell" is set to 1)
+  enum {
+    TALLY_STIFFNESS = 0,     // 6 entries: sum l^2 [k_N n_a^2 n_b^2 + k_T (d_ab n_a^2 - n_a^2 n_b^2)]
+    TALLY_CONTACTS = 6,      // number of contacts (touching pairs, tensile ones included)
+    TALLY_SLIDING = 7,       // number of contacts at the sliding limit
+    TALLY_FORCE = 8,         // sum of contact force magnitudes
+    N_TALLY = 9
+  };
 
   // indices of pvector (cumulative energies, J; read with compute pair thornton/yin)
   enum { DISSIPATION_FRICTION, DISSIPATION_BREAK, DISSIPATION_DAMPING, N_PVECTOR };
@@ -58,6 +70,11 @@ class PairThorntonYin : public Pair {
   class FixNeighHistory *fix_history;
   int neighprev;
   double dt;
+
+  int tally_cell;
+  double cell_tallies[N_TALLY];
+  double *contact_count;    // per atom (local after reverse communication)
+  int nmax_count;
 
   void allocate();
   void mix_pair(int, int);

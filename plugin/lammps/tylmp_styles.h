@@ -2,11 +2,13 @@
 #ifndef TYLMP_STYLES_H
 #define TYLMP_STYLES_H
 
+#include "fix_cell_servo.h"
 #include "fix_damping_cundall.h"
 #include "pair_thornton_yin.h"
 
 #define TYLMP_STYLE_LIST                                    \
   TYLMP_PAIR("thornton/yin", LAMMPS_NS::PairThorntonYin)    \
-  TYLMP_FIX("damping/cundall", LAMMPS_NS::FixDampingCundall)
+  TYLMP_FIX("damping/cundall", LAMMPS_NS::FixDampingCundall) \
+  TYLMP_FIX("cell/servo", LAMMPS_NS::FixCellServo)
 
 #endif

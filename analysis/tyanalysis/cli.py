@@ -1,0 +1,323 @@
+"""Command line: python3 -m tyanalysis <subcommand> ...  (see --help of each subcommand)."""
+import argparse
+import json
+import math
+import os
+import re
+import sys
+
+import numpy as np
+
+from . import compare, figures
+from . import invariants as inv
+from . import io, metrics
+
+
+def _g(x):
+    if x is None:
+        return "none"
+    if isinstance(x, float) and not math.isfinite(x):
+        return "nan"
+    return f"{x:.6g}" if isinstance(x, float) else str(x)
+
+
+def _kv(label, pairs):
+    print(f"{label}: " + " ".join(f"{k}={_g(v)}" for k, v in pairs))
+
+
+def _labels(files, labels):
+    if labels and len(labels) != len(files):
+        raise SystemExit(f"error: {len(labels)} labels for {len(files)} files")
+    return labels or [os.path.splitext(os.path.basename(f))[0] for f in files]
+
+
+def _read_all(files):
+    tables = [io.read_servo_csv(f) for f in files]
+    for t in tables:
+        if t.dropped_partial:
+            print(f"note: {t.path}: dropped an incomplete final row", file=sys.stderr)
+    return tables
+
+
+def _wrote(out):
+    print(f"wrote {out}")
+
+
+# ---- subcommands ---------------------------------------------------------------------------------
+
+def cmd_axisym(a):
+    tables = _read_all(a.files)
+    labels = _labels(a.files, a.labels)
+    for t, lab in zip(tables, labels):
+        s = metrics.summarize(t)
+        _kv(lab, [("q_peak_kPa", s["q_peak_kPa"]), ("eps_d13_at_q_peak_pct", s["eps_d13_at_q_peak_pct"]),
+                  ("dev_stress_peak_kPa", s["dev_stress_peak_kPa"]), ("sinphi_max", s["sinphi_max"]),
+                  ("sinphi_end", s["sinphi_end"]), ("void_ratio_end", s.get("void_ratio_end")),
+                  ("void_ratio_at_30pct", s.get("void_ratio_at_30pct")),
+                  ("eps_v_end_pct", s["eps_v_end_pct"]), ("eps_d13_end_pct", s["eps_d13_end_pct"])])
+    _wrote(figures.axisym(tables, labels, a.out, void_ratio=a.void_ratio))
+
+
+def _mu_of(path):
+    m = re.search(r"mu[_=-]?([0-9]+(?:\.[0-9]+)?)", os.path.basename(path))
+    return float(m.group(1)) if m else None
+
+
+def cmd_friction(a):
+    mus = a.mu or [_mu_of(f) for f in a.files]
+    if len(mus) != len(a.files) or any(m is None for m in mus):
+        raise SystemExit("error: give one --mu value per file (or name files like run_mu0.3.csv)")
+    tables = _read_all(a.files)
+    smax, scv = [], []
+    for t, mu in zip(tables, mus):
+        s = metrics.summarize(t)
+        smax.append(s["sinphi_max"])
+        scv.append(s["sinphi_end"])
+        _kv(t.name, [("mu", float(mu)), ("sinphi_max", s["sinphi_max"]), ("sinphi_cv", s["sinphi_end"])])
+    _wrote(figures.friction(mus, smax, scv, a.out))
+
+
+def _peak(table):
+    d = metrics.derived(table)
+    i = int(np.nanargmax(d["sinphi"]))
+    loaded = d["q"] > 0.1 * np.nanmax(d["q"])
+    b = float(np.nanmedian(d["b"][loaded]))
+    return {"index": i, "sinphi": float(d["sinphi"][i]), "b": b, "b_at_peak": float(d["b"][i]),
+            "lode_deg": float(d["lode_deg"][i]), "eta": float(d["eta_LD"][i]),
+            "p": float(d["p"][i]), "pi_x": float(d["pi_x"][i]), "pi_y": float(d["pi_y"][i])}
+
+
+def cmd_radial(a):
+    tables = _read_all(a.files)
+    labels = _labels(a.files, a.labels)
+    peaks = [_peak(t) for t in tables]
+    sinphi_tc, source = a.sinphi_tc, "--sinphi-tc"
+    if sinphi_tc is None:
+        i0 = int(np.argmin([abs(pk["b"]) for pk in peaks]))
+        if abs(peaks[i0]["b"]) <= a.b_tol:
+            sinphi_tc, source = peaks[i0]["sinphi"], labels[i0]
+    p_ref = float(np.mean([pk["p"] for pk in peaks]))
+    if sinphi_tc is None:
+        print(f"note: no record with |b| <= {a.b_tol}: failure surfaces not drawn")
+    else:
+        _kv("surfaces", [("sinphi_tc", sinphi_tc), ("from", source), ("p_kPa", p_ref * 1e-3),
+                         ("eta_LD", float(inv.criterion_constant(inv.LADE_DUNCAN, sinphi_tc))),
+                         ("MN_ratio", float(inv.criterion_constant(inv.MATSUOKA_NAKAI, sinphi_tc)))])
+    for pk, lab in zip(peaks, labels):
+        pairs = [("b", pk["b"]), ("sinphi_max", pk["sinphi"]), ("lode_deg", pk["lode_deg"]),
+                 ("eta_at_peak", pk["eta"])]
+        if sinphi_tc is not None and 0.0 <= pk["b"] <= 1.0:
+            pairs += [("sinphi_LD", inv.sinphi_on_surface(inv.LADE_DUNCAN, sinphi_tc, pk["b"])),
+                      ("sinphi_MN", inv.sinphi_on_surface(inv.MATSUOKA_NAKAI, sinphi_tc, pk["b"]))]
+        _kv(lab, pairs)
+    _wrote(figures.radial(tables, labels, a.out, peaks, sinphi_tc, p_ref, strain=a.strain))
+
+
+def cmd_pi_plane(a):
+    tables = _read_all(a.files)
+    labels = _labels(a.files, a.labels)
+    surfaces, guides = [], []
+    for idx, (t, lab) in enumerate(zip(tables, labels)):
+        d = metrics.derived(t)
+        i0 = compare.prestrain_end(t)
+        re_ = np.hypot(d["pi_ex"], d["pi_ey"])
+        pairs = [("p_min_kPa", float(np.min(d["p"])) * 1e-3), ("p_max_kPa", float(np.max(d["p"])) * 1e-3)]
+        if i0 is not None:
+            pairs += [("prestrain_row", i0), ("prestrain_eps_q_pct", float(d["eps_q"][i0]) * 100),
+                      ("prestrain_strain_radius_pct", float(re_[i0]) * 100),
+                      ("prestrain_q_kPa", float(d["q"][i0]) * 1e-3)]
+            rot = compare.stress_rotation(t)
+            if rot is not None:
+                pairs += [("stress_rotation_deg", rot[0]), ("strain_rotation_deg", rot[1])]
+        _kv(lab, pairs)
+        # failure surfaces through the state at the end of the prestrain (else the peak)
+        k = i0 if i0 is not None else int(np.nanargmax(d["sinphi"]))
+        p_ref = float(np.median(d["p"]))
+        if a.sinphi_tc is not None:
+            consts = {c: float(inv.criterion_constant(c, a.sinphi_tc)) for c in inv.CRITERIA}
+        else:
+            consts = {c: float(inv.criterion_value(c, d["sigma"][k])) for c in inv.CRITERIA}
+        for crit, const in consts.items():
+            if const > float(inv.criterion_value(crit, np.ones(3))) + 1e-12:
+                x, y = inv.failure_surface_pi(crit, p=p_ref, constant=const)
+                surfaces.append((idx, f"{lab}: {crit} ({const:.4g})", x, y))
+        # strain guides
+        r0 = a.strain_radius if a.strain_radius is not None else (float(re_[i0]) if i0 is not None else None)
+        guide = a.guide
+        if guide == "auto" and r0:
+            after = re_[i0:] if i0 is not None else re_
+            guide = "triangle" if float(np.max(after)) > 1.2 * r0 else "circle"
+        if r0 and guide in ("circle", "both"):
+            guides.append((f"circle r = {100 * r0:.3g} %", *inv.circle_pi(r0)))
+        if r0 and guide in ("triangle", "both"):
+            guides.append(("plane-strain triangle", *inv.plane_strain_triangle_pi(r0)))
+    _wrote(figures.pi_plane(tables, labels, a.out, surfaces, guides))
+
+
+def cmd_table(a):
+    ours = compare.load_results(a.results)
+    _emit_table(ours, a.out)
+
+
+def _emit_table(ours, out):
+    text = compare.markdown_table(ours)
+    print(text)
+    if out:
+        with open(out, "w", encoding="utf-8") as fh:
+            fh.write(text + "\n")
+        _wrote(out)
+
+
+def cmd_compare(a):
+    ours = {}
+    if a.json:
+        ours.update(compare.load_results(a.json))
+    for role in ("dense", "loose"):
+        f = getattr(a, role)
+        if f:
+            ours.update(compare.from_axisym(io.read_servo_csv(f), role))
+    if a.radial:
+        ours.update(compare.from_radial([io.read_servo_csv(f) for f in a.radial]))
+    if a.cdst:
+        ours.update(compare.from_nonradial(io.read_servo_csv(a.cdst), "cdst", a.p_target))
+    if a.plane_strain:
+        ps = compare.from_nonradial(io.read_servo_csv(a.plane_strain), "ps", a.p_target)
+        ours.update({k: v for k, v in ps.items() if k not in ours or k == "ps_stress_rotation_deg"})
+    _emit_table(ours, a.out)
+
+
+def _pick(table, wanted, given, what):
+    if given:
+        table.require([given])
+        return given
+    lower = {k.lower(): k for k in table.keys()}
+    for w in wanted:
+        if w in lower:
+            return lower[w]
+    raise SystemExit(f"error: no {what} column among {list(table.keys())}; name it with --{what[0]}")
+
+
+def cmd_two_spheres(a):
+    t = io.read_print_table(a.table)
+    xc = _pick(t, ("overlap", "delta", "delta_n", "dn", "d"), a.x, "x (overlap)")
+    yc = _pick(t, ("normal_force", "fn", "force", "fx", "p", "f"), a.y, "y (force)")
+    x, y = t[xc], t[yc] * a.force_scale
+    curves = []
+    pairs = [("rows", len(t)), ("x", xc), ("y", yc), ("overlap_max", float(np.max(x))),
+             ("force_max", float(np.max(y))), ("force_min", float(np.min(y))),
+             ("overlap_at_force_min", float(x[int(np.argmin(y))]))]
+    if a.E is not None and a.radius is not None:
+        estar = a.E / (2.0 * (1.0 - a.nu ** 2))
+        rstar = a.radius / 2.0
+        if a.gamma > 0:
+            a0 = (9 * math.pi * a.gamma * rstar ** 2 / estar) ** (1 / 3)
+            amax = math.sqrt(rstar * max(float(np.max(x)), 0.0) + a0 ** 2) * 1.05
+            ac = np.linspace(a0 * 6 ** (-2 / 3), amax, 400)
+            dj = ac ** 2 / rstar - 2 * np.sqrt(math.pi * a.gamma * ac / estar)
+            fj = 4 * estar * ac ** 3 / (3 * rstar) - 4 * np.sqrt(math.pi * a.gamma * estar * ac ** 3)
+            keep = dj <= max(float(np.max(x)), 0.0)
+            curves.append((f"JKR (Γ = {a.gamma:g} J/m²)", dj[keep], fj[keep]))
+            pairs.append(("pull_off_theory", 3 * math.pi * a.gamma * rstar))
+        dh = np.linspace(0.0, max(float(np.max(x)), 0.0), 200)
+        curves.append(("Hertz", dh, 4.0 / 3.0 * estar * np.sqrt(rstar) * dh ** 1.5))
+        pos = x > 0
+        if a.gamma == 0 and pos.any():
+            fh = 4.0 / 3.0 * estar * np.sqrt(rstar) * x[pos] ** 1.5
+            pairs.append(("hertz_max_rel_dev", float(np.max(np.abs(y[pos] - fh)) / np.max(np.abs(fh)))))
+    _kv(t.name, pairs)
+    _wrote(figures.two_spheres(x, y, a.out, curves, xlabel=xc, ylabel=yc))
+
+
+def cmd_summary(a):
+    for f in a.files:
+        s = metrics.summarize(io.read_servo_csv(f))
+        print(json.dumps(_finite(s), allow_nan=False))
+
+
+def _finite(obj):
+    """JSON-safe copy: NaN/inf -> None, numpy scalars -> Python."""
+    if isinstance(obj, dict):
+        return {k: _finite(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_finite(v) for v in obj]
+    if isinstance(obj, (np.floating, float)):
+        return float(obj) if math.isfinite(obj) else None
+    if isinstance(obj, np.integer):
+        return int(obj)
+    return obj
+
+
+# ---- parser --------------------------------------------------------------------------------------
+
+def build_parser():
+    ap = argparse.ArgumentParser(prog="python3 -m tyanalysis",
+                                 description="Figures and tables for the periodic-cell tests "
+                                             "(CSV of fix cell/servo).")
+    sub = ap.add_subparsers(dest="command", required=True)
+
+    def files_cmd(name, func, help_, out=True):
+        p = sub.add_parser(name, help=help_, description=help_)
+        p.add_argument("files", nargs="+", help="fix cell/servo CSV file(s)")
+        if out:
+            p.add_argument("--out", required=True, help="PNG to write")
+            p.add_argument("--labels", nargs="+", help="one legend label per file")
+        p.set_defaults(func=func)
+        return p
+
+    p = files_cmd("axisym", cmd_axisym, "Figs 1-2: deviator stress and volumetric strain vs ε1 − ε3")
+    p.add_argument("--void-ratio", action="store_true", help="second panel: void ratio instead of εv")
+    p = files_cmd("friction", cmd_friction, "Fig. 3: sinφ_max and sinφ_cv against μ")
+    p.add_argument("--mu", type=float, nargs="+", help="μ of each file (default: from names like mu0.3)")
+    p = files_cmd("radial", cmd_radial, "Figs 4-6: radial b tests, peak states on the Π plane")
+    p.add_argument("--sinphi-tc", type=float, help="compression strength for the surfaces "
+                   "(default: sinφ_max of the record with b closest to 0)")
+    p.add_argument("--b-tol", type=float, default=0.05, help="|b| accepted as compression (0.05)")
+    p.add_argument("--strain", choices=("eps_q", "eps_d13"), default="eps_q",
+                   help="deviatoric strain measure for η and dilation panels (eps_q)")
+    p = files_cmd("pi-plane", cmd_pi_plane, "Figs 7-9: stress and strain paths on the Π plane")
+    p.add_argument("--guide", choices=("auto", "circle", "triangle", "both", "none"), default="auto",
+                   help="strain-path guide: constant-deviatoric-strain circle / plane-strain triangle")
+    p.add_argument("--strain-radius", type=float,
+                   help="Π radius of the guides (strain; default: at the end of the prestrain)")
+    p.add_argument("--sinphi-tc", type=float, help="draw the surfaces through this compression "
+                   "strength (default: through the stress state at the end of the prestrain)")
+    files_cmd("summary", cmd_summary, "key numbers of each file, one JSON line per file", out=False)
+
+    p = sub.add_parser("table", help="markdown table paper vs ours from a JSON {quantity: value}")
+    p.add_argument("results", help="JSON object of our values (keys as in compare.PAPER)")
+    p.add_argument("--out", help="also write the markdown to this file")
+    p.set_defaults(func=cmd_table)
+
+    p = sub.add_parser("compare", help="markdown table paper vs ours from records and/or JSON")
+    p.add_argument("--json", help="JSON object of our values")
+    p.add_argument("--dense", help="dense axisymmetric compression CSV")
+    p.add_argument("--loose", help="loose axisymmetric compression CSV")
+    p.add_argument("--radial", nargs="+", help="radial b-test CSVs")
+    p.add_argument("--cdst", help="constant deviatoric strain test CSV")
+    p.add_argument("--plane-strain", help="multi-axial plane-strain test CSV")
+    p.add_argument("--p-target", type=float, default=100.0, help="target mean stress, kPa (100)")
+    p.add_argument("--out", help="also write the markdown to this file")
+    p.set_defaults(func=cmd_compare)
+
+    p = sub.add_parser("two-spheres", help="normal force vs overlap from a fix print table")
+    p.add_argument("table")
+    p.add_argument("--out", required=True)
+    p.add_argument("--x", help="overlap column (default: overlap/delta/d)")
+    p.add_argument("--y", help="force column (default: normal_force/fn/fx)")
+    p.add_argument("--force-scale", type=float, default=1.0, help="multiply the force (e.g. -1)")
+    p.add_argument("--E", type=float, help="Young's modulus (Pa) for theory curves")
+    p.add_argument("--nu", type=float, default=0.3, help="Poisson's ratio (0.3)")
+    p.add_argument("--radius", type=float, help="sphere radius (m), equal spheres: R* = R/2")
+    p.add_argument("--gamma", type=float, default=0.0, help="interface energy Γ (J/m²) for JKR")
+    p.set_defaults(func=cmd_two_spheres)
+    return ap
+
+
+def main(argv=None):
+    args = build_parser().parse_args(argv)
+    try:
+        args.func(args)
+    except (ValueError, KeyError, OSError) as err:
+        print(f"error: {err}", file=sys.stderr)
+        return 2
+    return 0

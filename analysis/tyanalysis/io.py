@@ -1,0 +1,170 @@
+"""Readers for the files written by `fix cell/servo` (CSV) and by `fix print` (two-sphere tables).
+
+Both files are append-only and may be read while a run is going or after a crash, so a final
+line without its newline (a partially written row) is dropped, as is a final row with the wrong
+number of fields or an unparsable number. A damaged row anywhere else is an error.
+"""
+import math
+import os
+
+import numpy as np
+
+SERVO_COLUMNS = (
+    "step", "time", "eps1", "eps2", "eps3", "eps_v", "eps_q", "eps_d13", "sig1", "sig2", "sig3",
+    "p", "q", "b", "lode_deg", "eta_LD", "sinphi", "void_ratio", "solid_fraction", "Z", "Zm",
+    "sliding_fraction", "unbalanced", "inertial_number", "pi_x", "pi_y", "pi_ex", "pi_ey")
+
+
+class Table:
+    """Named numeric columns of equal length (dict-like), with the source path."""
+
+    def __init__(self, columns, path="", dropped_partial=False):
+        self.columns = {k: np.asarray(v, dtype=float) for k, v in columns.items()}
+        self.path = str(path)
+        self.dropped_partial = dropped_partial
+        lengths = {len(v) for v in self.columns.values()}
+        if len(lengths) > 1:
+            raise ValueError(f"{path}: columns of unequal length {sorted(lengths)}")
+
+    @property
+    def name(self):
+        return os.path.splitext(os.path.basename(self.path))[0] or "data"
+
+    def __getitem__(self, key):
+        try:
+            return self.columns[key]
+        except KeyError:
+            raise KeyError(f"{self.path}: no column {key!r} (have: {', '.join(self.columns)})") from None
+
+    def __contains__(self, key):
+        return key in self.columns
+
+    def __len__(self):
+        return len(next(iter(self.columns.values()))) if self.columns else 0
+
+    def keys(self):
+        return self.columns.keys()
+
+    def require(self, names):
+        missing = [n for n in names if n not in self.columns]
+        if missing:
+            raise ValueError(f"{self.path}: missing column(s) {', '.join(missing)}")
+        return self
+
+
+def _parse_row(fields, ncol):
+    if len(fields) != ncol:
+        raise ValueError(f"{len(fields)} fields, expected {ncol}")
+    return [float(f) for f in fields]
+
+
+def _read_rows(path, header_names, lines, split, complete_last):
+    """Parse data lines; drop a damaged or unterminated final line, reject damaged others."""
+    ncol = len(header_names)
+    rows, dropped = [], False
+    data = [(i, ln) for i, ln in lines if ln.strip()]
+    for k, (lineno, line) in enumerate(data):
+        last = k == len(data) - 1
+        if last and not complete_last:
+            dropped = True                 # no newline yet: the writer may be mid-row
+            break
+        try:
+            rows.append(_parse_row(split(line), ncol))
+        except ValueError as err:
+            if last:
+                dropped = True
+                break
+            raise ValueError(f"{path}:{lineno}: bad row ({err}): {line.strip()[:80]!r}") from None
+    arr = np.array(rows, dtype=float).reshape(len(rows), ncol)
+    return {name: arr[:, j] for j, name in enumerate(header_names)}, dropped
+
+
+def read_servo_csv(path, require=SERVO_COLUMNS):
+    """Read a `fix cell/servo` CSV: first line is the header (a leading '#' is tolerated),
+    comma-separated numeric columns. Repeated header lines (restarts) are skipped."""
+    with open(path, "r", encoding="utf-8", errors="replace") as fh:
+        text = fh.read()
+    if not text.strip():
+        raise ValueError(f"{path}: empty file")
+    complete_last = text.endswith("\n")
+    raw = text.split("\n")
+    if complete_last:
+        raw = raw[:-1]
+    header_line = raw[0]
+    header = [h.strip() for h in header_line.lstrip("#").split(",")]
+    if any(not h for h in header):
+        raise ValueError(f"{path}: malformed header {header_line!r}")
+    if len(raw) == 1 and not complete_last:
+        raise ValueError(f"{path}: header line is incomplete")
+    lines = [(i + 2, ln) for i, ln in enumerate(raw[1:])
+             if ln.strip() and ln.strip() != header_line.strip()]
+    columns, dropped = _read_rows(path, header, lines, lambda s: s.split(","), complete_last)
+    table = Table(columns, path, dropped)
+    if require:
+        table.require(require)
+    if len(table) == 0:
+        raise ValueError(f"{path}: no complete data rows")
+    return table
+
+
+def read_print_table(path):
+    """Read a `fix print` table: '#'-prefixed header line naming the columns, whitespace-
+    separated numbers (a comma-separated file with a plain header line is accepted as well)."""
+    with open(path, "r", encoding="utf-8", errors="replace") as fh:
+        text = fh.read()
+    complete_last = text.endswith("\n")
+    raw = text.split("\n")
+    if complete_last:
+        raw = raw[:-1]
+    header, lines = None, []
+    for i, ln in enumerate(raw):
+        s = ln.strip()
+        if not s:
+            continue
+        if s.startswith("#"):
+            names = s.lstrip("#").replace(",", " ").split()
+            if header is None and names:
+                header = names
+            continue
+        if header is None:                 # plain (CSV-style) header line
+            header = s.replace(",", " ").split()
+            if all(_is_number(h) for h in header):
+                raise ValueError(f"{path}: no header line naming the columns")
+            continue
+        lines.append((i + 1, ln))
+    if header is None:
+        raise ValueError(f"{path}: no header line naming the columns")
+    columns, dropped = _read_rows(path, header, lines, lambda s: s.replace(",", " ").split(),
+                                  complete_last)
+    table = Table(columns, path, dropped)
+    if len(table) == 0:
+        raise ValueError(f"{path}: no complete data rows")
+    return table
+
+
+def _is_number(s):
+    try:
+        float(s)
+        return True
+    except ValueError:
+        return False
+
+
+def write_servo_csv(path, columns, partial_tail=None):
+    """Write columns in the `fix cell/servo` layout (used by tests and demos); `partial_tail`
+    appends an unterminated fragment, as a crashed writer would leave."""
+    names = list(columns)
+    n = len(next(iter(columns.values())))
+    with open(path, "w", encoding="utf-8") as fh:
+        fh.write(",".join(names) + "\n")
+        for i in range(n):
+            fh.write(",".join(_fmt(columns[c][i]) for c in names) + "\n")
+        if partial_tail:
+            fh.write(partial_tail)
+
+
+def _fmt(v):
+    v = float(v)
+    if math.isnan(v):
+        return "nan"
+    return repr(v)

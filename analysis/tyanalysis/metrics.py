@@ -1,0 +1,140 @@
+"""Quantities derived from a `fix cell/servo` record and the key numbers of a test.
+
+Everything is recomputed from the raw principal columns (sig1..3, eps1..3) with
+tyanalysis.invariants, so the derived columns the fix writes can be checked against an
+independent implementation (see `consistency`).
+"""
+import math
+
+import numpy as np
+
+from . import invariants as inv
+
+TAIL_FRACTION = 0.10       # critical-state proxy: mean over the last 10 % of the rows
+
+
+def derived(table):
+    """Recomputed histories (SI units, compression positive) keyed like the CSV columns."""
+    sig = inv.stack(table["sig1"], table["sig2"], table["sig3"])
+    eps = inv.stack(table["eps1"], table["eps2"], table["eps3"])
+    px, py = inv.pi_coordinates(sig)
+    ex, ey = inv.pi_coordinates(eps)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        out = {
+            "sigma": sig, "eps": eps,
+            "p": inv.mean_stress(sig), "q": inv.deviatoric_stress(sig), "b": inv.b_value(sig),
+            "sinphi": inv.sinphi(sig), "eta_LD": inv.lade_duncan_eta(sig),
+            "mn_ratio": inv.matsuoka_nakai_ratio(sig),
+            "lode_deg": inv.lode_angle_deg(px, py), "pi_x": px, "pi_y": py,
+            "pi_ex": ex, "pi_ey": ey, "lode_strain_deg": inv.lode_angle_deg(ex, ey),
+            "eps_v": inv.volumetric_strain(eps), "eps_q": inv.deviatoric_strain(eps),
+            "eps_d13": eps[:, 0] - eps[:, 2], "dev_stress": sig[:, 0] - sig[:, 2],
+        }
+    return out
+
+
+def consistency(table):
+    """Largest disagreement between the fix's derived columns and the recomputation:
+    stresses relative to max p, strains absolute, angles in degrees (wrapped)."""
+    d = derived(table)
+    scale = float(np.nanmax(np.abs(d["p"]))) or 1.0
+    checks = {"p": scale, "q": scale, "pi_x": scale, "pi_y": scale,
+              "sinphi": 1.0, "b": 1.0, "eta_LD": 1.0,
+              "eps_v": 1.0, "eps_q": 1.0, "eps_d13": 1.0, "pi_ex": 1.0, "pi_ey": 1.0}
+    out = {}
+    for name, s in checks.items():
+        if name in table:
+            diff = np.abs(table[name] - d[name]) / s
+            out[name] = _nanmax(diff)
+    if "lode_deg" in table:
+        diff = np.abs((table["lode_deg"] - d["lode_deg"] + 180.0) % 360.0 - 180.0)
+        out["lode_deg"] = _nanmax(diff)
+    return out
+
+
+def _nanmax(x):
+    x = np.asarray(x, float)
+    return float(np.nanmax(x)) if np.any(np.isfinite(x)) else 0.0
+
+
+def tail_slice(n, fraction=TAIL_FRACTION):
+    return slice(n - max(1, int(math.ceil(fraction * n))), n)
+
+
+def tail_mean(x, fraction=TAIL_FRACTION):
+    x = np.asarray(x, float)
+    return float(np.nanmean(x[tail_slice(len(x), fraction)]))
+
+
+def value_at(xs, ys, x0):
+    """y at x = x0 by linear interpolation along the record (first crossing); None if x0 is
+    never reached."""
+    xs, ys = np.asarray(xs, float), np.asarray(ys, float)
+    for i in range(1, len(xs)):
+        a, b = xs[i - 1], xs[i]
+        if (a - x0) * (b - x0) <= 0.0 and a != b:
+            return float(ys[i - 1] + (ys[i] - ys[i - 1]) * (x0 - a) / (b - a))
+        if a == x0:
+            return float(ys[i - 1])
+    if len(xs) and xs[-1] == x0:
+        return float(ys[-1])
+    return None
+
+
+def dilation_rate(eps_d, eps_v, npoints=60):
+    """-d eps_v / d eps_d (paper Fig. 6) on a uniform grid of the (running maximum of the)
+    deviatoric strain, by finite differences of the interpolated record."""
+    eps_d, eps_v = np.asarray(eps_d, float), np.asarray(eps_v, float)
+    mono = np.maximum.accumulate(eps_d)
+    keep = np.concatenate([[True], np.diff(mono) > 0])
+    x, y = mono[keep], eps_v[keep]
+    if len(x) < 3:
+        return np.array([]), np.array([])
+    grid = np.linspace(x[0], x[-1], npoints + 1)
+    yv = np.interp(grid, x, y)
+    mid = 0.5 * (grid[1:] + grid[:-1])
+    return mid, -np.diff(yv) / np.diff(grid)
+
+
+def _f(x, scale=1.0):
+    return None if x is None or not np.isfinite(x) else float(x) * scale
+
+
+def summarize(table):
+    """Key numbers of one test (stresses in kPa, strains in %)."""
+    d = derived(table)
+    n = len(table)
+    tail = tail_slice(n)
+    q, s = d["q"], d["sinphi"]
+    iq = int(np.nanargmax(q))
+    i_s = int(np.nanargmax(s))
+    loaded = q > 0.1 * q[iq]
+    out = {
+        "file": table.path, "rows": n, "dropped_partial_row": bool(table.dropped_partial),
+        "step_end": _f(table["step"][-1]), "time_end": _f(table["time"][-1]),
+        "eps_d13_end_pct": _f(d["eps_d13"][-1], 100), "eps_q_end_pct": _f(d["eps_q"][-1], 100),
+        "eps_v_end_pct": _f(d["eps_v"][-1], 100),
+        "q_peak_kPa": _f(q[iq], 1e-3), "eps_d13_at_q_peak_pct": _f(d["eps_d13"][iq], 100),
+        "eps_q_at_q_peak_pct": _f(d["eps_q"][iq], 100),
+        "dev_stress_peak_kPa": _f(np.nanmax(d["dev_stress"]), 1e-3),
+        "sinphi_max": _f(s[i_s]), "eps_d13_at_sinphi_max_pct": _f(d["eps_d13"][i_s], 100),
+        "b_at_sinphi_max": _f(d["b"][i_s]), "lode_at_sinphi_max_deg": _f(d["lode_deg"][i_s]),
+        "eta_at_sinphi_max": _f(d["eta_LD"][i_s]), "eta_max": _f(np.nanmax(d["eta_LD"])),
+        "sinphi_end": tail_mean(s), "q_end_kPa": tail_mean(q) * 1e-3,
+        "b_median": _f(np.nanmedian(d["b"][loaded])) if loaded.any() else None,
+        "p_mean_kPa": float(np.mean(d["p"])) * 1e-3,
+        "p_min_kPa": float(np.min(d["p"])) * 1e-3, "p_max_kPa": float(np.max(d["p"])) * 1e-3,
+    }
+    if "void_ratio" in table:
+        e = table["void_ratio"]
+        out.update({"void_ratio_start": _f(e[0]), "void_ratio_end": _f(e[-1]),
+                    "void_ratio_tail": float(np.nanmean(e[tail])),
+                    "void_ratio_at_30pct": _f(value_at(d["eps_d13"], e, 0.30))})
+    for col in ("solid_fraction", "Z", "Zm"):
+        if col in table:
+            out[f"{col}_start"] = _f(table[col][0])
+            out[f"{col}_end"] = _f(table[col][-1])
+    if "inertial_number" in table:
+        out["inertial_number_median"] = _f(np.nanmedian(table["inertial_number"]))
+    out["consistency_max"] = consistency(table)
+    return out

@@ -1,0 +1,416 @@
+// Stress servo of a deformable orthogonal periodic cell (physics.md §5.2, §7.3; paper sections
+// 2-5). Plain data in, principal strain rates out; every piece of memory is in ServoMemory.
+//
+// Conventions: principal axes = box axes (index 0, 1, 2 = x, y, z); stresses (Love-Weber,
+// pair virial only) and natural strains eps_i = -ln(L_i/L_i0) are compression positive, and so
+// are strain rates (a positive rate shortens the box edge).
+//
+// Mixed control. Each step the strain rate is
+//     deps/dt = r_p + W u / dt,
+// where r_p is the prescribed (strain-controlled) part and the columns w_k of W are the m
+// strain-rate patterns ("actuators") the servo may use, with amplitudes u (strain per step).
+// The servo holds m linear combinations of the principal stresses at targets, A sigma = t
+// (rows a_k). With the affine stiffness C (d sigma = C d eps, see affine_stiffness) the
+// predicted change of A sigma over one step is A C (r_p dt + W u), and u is chosen so that
+//     (A C W) u = g (t - A sigma) + g_I S - A C r_p dt     (proportional + integral,
+//     S <- S + (t - A sigma)                                  affine feed-forward)
+// i.e. eps_dot = [g (sigma* - sigma) + g_I S]/(K dt) in the one-axis case. The errors, and the
+// accumulated error S (kept in stress units), are normalised by the current stiffness, so the
+// gains are dimensionless fractions per step and one setting serves every stress level, and
+// S keeps its meaning when the stiffness grows by orders of magnitude during compaction. The
+// affine estimate exceeds the true (relaxed) stiffness of a granular packing, K = r C with
+// r <= 1: the proportional loop then removes a constant error geometrically (factor 1 - r g
+// per step) without overshoot and leaves a lag e = d/(r g) behind a steady drift of d per step
+// (creep, dilatancy). The integral removes that lag; the closed loop z^2 - (2 - r g - r g_I) z
+// + 1 - r g has poles of modulus sqrt(1 - r g) < 1 for every r in (0, 1]. S only accumulates
+// while every error lies within integral_band of the stress level (a large approach, e.g.
+// preparation from a gas, is proportional only) and is frozen while the cap is active. The servo part W u/dt is scaled down as a whole when an axis
+// would exceed max_strain_rate; the prescribed part is never altered.
+//
+// The composite programmes of the paper are mixed controls:
+//   isotropic compression to p*      all axes stress-controlled, sigma_i = p*
+//   per-axis control                 axis i prescribed rate or sigma_i = sigma_i*
+//   constant p, deviatoric rate e'   r_p = e', one actuator w = (1,1,1), a = (1,1,1)/3
+//   constant p and b, axis 1 rate    r_p on axis 1, actuators axes 2 and 3, rows p and b
+//                                    (equivalent to the targets of constant_b_targets)
+#ifndef TYCORE_CELL_SERVO_HPP
+#define TYCORE_CELL_SERVO_HPP
+
+#include "pi_plane.hpp"
+#include "strain_path.hpp"
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+namespace tycore {
+
+enum class AxisControl { STRAIN_RATE, STRESS };
+
+inline const char* axis_name(int axis) { return axis == 0 ? "x" : axis == 1 ? "y" : "z"; }
+
+// ---------------------------------------------------------------------------------------------
+// Input checks; messages name the offending quantity so the fix can pass them on
+
+inline void require_positive_stress(const std::string& name, double value)
+{
+  if (!(value > 0.0) || !std::isfinite(value))
+    throw std::invalid_argument("target stress " + name + " = " + std::to_string(value)
+                                + " must be positive (a granular cell carries no tension)");
+}
+
+inline void require_b_in_range(double b)
+{
+  if (!(b >= 0.0 && b <= 1.0))
+    throw std::invalid_argument("b = " + std::to_string(b) + " is outside [0, 1]");
+}
+
+inline void require_every_axis_controlled(const std::array<std::optional<AxisControl>, 3>& axes)
+{
+  for (int i = 0; i < 3; ++i)
+    if (!axes[i])
+      throw std::invalid_argument(std::string("axis ") + axis_name(i)
+                                  + " has no control: give it a strain rate or a target stress");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Stiffness estimate (physics.md §5.2): affine stiffness C_ij = d sigma_i / d eps_j of a
+// homogeneous principal strain, C_ij = (1/V) sum_c l^2 [k_N n_i^2 n_j^2
+// + k_T (delta_ij n_i^2 - n_i^2 n_j^2)], l = |branch|, n = branch/l. Its diagonal with k_T = 0
+// is K_i = (1/V) sum_c k_N (n_i l_i)^2. The normal part alone already gives the exact affine
+// bulk stiffness (the tangential part carries no volume change).
+
+// one contact's share of V*C, branch = x2 - x1 (image-shifted); sum over contacts, each once
+inline Eigen::Matrix3d affine_stiffness_contribution(const Eigen::Vector3d& branch,
+                                                     double normal_stiffness,
+                                                     double tangential_stiffness = 0.0)
+{
+  const double l2 = branch.squaredNorm();
+  const Eigen::Vector3d n2 = branch.cwiseAbs2() / l2;
+  Eigen::Matrix3d c = (normal_stiffness - tangential_stiffness) * l2 * (n2 * n2.transpose());
+  c.diagonal() += tangential_stiffness * l2 * n2;
+  return c;
+}
+
+// C from the summed contributions, given as 6 numbers in LAMMPS virial order
+// (11, 22, 33, 12, 13, 23), and the cell volume
+inline Eigen::Matrix3d affine_stiffness(const double sums[6], double volume)
+{
+  Eigen::Matrix3d c;
+  c << sums[0], sums[3], sums[4],
+       sums[3], sums[1], sums[5],
+       sums[4], sums[5], sums[2];
+  return c / volume;
+}
+
+// strain rate at inertial number I: I = eps_dot d sqrt(rho/p)   (physics.md §4, GDR MiDi 2004)
+inline double quasi_static_strain_rate(double inertial_number, double mean_stress,
+                                       double mean_diameter, double density)
+{
+  return inertial_number * std::sqrt(mean_stress / density) / mean_diameter;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Data the fix exchanges with the servo
+
+struct CellMeasurement {
+  Eigen::Vector3d stress;      // principal stresses along x, y, z, compression positive [Pa]
+  Eigen::Matrix3d stiffness;   // affine stiffness C [Pa]
+  Eigen::Vector3d strain;      // natural strains from the reference cell, compression positive
+};
+
+struct ServoSettings {
+  // fraction of the stress error removed per step; the error keeps its sign as long as the
+  // instantaneous stiffness is below 1/gain = 4 times the estimate
+  double gain = 0.25;
+  // per step, on the accumulated error; below gain^2/4 the closed-loop poles stay real when
+  // the estimate is exact, and the lag behind a steady drift decays in ~gain/integral_gain steps
+  double integral_gain = 0.005;
+  // the integral accumulates only while every |error| <= integral_band * stress level
+  double integral_band = 0.05;
+  double max_strain_rate = 0.0;   // cap on each axis' servo rate [1/s]; must be set
+};
+
+struct ServoMemory {
+  Eigen::Vector3d integral = Eigen::Vector3d::Zero();          // S [Pa], one per held stress
+  Eigen::Vector3d last_strain_rate = Eigen::Vector3d::Zero();  // rate commanded last step
+  double path_length = 0.0;                                    // progress s along a PiPath
+
+  static constexpr int size = 7;
+  void to_array(double* a) const
+  {
+    for (int i = 0; i < 3; ++i) a[i] = integral(i), a[3 + i] = last_strain_rate(i);
+    a[6] = path_length;
+  }
+  static ServoMemory from_array(const double* a)
+  {
+    ServoMemory m;
+    for (int i = 0; i < 3; ++i) m.integral(i) = a[i], m.last_strain_rate(i) = a[3 + i];
+    m.path_length = a[6];
+    return m;
+  }
+};
+
+struct MixedControl {
+  Eigen::Vector3d prescribed_strain_rate = Eigen::Vector3d::Zero();   // r_p [1/s]
+  int actuator_count = 0;                                             // m
+  Eigen::Matrix3d actuators = Eigen::Matrix3d::Zero();       // columns 0..m-1: w_k
+  Eigen::Matrix3d stress_rows = Eigen::Matrix3d::Zero();     // rows 0..m-1: a_k
+  Eigen::Vector3d stress_targets = Eigen::Vector3d::Zero();  // t_k [Pa]
+
+  void add(const Eigen::Vector3d& actuator, const Eigen::Vector3d& row, double target)
+  {
+    actuators.col(actuator_count) = actuator;
+    stress_rows.row(actuator_count) = row.transpose();
+    stress_targets(actuator_count) = target;
+    ++actuator_count;
+  }
+};
+
+struct ServoCommand {
+  Eigen::Vector3d strain_rate;   // principal strain rates for the next step [1/s]
+  bool saturated;                // the strain-rate cap limited the servo part
+};
+
+// ---------------------------------------------------------------------------------------------
+// Programmes
+
+// sigma3* = (3p - (1+b) sigma1)/(2 - b),  sigma2* = 3p - sigma1 - sigma3*   (physics.md §5.2)
+inline Eigen::Vector2d constant_b_targets(double major_stress, double mean_stress, double b)
+{
+  require_b_in_range(b);
+  const double minor = (3.0 * mean_stress - (1.0 + b) * major_stress) / (2.0 - b);
+  return {3.0 * mean_stress - major_stress - minor, minor};
+}
+
+struct AxisProgramme {
+  AxisControl control;
+  double value;   // strain rate [1/s] or target stress [Pa]
+};
+
+inline MixedControl per_axis_control(const std::array<AxisProgramme, 3>& axes)
+{
+  MixedControl c;
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::Vector3d unit = Eigen::Vector3d::Unit(i);
+    if (axes[i].control == AxisControl::STRAIN_RATE) {
+      c.prescribed_strain_rate(i) = axes[i].value;
+    } else {
+      require_positive_stress(std::string("sigma_") + axis_name(i), axes[i].value);
+      c.add(unit, unit, axes[i].value);
+    }
+  }
+  return c;
+}
+
+inline MixedControl isotropic_compression_control(double mean_stress)
+{
+  const AxisProgramme held{AxisControl::STRESS, mean_stress};
+  return per_axis_control({held, held, held});
+}
+
+// constant p with a prescribed deviatoric strain rate: deps/dt = e' + (eps_v'/3) 1
+inline MixedControl mean_stress_control(double mean_stress,
+                                        const Eigen::Vector3d& deviatoric_strain_rate)
+{
+  require_positive_stress("p", mean_stress);
+  MixedControl c;
+  c.prescribed_strain_rate = deviator(deviatoric_strain_rate);
+  c.add(Eigen::Vector3d::Ones(), Eigen::Vector3d::Constant(1.0 / 3.0), mean_stress);
+  return c;
+}
+
+// constant p and b with the major axis strain-controlled; the b row is
+// (sigma_int - sigma_min) - b (sigma_maj - sigma_min) = 0   (paper eq. 1)
+inline MixedControl constant_b_control(double mean_stress, double b, double major_strain_rate,
+                                       int major = 0, int intermediate = 1, int minor = 2)
+{
+  require_positive_stress("p", mean_stress);
+  require_b_in_range(b);
+  if (major == intermediate || major == minor || intermediate == minor)
+    throw std::invalid_argument("constant-b control needs three distinct axes");
+  Eigen::Vector3d b_row = Eigen::Vector3d::Zero();
+  b_row(major) = -b;
+  b_row(intermediate) = 1.0;
+  b_row(minor) = -(1.0 - b);
+  MixedControl c;
+  c.prescribed_strain_rate(major) = major_strain_rate;
+  c.add(Eigen::Vector3d::Unit(intermediate), Eigen::Vector3d::Constant(1.0 / 3.0), mean_stress);
+  c.add(Eigen::Vector3d::Unit(minor), b_row, 0.0);
+  return c;
+}
+
+// axisymmetric test at constant p: the axial rate is prescribed (> 0 compression, < 0
+// extension), the two lateral stresses are kept equal
+inline MixedControl axisymmetric_control(int axis, double axial_strain_rate, double mean_stress)
+{
+  require_axis_index(axis);
+  return constant_b_control(mean_stress, 0.0, axial_strain_rate, axis, (axis + 1) % 3,
+                            (axis + 2) % 3);
+}
+
+// the free axes must be able to move every held stress combination
+inline void require_controllable(const MixedControl& c)
+{
+  const int m = c.actuator_count;
+  if (m == 0) return;
+  const Eigen::MatrixXd response = c.stress_rows.topRows(m) * c.actuators.leftCols(m);
+  if (Eigen::FullPivLU<Eigen::MatrixXd>(response).rank() < m)
+    throw std::invalid_argument("the held stresses cannot all be reached with the free axes: "
+                                "some stress target has no strain-controlled freedom");
+}
+
+inline void require_valid(const ServoSettings& s)
+{
+  if (!(s.gain > 0.0 && s.gain <= 1.0))
+    throw std::invalid_argument("servo gain " + std::to_string(s.gain) + " is outside (0, 1]");
+  if (!(s.integral_gain >= 0.0 && s.integral_gain <= 0.25 * s.gain * s.gain))
+    throw std::invalid_argument("servo integral gain " + std::to_string(s.integral_gain)
+                                + " must lie in [0, gain^2/4] (larger values overshoot)");
+  if (!(s.integral_band >= 0.0))
+    throw std::invalid_argument("servo integral band must not be negative");
+  if (!(s.max_strain_rate > 0.0))
+    throw std::invalid_argument("servo maximum strain rate " + std::to_string(s.max_strain_rate)
+                                + " must be positive");
+}
+
+// ---------------------------------------------------------------------------------------------
+// The control law (see the header comment)
+
+inline ServoCommand servo_step(const MixedControl& control, const CellMeasurement& cell,
+                               const ServoSettings& settings, double dt, ServoMemory& memory)
+{
+  if (!(dt > 0.0)) throw std::invalid_argument("servo time step must be positive");
+  const int m = control.actuator_count;
+  ServoCommand command{control.prescribed_strain_rate, false};
+  if (m == 0) {
+    memory.last_strain_rate = command.strain_rate;
+    return command;
+  }
+  // stiffness floor so that an empty cell (C = 0) still gets a direction; the cap sets the pace
+  const double scale = std::max({cell.stiffness.cwiseAbs().maxCoeff(),
+                                 control.stress_targets.cwiseAbs().maxCoeff(),
+                                 cell.stress.cwiseAbs().maxCoeff()});
+  if (scale == 0.0) {
+    memory.last_strain_rate = command.strain_rate;
+    return command;
+  }
+  const Eigen::Matrix3d C = cell.stiffness + 1e-9 * scale * Eigen::Matrix3d::Identity();
+  const Eigen::Vector3d prescribed_step = control.prescribed_strain_rate * dt;
+
+  // padded to 3x3 with identity on unused actuators so one fixed-size solve serves all m
+  Eigen::Matrix3d response = Eigen::Matrix3d::Identity();
+  response.topLeftCorner(m, m) =
+      control.stress_rows.topRows(m) * C * control.actuators.leftCols(m);
+  Eigen::Vector3d error = Eigen::Vector3d::Zero(), feed_forward = Eigen::Vector3d::Zero();
+  error.head(m) = control.stress_targets.head(m) - control.stress_rows.topRows(m) * cell.stress;
+  feed_forward.head(m) = control.stress_rows.topRows(m) * C * prescribed_step;
+
+  const Eigen::FullPivLU<Eigen::Matrix3d> lu(response);
+  if (!lu.isInvertible())
+    throw std::runtime_error("servo: the free axes cannot move the held stresses "
+                             "(singular response matrix)");
+  const Eigen::Vector3d normalised_error = lu.solve(error);
+  const double stress_level = std::max(control.stress_targets.head(m).cwiseAbs().maxCoeff(),
+                                       std::abs(mean_stress(cell.stress)));
+  const bool near_target = error.cwiseAbs().maxCoeff() <= settings.integral_band * stress_level;
+  const Eigen::Vector3d integral = memory.integral + (near_target ? error
+                                                                  : Eigen::Vector3d::Zero());
+  Eigen::Vector3d u = settings.gain * normalised_error - lu.solve(feed_forward)
+                      + settings.integral_gain * lu.solve(integral);
+  u.tail(3 - m).setZero();
+
+  Eigen::Vector3d servo_rate = control.actuators * u / dt;
+  const double largest = servo_rate.cwiseAbs().maxCoeff();
+  if (largest > settings.max_strain_rate) {
+    servo_rate *= settings.max_strain_rate / largest;
+    command.saturated = true;
+  } else {
+    memory.integral = integral;
+  }
+  command.strain_rate += servo_rate;
+  memory.last_strain_rate = command.strain_rate;
+  return command;
+}
+
+// constant p* while the deviatoric strain follows a Pi-plane path at speed v (|de/dt|)
+inline ServoCommand path_servo_step(const PiPath& path, double speed, double mean_stress,
+                                    const CellMeasurement& cell, const ServoSettings& settings,
+                                    double dt, ServoMemory& memory)
+{
+  const PathStep step = follow_path(path, memory.path_length, cell.strain, speed, dt);
+  memory.path_length = step.path_length;
+  return servo_step(mean_stress_control(mean_stress, step.deviatoric_strain_rate), cell,
+                    settings, dt, memory);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Quasi-equilibrium for specimen preparation (paper section 2; physics.md §4, §5.4)
+
+struct EquilibriumCriteria {
+  double stress_tolerance = 5e-3;             // max_i |sigma_i - sigma_i*| / p*
+  double max_unbalanced_force_ratio = 1e-3;   // mean |sum of forces on a grain| / mean |f_c|
+  double max_kinetic_energy_ratio = 1e-8;     // E_kin/(p* V) = (phi/2) I^2: 1e-8 <-> I ~ 2e-4
+  double coordination_tolerance = 0.01;       // allowed drift of Z over the window
+  int window = 10;                            // consecutive samples that must all pass
+};
+
+struct EquilibriumSample {
+  Eigen::Vector3d stress;
+  Eigen::Vector3d target_stress;
+  double unbalanced_force_ratio;
+  double kinetic_energy_ratio;
+  double coordination;
+};
+
+struct EquilibriumState {
+  double reference_coordination = 0.0;   // Z when the current run of passing samples began
+  int passing_samples = 0;               // length of that run
+
+  static constexpr int size = 2;
+  void to_array(double* a) const { a[0] = reference_coordination, a[1] = passing_samples; }
+  static EquilibriumState from_array(const double* a)
+  {
+    return {a[0], static_cast<int>(a[1])};
+  }
+};
+
+struct EquilibriumCheck {
+  bool stress_ok, force_ok, energy_ok, coordination_ok;
+  bool reached;   // every criterion held on `window` consecutive samples
+};
+
+inline EquilibriumCheck update_equilibrium(EquilibriumState& state,
+                                           const EquilibriumSample& sample,
+                                           const EquilibriumCriteria& criteria)
+{
+  const double p_target = mean_stress(sample.target_stress);
+  EquilibriumCheck check{};
+  check.stress_ok = (sample.stress - sample.target_stress).cwiseAbs().maxCoeff()
+                    <= criteria.stress_tolerance * p_target;
+  check.force_ok = sample.unbalanced_force_ratio <= criteria.max_unbalanced_force_ratio;
+  check.energy_ok = sample.kinetic_energy_ratio <= criteria.max_kinetic_energy_ratio;
+  check.coordination_ok = state.passing_samples == 0
+                          || std::abs(sample.coordination - state.reference_coordination)
+                                 <= criteria.coordination_tolerance;
+  if (!(check.stress_ok && check.force_ok && check.energy_ok)) {
+    state.passing_samples = 0;
+  } else if (state.passing_samples == 0 || !check.coordination_ok) {
+    state.reference_coordination = sample.coordination;
+    state.passing_samples = 1;
+  } else {
+    ++state.passing_samples;
+  }
+  check.reached = state.passing_samples >= criteria.window;
+  return check;
+}
+
+}    // namespace tycore
+
+#endif

@@ -1,0 +1,131 @@
+// JKR adhesive elastic normal contact as used by Thornton & Yin (1991): physics.md §1.
+// R = R*, E = E*, Gamma = interface energy of each surface; delta > 0 compressive, P > 0 repulsive.
+// Every function is exact in the Hertz limit Gamma = 0.
+#ifndef TYCORE_JKR_HPP
+#define TYCORE_JKR_HPP
+
+#include <algorithm>
+#include <cmath>
+
+namespace tycore::jkr {
+
+inline constexpr double pi = 3.14159265358979323846;
+
+// Pc = 3 pi Gamma R*                                                     (physics.md §0)
+inline double pull_off_force(double Gamma, double R) { return 3.0 * pi * Gamma * R; }
+
+// a0^3 = 9 pi Gamma R*^2 / E*                                            (physics.md §1.1)
+inline double zero_load_radius(double Gamma, double R, double E)
+{
+  return std::cbrt(9.0 * pi * Gamma * R * R / E);
+}
+
+// P = 4E*a^3/(3R*) - 4 sqrt(pi Gamma E* a^3)                             (physics.md §1.1)
+inline double normal_force(double a, double R, double E, double Gamma)
+{
+  const double a3 = a * a * a;
+  return 4.0 * E * a3 / (3.0 * R) - 4.0 * std::sqrt(pi * Gamma * E * a3);
+}
+
+// delta = a^2/R* - 2 sqrt(pi Gamma a / E*)                               (physics.md §1.1)
+inline double overlap(double a, double R, double E, double Gamma)
+{
+  return a * a / R - 2.0 * std::sqrt(pi * Gamma * a / E);
+}
+
+// separation under displacement control, delta_f = -(27 pi^2 Gamma^2 R*/(16 E*^2))^(1/3) (§1.2)
+inline double break_overlap(double R, double E, double Gamma)
+{
+  return -std::cbrt(27.0 * pi * pi * Gamma * Gamma * R / (16.0 * E * E));
+}
+
+// contact radius at separation, a_f = 6^(-2/3) a0                        (physics.md §1.2)
+inline double break_radius(double R, double E, double Gamma)
+{
+  return zero_load_radius(Gamma, R, E) / std::cbrt(36.0);
+}
+
+// stable-branch a(delta), closed form of the quartic in sqrt(a) (physics.md §1.4a; Parteli et
+// al. 2014). Valid for delta >= delta_f; arguments of the roots clamped at 0 against round-off.
+inline double contact_radius(double delta, double R, double E, double Gamma)
+{
+  if (Gamma == 0.0) return std::sqrt(R * std::max(delta, 0.0));
+  const double D = delta * R;
+  const double t0 = Gamma * Gamma * R * R * R * R * E;
+  const double t1 = 27.0 * pi * pi * t0;
+  const double t2 = 8.0 * D * D * D * E * E * E;
+  const double t3 = 4.0 * D * D * E;
+  const double t4 = std::cbrt(t1 + t2 + 3.0 * std::sqrt(3.0) * pi *
+                                            std::sqrt(std::max(t0 * (t1 + 2.0 * t2), 0.0)));
+  const double t5 = t3 / t4 + t4 / E;
+  const double t6 = std::sqrt(std::max(2.0 * D + t5, 0.0));
+  const double inner = 4.0 * D - t5 + 6.0 * std::sqrt(6.0) * pi * Gamma * R * R / (E * t6);
+  return (t6 + std::sqrt(std::max(inner, 0.0))) / std::sqrt(6.0);
+}
+
+// safeguarded Newton on f(a) = delta(a) - delta, monotonic for a > a_f (physics.md §1.4b);
+// `guess` warm-starts it (e.g. the previous step's radius)
+inline double contact_radius_newton(double delta, double R, double E, double Gamma, double guess,
+                                    int* iterations = nullptr, double rel_tol = 1e-14)
+{
+  if (Gamma == 0.0) return std::sqrt(R * std::max(delta, 0.0));
+  double lo = break_radius(R, E, Gamma);
+  double hi = std::max(2.0 * lo, std::sqrt(R * std::abs(delta)) + 2.0 * zero_load_radius(Gamma, R, E));
+  double a = (guess > lo && guess < hi) ? guess : 0.5 * (lo + hi);
+  int k = 0;
+  for (; k < 100; ++k) {
+    const double f = overlap(a, R, E, Gamma) - delta;
+    if (f < 0.0) lo = a;
+    else hi = a;
+    const double slope = 2.0 * a / R - std::sqrt(pi * Gamma / (E * a));
+    double next = a - f / slope;
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    const bool converged = std::abs(next - a) <= rel_tol * a;
+    a = next;
+    if (converged) break;
+  }
+  if (iterations) *iterations = k + 1;
+  return a;
+}
+
+// k_N = dP/d(delta) = 2E*a * 3(2 - s)/(6 - s), s = (a0/a)^(3/2)          (physics.md §1.5)
+inline double normal_stiffness(double a, double R, double E, double Gamma)
+{
+  if (Gamma == 0.0) return 2.0 * E * a;
+  const double s = std::sqrt(9.0 * pi * Gamma * R * R / (E * a * a * a));
+  return 2.0 * E * a * 3.0 * (2.0 - s) / (6.0 - s);
+}
+
+// U(a) = integral of P d(delta) from first touch (a_touch = (4/9)^(1/3) a0, delta = 0):
+// 8E*a^5/(15R*^2) - (8/(3R*)) sqrt(pi Gamma E*) a^(7/2) + 2 pi Gamma a^2 - U(a_touch)
+inline double stored_energy(double a, double R, double E, double Gamma)
+{
+  const auto U = [&](double x) {
+    return 8.0 * E * std::pow(x, 5) / (15.0 * R * R) -
+           8.0 / (3.0 * R) * std::sqrt(pi * Gamma * E) * std::pow(x, 3.5) + 2.0 * pi * Gamma * x * x;
+  };
+  if (Gamma == 0.0) return U(a);
+  return U(a) - U(std::cbrt(4.0 / 9.0) * zero_load_radius(Gamma, R, E));
+}
+
+// work lost in a normal approach-separation cycle, W = U(a_f) = 0.93550 Pc |delta_f| (§3.2)
+inline double separation_work(double R, double E, double Gamma)
+{
+  return stored_energy(break_radius(R, E, Gamma), R, E, Gamma);
+}
+
+// critical sticking velocity of a head-on impact, V_s = sqrt(2W/m*)     (physics.md §3.2)
+inline double sticking_velocity(double R, double E, double Gamma, double m_star)
+{
+  return std::sqrt(2.0 * separation_work(R, E, Gamma) / m_star);
+}
+
+// restitution of the purely elastic JKR impact, e = sqrt(1 - (V_s/V)^2)  (physics.md §3.2)
+inline double restitution(double V, double V_s)
+{
+  return V <= V_s ? 0.0 : std::sqrt(1.0 - (V_s / V) * (V_s / V));
+}
+
+}    // namespace tycore::jkr
+
+#endif

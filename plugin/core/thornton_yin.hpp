@@ -1,0 +1,62 @@
+// The Thornton-Yin contact law for adhesive, frictional elastic spheres (Thornton & Yin 1991;
+// Thornton 1991; Thornton & Randall 1988): JKR normal force (jkr.hpp) and Thornton's tangential
+// law with adhesion (mindlin_deresiewicz.hpp). One call = one contact, one step.
+// Adhesive = false is the Hertz-Mindlin-Deresiewicz specialisation (Gamma = 0, no peeling).
+#ifndef TYCORE_THORNTON_YIN_HPP
+#define TYCORE_THORNTON_YIN_HPP
+
+#include "contact_types.hpp"
+#include "jkr.hpp"
+#include "mindlin_deresiewicz.hpp"
+
+#include <cmath>
+
+namespace tycore {
+
+// contact radius and normal force at overlap delta (>= delta_f for adhesive contacts)
+template <bool Adhesive>
+inline double normal_contact_radius(const PairCoefficients& c, double R, double delta)
+{
+  return Adhesive ? jkr::contact_radius(delta, R, c.E_star, c.Gamma)
+                  : std::sqrt(R * std::max(delta, 0.0));
+}
+
+template <bool Adhesive>
+inline double normal_force_of_radius(const PairCoefficients& c, double R, double a)
+{
+  return Adhesive ? jkr::normal_force(a, R, c.E_star, c.Gamma)
+                  : 4.0 * c.E_star * a * a * a / (3.0 * R);    // Hertz (physics.md §1.6)
+}
+
+// Advance one contact by one step: overlap delta now, tangential displacement increment ds of j
+// relative to i at the contact (already rotated into the current tangent plane, see
+// rotate_history). h must have been started by begin_contact.
+template <bool Adhesive>
+inline ContactResult evaluate_contact(const PairCoefficients& c, double R, double delta,
+                                      const Eigen::Vector3d& ds, ContactHistory& h)
+{
+  ContactResult r{};
+  r.contact_radius = normal_contact_radius<Adhesive>(c, R, delta);
+  r.P = normal_force_of_radius<Adhesive>(c, R, r.contact_radius);
+  r.dissipation = 0.0;
+  tangential_step<Adhesive>(c, R, r.P, ds, h, r.dissipation);
+
+  const double Pc = effective_pull_off<Adhesive>(c, R);
+  if (Adhesive && h.peeling != 0.0) {
+    const Eigen::Map<const Eigen::Vector3d> T(h.T);
+    r.tangential_radius = peeled_radius(c, R, r.P, Pc, peeling_discriminant(c, r.P, Pc, T.squaredNorm()));
+  } else {
+    r.tangential_radius = micro_slip_radius(R, c.E_star, r.P + 2.0 * Pc);
+  }
+  r.T = Eigen::Map<const Eigen::Vector3d>(h.T);
+  r.normal_energy = Adhesive ? jkr::stored_energy(r.contact_radius, R, c.E_star, c.Gamma)
+                             : 8.0 * c.E_star * std::pow(r.contact_radius, 5) / (15.0 * R * R);
+  r.tangential_energy = tangential_energy(c, R, r.P, h);
+  r.sliding = h.sliding != 0.0;
+  r.peeling = h.peeling != 0.0;
+  return r;
+}
+
+}    // namespace tycore
+
+#endif

@@ -1,0 +1,788 @@
+/* ----------------------------------------------------------------------
+   fix ID all cell/servo MODE args [keyword value ...]      (docs/fix_cell_servo.md)
+
+   Bookkeeping (physics.md §7.1, option 1, as TRUBAL): the cell edges L_i follow the
+   principal strain rates, L_i <- L_i exp(-eps_dot_i dt) (compression positive); atoms are
+   remapped affinely with the box and their velocities are fluctuations about the mean field.
+   domain->h_rate carries L_ii = -eps_dot_i to pair thornton/yin, which adds L (x_i - x_j) to
+   the contact relative velocity, so that tangential history sees the mean-field shear.
+
+   Each step, after the forces: the contact (Love-Weber) stress from the pair virial and the
+   affine stiffness from the pair's contact tallies go to the servo of plugin/core
+   (cell_servo.hpp), whose strain rates deform the cell for the next step.
+------------------------------------------------------------------------- */
+
+#include "fix_cell_servo.h"
+
+#include "pi_plane.hpp"
+
+#include "atom.h"
+#include "comm.h"
+#include "compute.h"
+#include "domain.h"
+#include "error.h"
+#include "force.h"
+#include "input.h"
+#include "math_const.h"
+#include "modify.h"
+#include "neighbor.h"
+#include "pair.h"
+#include "update.h"
+#include "variable.h"
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+namespace {
+
+constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
+// written first in the restart record, so that a record of another programme is refused
+constexpr double RESTART_TAG = 8461.0;
+
+// pair thornton/yin cell tallies (pair_thornton_yin.h)
+constexpr int TALLY_STIFFNESS = 0, TALLY_CONTACTS = 6, TALLY_SLIDING = 7, TALLY_FORCE = 8;
+constexpr int N_TALLY = 9;
+
+const char *const OUTPUT_NAMES[] = {
+    "eps1", "eps2", "eps3", "eps_v", "eps_q", "eps_d13", "sig1", "sig2", "sig3", "p", "q", "b",
+    "lode_deg", "eta_LD", "sinphi", "void_ratio", "solid_fraction", "Z", "Zm",
+    "sliding_fraction", "unbalanced", "inertial_number", "pi_x", "pi_y", "pi_ex", "pi_ey",
+    "progress", "eta_seconds", "equilibrium", "rate1", "rate2", "rate3", "boundary_work",
+    "p_kinetic", "volume"};
+static_assert(sizeof(OUTPUT_NAMES) / sizeof(OUTPUT_NAMES[0]) == FixCellServo::N_OUTPUT,
+              "one name per output");
+
+int axis_index(const char *name)
+{
+  if (strcmp(name, "x") == 0) return 0;
+  if (strcmp(name, "y") == 0) return 1;
+  if (strcmp(name, "z") == 0) return 2;
+  return -1;
+}
+
+}    // namespace
+
+/* ---------------------------------------------------------------------- */
+
+FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), target_p(0.0), major_axis(0), major_rate(0.0), b_target(0.0),
+    path_speed(0.0), inertial_cap(1e-3), equilibrium_every(0), equilibrium_reached(0),
+    boundary_work(0.0), restored(0), contacts(0.0), sliding(0.0), force_sum(0.0),
+    measured_step(-1), output_step(-1), mean_diameter(0.0), mean_density(0.0),
+    solid_volume(0.0), pressure(nullptr), pair(nullptr), tally_flag(nullptr), csv_every(0),
+    csv(nullptr), wall_start(0.0), step_start(0), saturated_steps(0)
+{
+  if (narg < 5) error->all(FLERR, "Illegal fix cell/servo command: expected 'fix ID all cell/servo MODE ...' (modes: iso axes axisym constant_b deviatoric circle triangle polygon)");
+  if (strcmp(arg[1], "all") != 0)
+    error->all(FLERR, "fix cell/servo: group must be 'all' (every particle follows the "
+               "homogeneous deformation of the cell)");
+  if (domain->dimension != 3) error->all(FLERR, "fix cell/servo requires a 3d simulation");
+  if (domain->triclinic)
+    error->all(FLERR, "fix cell/servo requires an orthogonal box (the principal axes are the "
+               "box axes); this box is triclinic");
+  if (!domain->xperiodic || !domain->yperiodic || !domain->zperiodic)
+    error->all(FLERR, "fix cell/servo requires a fully periodic box ('boundary p p p')");
+
+  box_change |= BOX_CHANGE_SIZE;
+  no_change_box = 1;
+  restart_global = 1;
+  vector_flag = 1;
+  size_vector = N_OUTPUT;
+  global_freq = 1;
+  extvector = 0;
+  nevery = 1;
+
+  for (auto &a : axis_input) a = {tycore::AxisControl::STRAIN_RATE, 0.0, "", -1};
+  for (double &s : stress) s = 0.0;
+  for (double &s : kinetic_stress) s = 0.0;
+  for (double &s : stiffness_sums) s = 0.0;
+  for (double &o : output) o = NaN;
+  for (int i = 0; i < 3; ++i) reference_length[i] = domain->prd[i];
+
+  int iarg = 3;
+  parse_mode(narg, arg, iarg);
+  parse_keywords(narg, arg, iarg);
+
+  try {
+    // controllability depends on which axes hold a stress, not on the values; equal-style
+    // variables are looked up only in init(), so they are not evaluated here
+    if (mode == Mode::AXES) {
+      std::array<tycore::AxisProgramme, 3> axes;
+      for (int k = 0; k < 3; ++k)
+        axes[k] = {axis_input[k].control,
+                   axis_input[k].variable.empty() ? axis_input[k].value : 1.0};
+      tycore::require_controllable(tycore::per_axis_control(axes));
+    } else if (mode != Mode::PATH && mode != Mode::DEVIATORIC) {
+      tycore::require_controllable(current_control());
+    }
+  } catch (std::exception &e) {
+    error->all(FLERR, "fix cell/servo: {}", e.what());
+  }
+
+  pressure_id = std::string(id) + "_contact_stress";
+  modify->add_compute(pressure_id + " all pressure NULL pair");
+}
+
+FixCellServo::~FixCellServo()
+{
+  if (modify->find_compute(pressure_id) >= 0) modify->delete_compute(pressure_id);
+  if (csv) fclose(csv);
+  if (tally_flag) *tally_flag = 0;
+  // the box stops deforming with this fix: pair styles must not add an affine velocity
+  for (int i = 0; i < 6; ++i) domain->h_rate[i] = 0.0;
+  for (int i = 0; i < 3; ++i) domain->h_ratelo[i] = 0.0;
+}
+
+int FixCellServo::setmask()
+{
+  return END_OF_STEP;
+}
+
+/* ----------------------------------------------------------------------
+   MODE args: see the header of docs/fix_cell_servo.md
+------------------------------------------------------------------------- */
+
+FixCellServo::AxisInput FixCellServo::parse_value(const char *text, tycore::AxisControl control)
+{
+  AxisInput in{control, 0.0, "", -1};
+  if (strncmp(text, "v_", 2) == 0) in.variable = text + 2;
+  else in.value = utils::numeric(FLERR, text, false, lmp);
+  return in;
+}
+
+void FixCellServo::parse_mode(int narg, char **arg, int &iarg)
+{
+  const std::string name = arg[iarg++];
+  auto need = [&](int n) {
+    if (iarg + n > narg)
+      error->all(FLERR, "Illegal fix cell/servo {} command: expected {} more argument(s)", name,
+                 n);
+  };
+  auto stress_arg = [&](const char *what) {
+    const double value = utils::numeric(FLERR, arg[iarg++], false, lmp);
+    if (!(value > 0.0))
+      error->all(FLERR, "fix cell/servo {}: target {} = {} must be positive (a granular cell "
+                 "carries no tension)", name, what, value);
+    return value;
+  };
+  auto axis_arg = [&]() {
+    const int axis = axis_index(arg[iarg]);
+    if (axis < 0) error->all(FLERR, "fix cell/servo {}: axis '{}' is not x, y or z", name, arg[iarg]);
+    ++iarg;
+    return axis;
+  };
+
+  if (name == "iso") {
+    mode = Mode::ISO;
+    need(1);
+    target_p = stress_arg("mean stress p");
+  } else if (name == "axisym") {
+    mode = Mode::AXISYM;
+    need(3);
+    major_axis = axis_arg();
+    major_rate = utils::numeric(FLERR, arg[iarg++], false, lmp);
+    if (major_rate == 0.0)
+      error->all(FLERR, "fix cell/servo axisym: axial strain rate must be non-zero (> 0 "
+                 "compression, < 0 extension)");
+    target_p = stress_arg("mean stress p");
+  } else if (name == "constant_b") {
+    mode = Mode::CONSTANT_B;
+    need(4);
+    b_target = utils::numeric(FLERR, arg[iarg++], false, lmp);
+    if (!(b_target >= 0.0 && b_target <= 1.0))
+      error->all(FLERR, "fix cell/servo constant_b: b = {} is outside [0, 1]", b_target);
+    major_axis = axis_arg();
+    major_rate = utils::numeric(FLERR, arg[iarg++], false, lmp);
+    if (!(major_rate > 0.0))
+      error->all(FLERR, "fix cell/servo constant_b: the major-axis strain rate must be positive "
+                 "(compression of the major axis)");
+    target_p = stress_arg("mean stress p");
+  } else if (name == "deviatoric") {
+    mode = Mode::DEVIATORIC;
+    need(4);
+    for (auto &a : axis_input) a = parse_value(arg[iarg++], tycore::AxisControl::STRAIN_RATE);
+    target_p = stress_arg("mean stress p");
+  } else if (name == "axes") {
+    mode = Mode::AXES;
+    bool given[3] = {false, false, false};
+    while (iarg < narg && axis_index(arg[iarg]) >= 0) {
+      const int axis = axis_index(arg[iarg]);
+      if (iarg + 3 > narg)
+        error->all(FLERR, "fix cell/servo axes: axis {} needs 'stress VALUE' or 'rate VALUE'",
+                   arg[iarg]);
+      const std::string kind = arg[iarg + 1];
+      tycore::AxisControl control;
+      if (kind == "stress") control = tycore::AxisControl::STRESS;
+      else if (kind == "rate") control = tycore::AxisControl::STRAIN_RATE;
+      else
+        error->all(FLERR, "fix cell/servo axes: control '{}' of axis {} is neither 'stress' nor "
+                   "'rate'", kind, arg[iarg]);
+      axis_input[axis] = parse_value(arg[iarg + 2], control);
+      if (control == tycore::AxisControl::STRESS && axis_input[axis].variable.empty() &&
+          !(axis_input[axis].value > 0.0))
+        error->all(FLERR, "fix cell/servo axes: target stress of axis {} = {} must be positive",
+                   arg[iarg], axis_input[axis].value);
+      given[axis] = true;
+      iarg += 3;
+    }
+    for (int k = 0; k < 3; ++k)
+      if (!given[k])
+        error->all(FLERR, "fix cell/servo axes: axis {} has no control: give it 'stress VALUE' "
+                   "or 'rate VALUE'", tycore::axis_name(k));
+  } else if (name == "circle" || name == "triangle") {
+    mode = Mode::PATH;
+    need(2);
+    const double prestrain = utils::numeric(FLERR, arg[iarg++], false, lmp);
+    if (!(prestrain > 0.0))
+      error->all(FLERR, "fix cell/servo {}: pre-strain {} must be positive", name, prestrain);
+    target_p = stress_arg("mean stress p");
+    // options of the path itself, read here because they shape it
+    auto rotation = tycore::Rotation::CLOCKWISE;
+    auto measure = tycore::DeviatoricStrainMeasure::STRAIN_DIFFERENCE_13;
+    bool with_prestrain = true;
+    double sweep = 360.0;
+    while (iarg < narg) {
+      const std::string key = arg[iarg];
+      if (key == "rotation" && iarg + 1 < narg) {
+        if (strcmp(arg[iarg + 1], "cw") == 0) rotation = tycore::Rotation::CLOCKWISE;
+        else if (strcmp(arg[iarg + 1], "ccw") == 0) rotation = tycore::Rotation::ANTICLOCKWISE;
+        else error->all(FLERR, "fix cell/servo {}: rotation must be cw or ccw", name);
+      } else if (key == "measure" && iarg + 1 < narg) {
+        if (strcmp(arg[iarg + 1], "d13") == 0)
+          measure = tycore::DeviatoricStrainMeasure::STRAIN_DIFFERENCE_13;
+        else if (strcmp(arg[iarg + 1], "q") == 0)
+          measure = tycore::DeviatoricStrainMeasure::EPS_Q;
+        else error->all(FLERR, "fix cell/servo {}: measure must be d13 or q", name);
+      } else if (key == "prestrain_leg" && iarg + 1 < narg) {
+        with_prestrain = strcmp(arg[iarg + 1], "yes") == 0;
+        if (!with_prestrain && strcmp(arg[iarg + 1], "no") != 0)
+          error->all(FLERR, "fix cell/servo {}: prestrain_leg must be yes or no", name);
+      } else if (key == "sweep" && iarg + 1 < narg && name == "circle") {
+        sweep = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+        if (!(sweep > 0.0)) error->all(FLERR, "fix cell/servo circle: sweep must be positive");
+      } else {
+        break;
+      }
+      iarg += 2;
+    }
+    try {
+      path = name == "circle"
+          ? tycore::constant_deviatoric_strain_path(prestrain, measure, rotation, with_prestrain,
+                                                    sweep)
+          : tycore::multiaxial_plane_strain_path(prestrain, measure, rotation, with_prestrain);
+    } catch (std::exception &e) {
+      error->all(FLERR, "fix cell/servo {}: {}", name, e.what());
+    }
+  } else if (name == "polygon") {
+    mode = Mode::PATH;
+    need(1);
+    const int n = utils::inumeric(FLERR, arg[iarg++], false, lmp);
+    if (n < 2) error->all(FLERR, "fix cell/servo polygon: needs at least 2 vertices, got {}", n);
+    need(2 * n + 1);
+    std::vector<Eigen::Vector2d> vertices;
+    for (int k = 0; k < n; ++k, iarg += 2)
+      vertices.emplace_back(utils::numeric(FLERR, arg[iarg], false, lmp),
+                            utils::numeric(FLERR, arg[iarg + 1], false, lmp));
+    target_p = stress_arg("mean stress p");
+    try {
+      path = tycore::PiPath::polygon(vertices);
+    } catch (std::exception &e) {
+      error->all(FLERR, "fix cell/servo polygon: {}", e.what());
+    }
+  } else {
+    error->all(FLERR, "fix cell/servo: unknown mode '{}' (expected iso, axes, axisym, "
+               "constant_b, deviatoric, circle, triangle or polygon)", name);
+  }
+}
+
+void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
+{
+  settings.max_strain_rate = 0.0;    // 0: default set in init() from the inertial number
+  while (iarg < narg) {
+    const std::string key = arg[iarg];
+    auto value = [&](int k = 1) {
+      if (iarg + k >= narg)
+        error->all(FLERR, "fix cell/servo: keyword '{}' needs a value", key);
+      return arg[iarg + k];
+    };
+    if (key == "speed") {
+      path_speed = utils::numeric(FLERR, value(), false, lmp);
+      if (!(path_speed > 0.0))
+        error->all(FLERR, "fix cell/servo: path speed must be positive, got {}", path_speed);
+      iarg += 2;
+    } else if (key == "gain") {
+      settings.gain = utils::numeric(FLERR, value(), false, lmp);
+      iarg += 2;
+    } else if (key == "integral_gain") {
+      settings.integral_gain = utils::numeric(FLERR, value(), false, lmp);
+      iarg += 2;
+    } else if (key == "integral_band") {
+      settings.integral_band = utils::numeric(FLERR, value(), false, lmp);
+      iarg += 2;
+    } else if (key == "max_rate") {
+      settings.max_strain_rate = utils::numeric(FLERR, value(), false, lmp);
+      if (!(settings.max_strain_rate > 0.0))
+        error->all(FLERR, "fix cell/servo: max_rate must be positive, got {}",
+                   settings.max_strain_rate);
+      iarg += 2;
+    } else if (key == "max_inertial") {
+      inertial_cap = utils::numeric(FLERR, value(), false, lmp);
+      if (!(inertial_cap > 0.0))
+        error->all(FLERR, "fix cell/servo: max_inertial must be positive, got {}", inertial_cap);
+      iarg += 2;
+    } else if (key == "csv") {
+      csv_path = value(1);
+      csv_every = utils::inumeric(FLERR, value(2), false, lmp);
+      if (csv_every <= 0) error->all(FLERR, "fix cell/servo: csv interval must be positive");
+      iarg += 3;
+    } else if (key == "equilibrium") {
+      equilibrium_every = utils::inumeric(FLERR, value(), false, lmp);
+      if (equilibrium_every <= 0)
+        error->all(FLERR, "fix cell/servo: equilibrium check interval must be positive");
+      iarg += 2;
+    } else if (key == "eq_stress") {
+      criteria.stress_tolerance = utils::numeric(FLERR, value(), false, lmp);
+      iarg += 2;
+    } else if (key == "eq_unbalanced") {
+      criteria.max_unbalanced_force_ratio = utils::numeric(FLERR, value(), false, lmp);
+      iarg += 2;
+    } else if (key == "eq_kinetic") {
+      criteria.max_kinetic_energy_ratio = utils::numeric(FLERR, value(), false, lmp);
+      iarg += 2;
+    } else if (key == "eq_coordination") {
+      criteria.coordination_tolerance = utils::numeric(FLERR, value(), false, lmp);
+      iarg += 2;
+    } else if (key == "eq_window") {
+      criteria.window = utils::inumeric(FLERR, value(), false, lmp);
+      if (criteria.window < 1) error->all(FLERR, "fix cell/servo: eq_window must be >= 1");
+      iarg += 2;
+    } else {
+      error->all(FLERR, "fix cell/servo: unknown keyword '{}'", key);
+    }
+  }
+  if (mode == Mode::PATH && !(path_speed > 0.0))
+    error->all(FLERR, "fix cell/servo: a Pi-plane path needs 'speed V' (|de/dt|, 1/s)");
+  if (mode != Mode::PATH && path_speed > 0.0)
+    error->all(FLERR, "fix cell/servo: keyword 'speed' applies only to circle, triangle and "
+               "polygon paths");
+  if (equilibrium_every > 0 && mode != Mode::ISO)
+    error->all(FLERR, "fix cell/servo: the equilibrium check applies to the iso mode only");
+}
+
+/* ---------------------------------------------------------------------- */
+
+double FixCellServo::evaluate(AxisInput &in)
+{
+  if (in.variable.empty()) return in.value;
+  modify->clearstep_compute();
+  const double value = input->variable->compute_equal(in.ivar);
+  modify->addstep_compute(update->ntimestep + 1);
+  return value;
+}
+
+tycore::MixedControl FixCellServo::current_control()
+{
+  switch (mode) {
+    case Mode::ISO: return tycore::isotropic_compression_control(target_p);
+    case Mode::AXISYM: return tycore::axisymmetric_control(major_axis, major_rate, target_p);
+    case Mode::CONSTANT_B:
+      return tycore::constant_b_control(target_p, b_target, major_rate, major_axis,
+                                        (major_axis + 1) % 3, (major_axis + 2) % 3);
+    case Mode::DEVIATORIC: {
+      Eigen::Vector3d rate;
+      for (int k = 0; k < 3; ++k) rate(k) = evaluate(axis_input[k]);
+      return tycore::mean_stress_control(target_p, rate);
+    }
+    case Mode::AXES: {
+      std::array<tycore::AxisProgramme, 3> axes;
+      for (int k = 0; k < 3; ++k) axes[k] = {axis_input[k].control, evaluate(axis_input[k])};
+      return tycore::per_axis_control(axes);
+    }
+    case Mode::PATH: break;
+  }
+  return {};
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixCellServo::init()
+{
+  if (utils::strmatch(update->integrate_style, "^respa"))
+    error->all(FLERR, "fix cell/servo does not support run_style respa");
+  for (int i = 0; i < modify->nfix; ++i)
+    if (modify->fix[i] != this && modify->fix[i]->box_change)
+      error->all(FLERR, "fix cell/servo cannot be combined with fix {} ({}), which also "
+                 "changes the box", modify->fix[i]->id, modify->fix[i]->style);
+
+  pair = force->pair_match("thornton/yin", 1);
+  if (!pair)
+    error->all(FLERR, "fix cell/servo requires pair_style thornton/yin (it reads the contact "
+               "stiffness and contact counts from it)");
+  int dim;
+  tally_flag = static_cast<int *>(pair->extract("tally_cell", dim));
+  if (!tally_flag) error->all(FLERR, "fix cell/servo: pair thornton/yin has no cell tallies");
+  *tally_flag = 1;    // from the setup force computation on
+
+  const int icompute = modify->find_compute(pressure_id);
+  if (icompute < 0) error->all(FLERR, "fix cell/servo: its stress compute was deleted");
+  pressure = modify->compute[icompute];
+
+  for (auto &a : axis_input) {
+    if (a.variable.empty()) continue;
+    a.ivar = input->variable->find(a.variable.c_str());
+    if (a.ivar < 0)
+      error->all(FLERR, "fix cell/servo: variable {} does not exist", a.variable);
+    if (!input->variable->equalstyle(a.ivar))
+      error->all(FLERR, "fix cell/servo: variable {} is not equal-style", a.variable);
+  }
+
+  // particle statistics: number-mean diameter and density, solid volume
+  double local[4] = {0.0, 0.0, 0.0, 0.0}, total[4];
+  for (int i = 0; i < atom->nlocal; ++i) {
+    const double r = atom->radius[i];
+    const double volume = 4.0 / 3.0 * MathConst::MY_PI * r * r * r;
+    local[0] += 1.0;
+    local[1] += 2.0 * r;
+    local[2] += volume > 0.0 ? atom->rmass[i] / volume : 0.0;
+    local[3] += volume;
+  }
+  MPI_Allreduce(local, total, 4, MPI_DOUBLE, MPI_SUM, world);
+  if (total[0] == 0.0) error->all(FLERR, "fix cell/servo: the cell holds no particles");
+  mean_diameter = total[1] / total[0];
+  mean_density = total[2] / total[0];
+  solid_volume = total[3];
+
+  if (settings.max_strain_rate == 0.0) {
+    settings.max_strain_rate = default_max_rate();
+    if (mode == Mode::AXES) {
+      // axes mode holds no mean stress (target_p = 0): take the level of the stress-held
+      // axes, not 1 Pa, whose inertial-number rate would all but freeze the servo
+      double level = 0.0;
+      for (auto &a : axis_input)
+        if (a.control == tycore::AxisControl::STRESS)
+          level = std::max(level, a.variable.empty() ? a.value : evaluate(a));
+      if (level > 0.0)
+        settings.max_strain_rate =
+            tycore::quasi_static_strain_rate(inertial_cap, level, mean_diameter, mean_density);
+    }
+  }
+  try {
+    tycore::require_valid(settings);
+  } catch (std::exception &e) {
+    error->all(FLERR, "fix cell/servo: {}", e.what());
+  }
+  // the free axes must be able to follow the prescribed ones (isochoric axisymmetric
+  // compression needs half the axial rate on each lateral axis, plus dilatancy)
+  if (prescribed_rate() > 0.0 && settings.max_strain_rate < prescribed_rate() && comm->me == 0)
+    error->warning(FLERR, "fix cell/servo: max_rate {:.3g} is below the prescribed strain rate "
+                   "{:.3g}; the servo cannot keep up and the stress will drift (raise max_rate)",
+                   settings.max_strain_rate, prescribed_rate());
+  saturated_steps = 0;
+}
+
+// largest prescribed principal strain rate (or path speed) of the programme [1/s]
+double FixCellServo::prescribed_rate() const
+{
+  double rate = std::max(std::fabs(major_rate), path_speed);
+  for (const auto &a : axis_input)
+    if (a.control == tycore::AxisControl::STRAIN_RATE && a.variable.empty())
+      rate = std::max(rate, std::fabs(a.value));
+  return rate;
+}
+
+// cap of the servo part: the strain rate at inertial number max_inertial (physics.md §4),
+// and at least twice the prescribed rate
+double FixCellServo::default_max_rate() const
+{
+  return std::max(tycore::quasi_static_strain_rate(inertial_cap,
+                                                   target_p > 0.0 ? target_p : 1.0,
+                                                   mean_diameter, mean_density),
+                  2.0 * prescribed_rate());
+}
+
+void FixCellServo::setup(int)
+{
+  // the rate of the last step carries on across runs and restarts
+  for (int i = 0; i < 3; ++i) {
+    domain->h_rate[i] = -memory.last_strain_rate(i) * domain->prd[i];
+    domain->h_ratelo[i] = -0.5 * domain->h_rate[i];
+  }
+  measure();
+  compute_outputs();
+  wall_start = MPI_Wtime();
+  step_start = update->ntimestep;
+
+  if (!csv_path.empty() && comm->me == 0 && !csv) {
+    // a restored programme continues its record; a new one starts it
+    csv = fopen(csv_path.c_str(), restored ? "a" : "w");
+    if (!csv) error->one(FLERR, "fix cell/servo: cannot open {} for writing", csv_path);
+    fseek(csv, 0, SEEK_END);
+    if (ftell(csv) == 0) {
+      fputs("step,time", csv);
+      for (int k = 0; k < N_OUTPUT; ++k)
+        if (k < N_CSV || k >= RATE1) fprintf(csv, ",%s", OUTPUT_NAMES[k]);
+      fputs(",progress\n", csv);
+      fflush(csv);
+    }
+  }
+  if (!restored && update->ntimestep == step_start && csv_every > 0 &&
+      update->ntimestep % csv_every == 0)
+    write_csv_row();
+}
+
+/* ----------------------------------------------------------------------
+   stress (compression positive) from the pair virial, affine stiffness and contact
+   statistics from the pair tallies, kinetic stress of the fluctuation velocities
+------------------------------------------------------------------------- */
+
+void FixCellServo::measure()
+{
+  if (measured_step == update->ntimestep) return;
+  pressure->compute_vector();
+  pressure->addstep(update->ntimestep + 1);
+  for (int k = 0; k < 3; ++k) stress[k] = pressure->vector[k];
+
+  int dim;
+  const double *tallies = static_cast<double *>(pair->extract("cell_tallies", dim));
+  double sums[N_TALLY];
+  MPI_Allreduce(const_cast<double *>(tallies), sums, N_TALLY, MPI_DOUBLE, MPI_SUM, world);
+  for (int k = 0; k < 6; ++k) stiffness_sums[k] = sums[TALLY_STIFFNESS + k];
+  contacts = sums[TALLY_CONTACTS];
+  sliding = sums[TALLY_SLIDING];
+  force_sum = sums[TALLY_FORCE];
+
+  double local[3] = {0.0, 0.0, 0.0};
+  double **v = atom->v;
+  for (int i = 0; i < atom->nlocal; ++i)
+    for (int k = 0; k < 3; ++k) local[k] += atom->rmass[i] * v[i][k] * v[i][k];
+  MPI_Allreduce(local, kinetic_stress, 3, MPI_DOUBLE, MPI_SUM, world);
+  const double volume = domain->xprd * domain->yprd * domain->zprd;
+  for (double &s : kinetic_stress) s /= volume;
+  measured_step = update->ntimestep;
+}
+
+double FixCellServo::current_strain(int axis) const
+{
+  return -std::log(domain->prd[axis] / reference_length[axis]);
+}
+
+tycore::CellMeasurement FixCellServo::cell_measurement() const
+{
+  tycore::CellMeasurement cell;
+  const double volume = domain->xprd * domain->yprd * domain->zprd;
+  cell.stress = Eigen::Vector3d(stress[0], stress[1], stress[2]);
+  cell.stiffness = tycore::affine_stiffness(stiffness_sums, volume);
+  for (int k = 0; k < 3; ++k) cell.strain(k) = current_strain(k);
+  return cell;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixCellServo::end_of_step()
+{
+  measure();
+  compute_outputs();
+  if (csv_every > 0 && update->ntimestep % csv_every == 0) write_csv_row();
+
+  const tycore::CellMeasurement cell = cell_measurement();
+  tycore::ServoCommand command;
+  try {
+    command = mode == Mode::PATH
+        ? tycore::path_servo_step(path, path_speed, target_p, cell, settings, update->dt, memory)
+        : tycore::servo_step(current_control(), cell, settings, update->dt, memory);
+  } catch (std::exception &e) {
+    error->all(FLERR, "fix cell/servo: {}", e.what());
+  }
+
+  if (equilibrium_every > 0 && update->ntimestep % equilibrium_every == 0) {
+    tycore::EquilibriumSample sample;
+    sample.stress = cell.stress;
+    sample.target_stress = Eigen::Vector3d::Constant(target_p);
+    sample.unbalanced_force_ratio = output[UNBALANCED];
+    sample.kinetic_energy_ratio =
+        0.5 * (kinetic_stress[0] + kinetic_stress[1] + kinetic_stress[2]) / target_p;
+    sample.coordination = output[Z];
+    equilibrium_reached = tycore::update_equilibrium(equilibrium, sample, criteria).reached;
+    output[EQUILIBRIUM] = equilibrium_reached;
+  }
+
+  // a servo held at its cap for long has lost control of the stress: say what to change
+  saturated_steps = command.saturated ? saturated_steps + 1 : 0;
+  if (saturated_steps == SATURATION_WARN_STEPS && comm->me == 0 && output[Z] > 0.0)
+    error->warning(FLERR, "fix cell/servo: the servo has been at its strain-rate cap max_rate = "
+                   "{:.3g} for {} steps while the cell carries load (p = {:.4g}, target {:.4g}); "
+                   "raise max_rate or lower the prescribed rate", settings.max_strain_rate,
+                   SATURATION_WARN_STEPS, output[P], target_p);
+
+  const double rate[3] = {command.strain_rate(0), command.strain_rate(1), command.strain_rate(2)};
+  const double volume = domain->xprd * domain->yprd * domain->zprd;
+  // boundary work V sigma : deps over this step (contact stress; physics.md §7.1)
+  for (int k = 0; k < 3; ++k) boundary_work += volume * stress[k] * rate[k] * update->dt;
+  change_box(rate);
+}
+
+/* ----------------------------------------------------------------------
+   L_i <- L_i exp(-eps_dot_i dt) about the fixed box centre, atoms remapped affinely
+------------------------------------------------------------------------- */
+
+void FixCellServo::change_box(const double rate[3])
+{
+  double **x = atom->x;
+  const int nlocal = atom->nlocal;
+  for (int i = 0; i < nlocal; ++i) domain->x2lamda(x[i], x[i]);
+
+  const double dt = update->dt;
+  for (int k = 0; k < 3; ++k) {
+    const double length = domain->prd[k] * std::exp(-rate[k] * dt);
+    if (length < 2.0 * neighbor->cutneighmax)
+      error->all(FLERR, "fix cell/servo: cell edge {} = {:.4g} has shrunk below twice the "
+                 "neighbor cutoff ({:.4g}); use a larger specimen or a smaller skin",
+                 tycore::axis_name(k), length, 2.0 * neighbor->cutneighmax);
+    const double centre = 0.5 * (domain->boxlo[k] + domain->boxhi[k]);
+    domain->boxlo[k] = centre - 0.5 * length;
+    domain->boxhi[k] = centre + 0.5 * length;
+    domain->h_rate[k] = -rate[k] * length;    // L_kk = h_rate/h = -eps_dot_k
+    domain->h_ratelo[k] = -0.5 * domain->h_rate[k];
+  }
+  domain->set_global_box();
+  domain->set_local_box();
+  for (int i = 0; i < nlocal; ++i) domain->lamda2x(x[i], x[i]);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixCellServo::compute_outputs()
+{
+  const double volume = domain->xprd * domain->yprd * domain->zprd;
+  const Eigen::Vector3d eps(current_strain(0), current_strain(1), current_strain(2));
+  const Eigen::Vector3d sig(stress[0], stress[1], stress[2]);
+  output[EPS1] = eps(0), output[EPS2] = eps(1), output[EPS3] = eps(2);
+  output[EPS_V] = tycore::volumetric_strain(eps);
+  output[EPS_Q] = tycore::deviatoric_strain(eps);
+  output[EPS_D13] = tycore::strain_difference_13(eps);
+  output[SIG1] = sig(0), output[SIG2] = sig(1), output[SIG3] = sig(2);
+  output[P] = tycore::mean_stress(sig);
+  output[Q] = tycore::deviatoric_stress(sig);
+  output[B] = tycore::b_value(sig);
+  const Eigen::Vector2d pi_stress = tycore::pi_coordinates(sig);
+  const Eigen::Vector2d pi_strain = tycore::pi_coordinates(eps);
+  output[LODE_DEG] = tycore::lode_angle_deg(pi_stress);
+  output[ETA_LD] = sig.minCoeff() > 0.0 ? tycore::lade_duncan_eta(sig) : NaN;
+  output[SINPHI] = sig.maxCoeff() + sig.minCoeff() > 0.0 ? tycore::mobilised_sinphi(sig) : NaN;
+  output[SOLID_FRACTION] = solid_volume / volume;
+  output[VOID_RATIO] = volume / solid_volume - 1.0;
+
+  // coordination: Z = 2C/N; Zm = (2C - N1)/(N - N0 - N1) without rattlers (Thornton 2000)
+  int dim;
+  const double *count = static_cast<double *>(pair->extract("contact_count", dim));
+  double local[5] = {0.0, 0.0, 0.0, 0.0, 0.0}, total[5];
+  double **f = atom->f;
+  for (int i = 0; i < atom->nlocal; ++i) {
+    const long c = count ? std::lround(count[i]) : 0;
+    local[0] += 1.0;
+    local[1] += c;
+    if (c == 0) local[2] += 1.0;
+    if (c == 1) local[3] += 1.0;
+    local[4] += std::sqrt(f[i][0] * f[i][0] + f[i][1] * f[i][1] + f[i][2] * f[i][2]);
+  }
+  MPI_Allreduce(local, total, 5, MPI_DOUBLE, MPI_SUM, world);
+  const double n = total[0], ends = total[1], n0 = total[2], n1 = total[3];
+  output[Z] = ends / n;
+  output[ZM] = n - n0 - n1 > 0.0 ? (ends - n1) / (n - n0 - n1) : 0.0;
+  output[SLIDING_FRACTION] = contacts > 0.0 ? sliding / contacts : 0.0;
+  // mean |resultant force on a particle| / mean |contact force|
+  output[UNBALANCED] = force_sum > 0.0 ? (total[4] / n) / (force_sum / contacts) : NaN;
+
+  const Eigen::Vector3d rate = memory.last_strain_rate;
+  // I = eps_dot_q d sqrt(rho/p), eps_dot_q = sqrt(2/3 e':e')   (physics.md §4)
+  const double shear_rate = std::sqrt(2.0 / 3.0) * tycore::deviator(rate).norm();
+  output[INERTIAL_NUMBER] =
+      output[P] > 0.0 ? shear_rate * mean_diameter * std::sqrt(mean_density / output[P]) : NaN;
+  output[PI_X] = pi_stress.x(), output[PI_Y] = pi_stress.y();
+  output[PI_EX] = pi_strain.x(), output[PI_EY] = pi_strain.y();
+
+  // progress: along the path, else through the current run; ETA in wall-clock seconds
+  const bigint done_steps = update->ntimestep - step_start;
+  const double wall_per_step = done_steps > 0 ? (MPI_Wtime() - wall_start) / done_steps : NaN;
+  if (mode == Mode::PATH) {
+    output[PROGRESS] = path.progress(memory.path_length).fraction;
+    output[ETA_SECONDS] =
+        path.remaining_time(memory.path_length, path_speed) / update->dt * wall_per_step;
+  } else {
+    const bigint span = update->endstep - update->beginstep;
+    output[PROGRESS] = span > 0 ? double(update->ntimestep - update->beginstep) / span : 1.0;
+    output[ETA_SECONDS] = double(update->endstep - update->ntimestep) * wall_per_step;
+  }
+  output[EQUILIBRIUM] = equilibrium_reached;
+  output[RATE1] = rate(0), output[RATE2] = rate(1), output[RATE3] = rate(2);
+  output[BOUNDARY_WORK] = boundary_work;
+  output[P_KINETIC] = (kinetic_stress[0] + kinetic_stress[1] + kinetic_stress[2]) / 3.0;
+  output[VOLUME] = volume;
+  output_step = update->ntimestep;
+}
+
+double FixCellServo::compute_vector(int n)
+{
+  if (output_step != update->ntimestep) {
+    measure();
+    compute_outputs();
+  }
+  return output[n];
+}
+
+void FixCellServo::write_csv_row()
+{
+  if (comm->me != 0 || !csv) return;
+  const double time = update->atime + (update->ntimestep - update->atimestep) * update->dt;
+  fprintf(csv, BIGINT_FORMAT ",%.12g", update->ntimestep, time);
+  for (int k = 0; k < N_OUTPUT; ++k)
+    if (k < N_CSV || k >= RATE1) fprintf(csv, ",%.12g", output[k]);
+  fprintf(csv, ",%.12g\n", output[PROGRESS]);
+  fflush(csv);
+}
+
+/* ----------------------------------------------------------------------
+   restart: reference cell, servo memory (integral, last rate, path progress),
+   equilibrium state, boundary work
+------------------------------------------------------------------------- */
+
+void FixCellServo::write_restart(FILE *fp)
+{
+  std::vector<double> list{RESTART_TAG, static_cast<double>(static_cast<int>(mode))};
+  for (double L : reference_length) list.push_back(L);
+  double m[tycore::ServoMemory::size];
+  memory.to_array(m);
+  list.insert(list.end(), m, m + tycore::ServoMemory::size);
+  double e[tycore::EquilibriumState::size];
+  equilibrium.to_array(e);
+  list.insert(list.end(), e, e + tycore::EquilibriumState::size);
+  list.push_back(equilibrium_reached);
+  list.push_back(boundary_work);
+  if (comm->me == 0) {
+    const int size = static_cast<int>(list.size() * sizeof(double));
+    fwrite(&size, sizeof(int), 1, fp);
+    fwrite(list.data(), sizeof(double), list.size(), fp);
+  }
+}
+
+void FixCellServo::restart(char *buf)
+{
+  const double *list = reinterpret_cast<double *>(buf);
+  if (list[0] != RESTART_TAG || static_cast<int>(list[1]) != static_cast<int>(mode))
+    error->all(FLERR, "fix cell/servo: the restart file holds the state of another cell/servo "
+               "mode; use the same mode as the run that wrote it, or a new fix ID");
+  int k = 2;
+  for (double &L : reference_length) L = list[k++];
+  memory = tycore::ServoMemory::from_array(list + k);
+  k += tycore::ServoMemory::size;
+  equilibrium = tycore::EquilibriumState::from_array(list + k);
+  k += tycore::EquilibriumState::size;
+  equilibrium_reached = static_cast<int>(list[k++]);
+  boundary_work = list[k++];
+  restored = 1;
+}

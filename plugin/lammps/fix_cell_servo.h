@@ -1,0 +1,119 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   fix cell/servo: a stress-controlled, deformable, orthogonal periodic cell that follows
+   principal strain-rate programmes and Pi-plane strain paths at a servo-controlled mean
+   stress (paper sections 2-5; physics.md §5, §7). See docs/fix_cell_servo.md.
+------------------------------------------------------------------------- */
+
+#ifndef LMP_FIX_CELL_SERVO_H
+#define LMP_FIX_CELL_SERVO_H
+
+#include "fix.h"
+
+#include "cell_servo.hpp"
+
+#include <cstdio>
+#include <memory>
+#include <string>
+
+namespace LAMMPS_NS {
+
+class FixCellServo : public Fix {
+ public:
+  FixCellServo(class LAMMPS *, int, char **);
+  ~FixCellServo() override;
+  int setmask() override;
+  void init() override;
+  void setup(int) override;
+  void end_of_step() override;
+  double compute_vector(int) override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
+
+  // indices of the global vector (0-based here, 1-based for users; docs/fix_cell_servo.md)
+  enum Output {
+    EPS1, EPS2, EPS3, EPS_V, EPS_Q, EPS_D13, SIG1, SIG2, SIG3, P, Q, B, LODE_DEG, ETA_LD,
+    SINPHI, VOID_RATIO, SOLID_FRACTION, Z, ZM, SLIDING_FRACTION, UNBALANCED, INERTIAL_NUMBER,
+    PI_X, PI_Y, PI_EX, PI_EY,    // the CSV columns end here
+    PROGRESS, ETA_SECONDS, EQUILIBRIUM, RATE1, RATE2, RATE3, BOUNDARY_WORK, P_KINETIC, VOLUME,
+    N_OUTPUT
+  };
+  static constexpr int N_CSV = PI_EY + 1;
+
+ protected:
+  enum class Mode { ISO, AXES, AXISYM, CONSTANT_B, DEVIATORIC, PATH };
+  Mode mode;
+
+  // control programme
+  double target_p;                 // servo-held mean stress [Pa]
+  int major_axis;                  // axisym, constant_b
+  double major_rate;               // axisym, constant_b [1/s], compression positive
+  double b_target;                 // constant_b
+  struct AxisInput {               // axes, deviatoric: a number or an equal-style variable
+    tycore::AxisControl control;
+    double value;
+    std::string variable;
+    int ivar;
+  };
+  AxisInput axis_input[3];
+  tycore::PiPath path;
+  double path_speed;               // Pi-plane speed |de/dt| [1/s]
+  tycore::ServoSettings settings;
+  double inertial_cap;             // default cap: strain rate at this inertial number
+
+  // equilibrium check (preparation stages)
+  int equilibrium_every;
+  tycore::EquilibriumCriteria criteria;
+  tycore::EquilibriumState equilibrium;
+  int equilibrium_reached;
+
+  // state (written to restart files)
+  double reference_length[3];      // cell edges when the programme started
+  tycore::ServoMemory memory;
+  double boundary_work;            // int V sigma:deps, compression positive [J]
+  int restored;                    // 1 if the state came from a restart file
+
+  // measurements of the last step
+  double stress[3], kinetic_stress[3], stiffness_sums[6];
+  double contacts, sliding, force_sum;
+  bigint measured_step;
+  double output[N_OUTPUT];
+  bigint output_step;
+
+  // particle statistics fixed at init
+  double mean_diameter, mean_density, solid_volume;
+
+  class Compute *pressure;
+  std::string pressure_id;
+  class Pair *pair;
+  int *tally_flag;
+
+  // CSV
+  std::string csv_path;
+  int csv_every;
+  FILE *csv;
+
+  // progress / ETA
+  double wall_start;
+  bigint step_start;
+
+  void parse_mode(int narg, char **arg, int &iarg);
+  void parse_keywords(int narg, char **arg, int iarg);
+  AxisInput parse_value(const char *text, tycore::AxisControl control);
+  double evaluate(AxisInput &in);
+  tycore::MixedControl current_control();
+
+  void measure();
+  tycore::CellMeasurement cell_measurement() const;
+  void change_box(const double strain_rate[3]);
+  void compute_outputs();
+  void write_csv_row();
+  double default_max_rate() const;
+  double prescribed_rate() const;
+  bigint saturated_steps;
+  static constexpr int SATURATION_WARN_STEPS = 1000;
+  double current_strain(int axis) const;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif

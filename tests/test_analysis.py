@@ -1,0 +1,468 @@
+"""tyanalysis (analysis/tyanalysis): invariants against hand calculations, the CSV reader's
+tolerance of a partially written last row, and every CLI subcommand run as
+`/usr/bin/python3 -m tyanalysis ...` on synthetic records whose answers are known in closed form."""
+import json
+import math
+import os
+import re
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from tyanalysis import compare, io, metrics
+from tyanalysis import invariants as inv
+
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ANALYSIS = os.path.join(REPO, "analysis")
+PY = "/usr/bin/python3" if os.path.exists("/usr/bin/python3") else sys.executable
+P0 = 100e3                      # mean stress, Pa
+
+
+# ---- synthetic records ----------------------------------------------------------------------------
+
+def record(sig, eps, void_ratio=None, **extra):
+    """All fix cell/servo columns from principal stress and strain histories (n, 3)."""
+    sig, eps = np.asarray(sig, float), np.asarray(eps, float)
+    n = len(sig)
+    px, py = inv.pi_coordinates(sig)
+    ex, ey = inv.pi_coordinates(eps)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        cols = {
+            "step": np.arange(n) * 100.0, "time": np.arange(n) * 1e-3,
+            "eps1": eps[:, 0], "eps2": eps[:, 1], "eps3": eps[:, 2],
+            "eps_v": inv.volumetric_strain(eps), "eps_q": inv.deviatoric_strain(eps),
+            "eps_d13": eps[:, 0] - eps[:, 2],
+            "sig1": sig[:, 0], "sig2": sig[:, 1], "sig3": sig[:, 2],
+            "p": inv.mean_stress(sig), "q": inv.deviatoric_stress(sig), "b": inv.b_value(sig),
+            "lode_deg": inv.lode_angle_deg(px, py), "eta_LD": inv.lade_duncan_eta(sig),
+            "sinphi": inv.sinphi(sig),
+            "void_ratio": np.full(n, 0.6) if void_ratio is None else void_ratio,
+            "solid_fraction": np.full(n, 0.62), "Z": np.full(n, 5.0), "Zm": np.full(n, 5.5),
+            "sliding_fraction": np.zeros(n), "unbalanced": np.full(n, 1e-3),
+            "inertial_number": np.full(n, 1e-4),
+            "pi_x": px, "pi_y": py, "pi_ex": ex, "pi_ey": ey}
+    cols.update(extra)
+    assert tuple(cols) == io.SERVO_COLUMNS
+    return cols
+
+
+def axisym_record(kmax, kcv, e0=0.515, e_slope=0.3, n=401):
+    """Axisymmetric compression at p = 100 kPa: sig1 = p(1 + 2k), sig2 = sig3 = p(1 - k), so
+    q = sig1 - sig3 = 3pk and sin(phi) = 3k/(2 + k). eps1 - eps3 = x runs 0..40 %, k rises
+    linearly to kmax at x = 5 %, falls to kcv at 15 % and stays; eps_v = -x/10 (dilation);
+    void ratio e0 + e_slope x."""
+    x = np.linspace(0.0, 0.40, n)
+    k = np.where(x <= 0.05, kmax * x / 0.05,
+                 np.where(x < 0.15, kmax + (kcv - kmax) * (x - 0.05) / 0.10, kcv))
+    sig = np.stack([P0 * (1 + 2 * k), P0 * (1 - k), P0 * (1 - k)], axis=1)
+    ev = -0.1 * x
+    eps = np.stack([2 * x / 3 + ev / 3, -x / 3 + ev / 3, -x / 3 + ev / 3], axis=1)
+    return record(sig, eps, void_ratio=e0 + e_slope * x,
+                  solid_fraction=np.full(n, 1 / (1 + e0)), Z=np.full(n, 6.07), Zm=np.full(n, 6.3))
+
+
+def sinphi_of_k(k):
+    return 3 * k / (2 + k)
+
+
+def radial_record(b, sinphi_peak, n=201):
+    """Constant p and b; sin(phi) rises linearly to sinphi_peak at row n/2 and falls to 80 %;
+    strains: eps1 = x, eps2 = (2b - 1) x/2, eps3 = -(1 + b) x/2, plus a growing dilation."""
+    t = np.linspace(0, 1, n)
+    s = np.where(t <= 0.5, sinphi_peak * t / 0.5, sinphi_peak * (1 - 0.4 * (t - 0.5)))
+    state = inv.state_at_ratio(inv.stress_ratio_from_sinphi(s), b)
+    sig = state * (P0 / state.mean(axis=1))[:, None]
+    x = 0.2 * t
+    eps = np.stack([x, (2 * b - 1) * x / 2, -(1 + b) * x / 2], axis=1) - 0.02 * x[:, None] * t[:, None]
+    return record(sig, eps)
+
+
+EPS_Q0 = 0.00285                # prestrain (deviatoric strain eps_q), paper §5
+Q0 = 51.4e3                     # deviatoric stress after the prestrain, Pa
+
+
+def nonradial_record(path="circle", n_pre=30, step_deg=3.0):
+    """Prestrain in axisymmetric compression to eps_q = 0.285 %, q = 51.4 kPa, then the strain
+    Lode angle turns (circle of constant radius, or along the plane-strain triangle's first side
+    to its vertex at 60 deg); the stress Lode angle turns 79/60 times as fast and q stays
+    constant; p = 100 kPa + 0.5 kPa cos(3 theta_e)."""
+    r0 = EPS_Q0 / math.sqrt(2 / 3)          # |e| = eps_q / sqrt(2/3)
+    rs = Q0 / math.sqrt(1.5)                # |s| = q / sqrt(3/2)
+    pre = np.linspace(0.0, 1.0, n_pre)
+    if path == "circle":
+        th = np.arange(step_deg, 360.0 + 1e-9, step_deg)
+        re_ = np.full_like(th, r0)
+    else:                                     # side y = r0 from x = 0 to the vertex x = sqrt3 r0
+        xs = np.linspace(0.0, math.sqrt(3) * r0, 41)[1:]
+        th = np.degrees(np.arctan2(xs, r0))
+        re_ = np.hypot(xs, r0)
+    theta_e = np.concatenate([np.zeros(n_pre), th])
+    rad_e = np.concatenate([pre * r0, re_])
+    theta_s = theta_e * 79.0 / 60.0
+    rad_s = np.concatenate([pre * rs, np.full_like(th, rs)])
+    p = P0 + 500.0 * np.cos(np.radians(3 * theta_e))
+    sig = inv.principal_from_pi(*inv.pi_point(rad_s, theta_s), p)
+    eps = inv.principal_from_pi(*inv.pi_point(rad_e, theta_e), np.zeros_like(p))
+    return record(sig, eps)
+
+
+@pytest.fixture(scope="module")
+def files(tmp_path_factory):
+    d = tmp_path_factory.mktemp("tyanalysis")
+    out = {}
+
+    def w(name, cols, **kw):
+        io.write_servo_csv(d / name, cols, **kw)
+        out[name] = str(d / name)
+
+    w("dense.csv", axisym_record(kmax=0.4, kcv=0.25, e0=0.515, e_slope=0.3))
+    w("loose.csv", axisym_record(kmax=0.3, kcv=0.25, e0=0.618, e_slope=-0.02),
+      partial_tail="401,0.401,0.1,0.0")      # crashed writer: unterminated last row
+    for mu, (kmax, kcv) in {0.1: (0.25, 0.2), 0.3: (0.4, 0.25), 0.5: (0.5, 0.3)}.items():
+        w(f"sweep_mu{mu}.csv", axisym_record(kmax, kcv))
+    for b in (0.0, 0.5, 1.0):
+        w(f"b{b}.csv", radial_record(b, inv.sinphi_on_surface(inv.LADE_DUNCAN, 0.45, b)))
+    w("cdst.csv", nonradial_record("circle"))
+    w("ps.csv", nonradial_record("triangle"))
+    out["dir"] = d
+    return out
+
+
+def run_cli(*args, cwd=None):
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.pathsep.join([ANALYSIS] + [p for p in env.get("PYTHONPATH", "").split(os.pathsep) if p])
+    env["MPLBACKEND"] = "Agg"
+    r = subprocess.run([PY, "-m", "tyanalysis", *map(str, args)], capture_output=True, text=True,
+                       env=env, cwd=cwd, timeout=60)
+    assert r.returncode == 0, f"{args}\nstdout:\n{r.stdout}\nstderr:\n{r.stderr}"
+    return r.stdout
+
+
+def kv(stdout, label):
+    """Parse 'label: k=v k=v' lines of the CLI output."""
+    for line in stdout.splitlines():
+        if line.startswith(label + ":"):
+            out = {}
+            for k, v in re.findall(r"(\S+?)=(\S+)", line[len(label) + 1:]):
+                try:
+                    out[k] = float(v)
+                except ValueError:
+                    out[k] = v
+            return out
+    raise AssertionError(f"no line for {label!r} in\n{stdout}")
+
+
+def png_ok(path):
+    assert os.path.exists(path) and os.path.getsize(path) > 1000
+    with open(path, "rb") as fh:
+        assert fh.read(8) == b"\x89PNG\r\n\x1a\n"
+
+
+# ---- invariants against hand calculations ---------------------------------------------------------
+
+def test_pi_coordinates_of_2_1_0_and_cpp_convention(repo):
+    x, y = inv.pi_coordinates([2.0, 1.0, 0.0])
+    assert x == pytest.approx(1 / math.sqrt(2)) and y == pytest.approx(3 / math.sqrt(6))
+    assert math.hypot(x, y) == pytest.approx(np.linalg.norm([1.0, 0.0, -1.0]))   # |s|
+    assert np.allclose(inv.principal_from_pi(x, y, 1.0), [2, 1, 0])
+    assert inv.lode_angle_of([2.0, 1.0, 0.0]) == pytest.approx(30.0)            # b = 0.5
+    # same unit vectors as the C++ core
+    hpp = os.path.join(repo, "plugin", "core", "pi_plane.hpp")
+    if os.path.exists(hpp):
+        text = open(hpp).read()
+        assert "Eigen::Vector3d(0, 1, -1) / piplane::sqrt2" in text
+        assert "Eigen::Vector3d(2, -1, -1) / piplane::sqrt6" in text
+    assert np.allclose(inv.PI_UNIT_X, np.array([0, 1, -1]) / math.sqrt(2))
+    assert np.allclose(inv.PI_UNIT_Y, np.array([2, -1, -1]) / math.sqrt(6))
+
+
+def test_lode_angles_of_axisymmetric_states():
+    assert inv.lode_angle_of([3.0, 1.0, 1.0]) == pytest.approx(0.0)      # compression along 1
+    assert inv.lode_angle_of([2.0, 2.0, 1.0]) == pytest.approx(60.0)     # extension along 3
+    assert inv.lode_angle_of([1.0, 3.0, 1.0]) == pytest.approx(120.0)    # compression along 2
+    assert inv.lode_angle_of([1.0, 2.0, 2.0]) == pytest.approx(180.0)    # extension along 1
+    assert inv.lode_angle_of([1.0, 1.0, 3.0]) == pytest.approx(240.0)    # compression along 3
+    assert np.isnan(inv.lode_angle_of([1.0, 1.0, 1.0]))
+    for b in (0.0, 0.25, 0.5, 1.0):
+        K = 3.0
+        assert inv.lode_angle_of(inv.state_at_ratio(K, b)) == pytest.approx(
+            math.degrees(math.atan2(math.sqrt(3) * b, 2 - b)))
+        assert inv.b_from_lode(inv.lode_from_b(b)) == pytest.approx(b)
+
+
+def test_axisymmetric_sinphi_q_and_b():
+    for k in (0.1, 0.3, 0.5):
+        sig = [P0 * (1 + 2 * k), P0 * (1 - k), P0 * (1 - k)]
+        assert inv.sinphi(sig) == pytest.approx(3 * k / (2 + k))
+        assert inv.deviatoric_stress(sig) == pytest.approx(3 * P0 * k)
+        assert inv.mean_stress(sig) == pytest.approx(P0)
+        assert inv.b_value(sig) == pytest.approx(0.0)
+        assert inv.b_value([P0 * (1 + k), P0 * (1 + k), P0 * (1 - 2 * k)]) == pytest.approx(1.0)
+    sig = [150e3, 100e3, 50e3]                       # b = 0.5, sin(phi) = 100/200
+    assert inv.b_value(sig) == pytest.approx(0.5)
+    assert inv.sinphi(sig) == pytest.approx(0.5)
+    assert inv.b_value([50e3, 150e3, 100e3]) == pytest.approx(0.5)     # order of axes irrelevant
+    assert inv.deviatoric_strain([0.02, -0.01, -0.01]) == pytest.approx(2 / 3 * 0.03)
+
+
+def test_lade_duncan_and_matsuoka_nakai_values():
+    assert inv.lade_duncan_eta([P0, P0, P0]) == pytest.approx(0.0, abs=1e-12)
+    assert inv.matsuoka_nakai_ratio([P0, P0, P0]) == pytest.approx(9.0)
+    # sin(phi) = 0.5 -> K = 3: eta = 5^3/3 - 27, MN = 9 + 8 tan^2(phi) = 9 + 8/3
+    assert inv.criterion_constant(inv.LADE_DUNCAN, 0.5) == pytest.approx(125 / 3 - 27)
+    assert inv.criterion_constant(inv.MATSUOKA_NAKAI, 0.5) == pytest.approx(9 + 8 / 3)
+    sig = np.array([3.0, 2.0, 1.0])
+    i1, i2, i3 = 6.0, 11.0, 6.0
+    assert inv.lade_duncan_eta(sig) == pytest.approx(i1 ** 3 / i3 - 27)
+    assert inv.matsuoka_nakai_ratio(sig) == pytest.approx(i1 * i2 / i3)
+
+
+@pytest.mark.parametrize("s_tc", [0.35, 0.45, 0.5])
+def test_failure_surfaces_through_compression_strength(s_tc):
+    for crit in inv.CRITERIA:
+        assert inv.sinphi_on_surface(crit, s_tc, 0.0) == pytest.approx(s_tc, abs=1e-12)
+    # MN: same strength in extension
+    assert inv.sinphi_on_surface(inv.MATSUOKA_NAKAI, s_tc, 1.0) == pytest.approx(s_tc, abs=1e-12)
+    # LD at b = 1: state (K, K, 1) with (2K + 1)^3/K^2 = (K0 + 2)^3/K0, solved as a cubic
+    K0 = (1 + s_tc) / (1 - s_tc)
+    c = (K0 + 2) ** 3 / K0
+    roots = np.roots([8.0, 12.0 - c, 6.0, 1.0])
+    K = max(r.real for r in roots if abs(r.imag) < 1e-9 and r.real > 1)
+    assert inv.sinphi_on_surface(inv.LADE_DUNCAN, s_tc, 1.0) == pytest.approx((K - 1) / (K + 1), abs=1e-12)
+    assert inv.sinphi_on_surface(inv.LADE_DUNCAN, s_tc, 1.0) > s_tc
+    # physics.md §6 table
+    table = {0.35: (0.4153, 0.3778), 0.45: (0.5346, 0.4946), 0.5: (0.5933, 0.5538)}
+    assert inv.sinphi_on_surface(inv.LADE_DUNCAN, s_tc, [0.5, 1.0]) == pytest.approx(table[s_tc], abs=6e-5)
+    # Pi-plane curve passes through the compression state at p, and is 120-deg periodic
+    p = 100e3
+    x, y = inv.failure_surface_pi(inv.LADE_DUNCAN, p=p, sinphi_tc=s_tc, n=361)
+    r = np.hypot(x, y)
+    state = inv.state_at_ratio(K0, 0.0)
+    expect = np.linalg.norm(inv.deviator(state * p / state.mean()))
+    assert r[0] == pytest.approx(expect) and r[120] == pytest.approx(expect) and r[240] == pytest.approx(expect)
+    assert inv.lode_angle_deg(x[30], y[30]) == pytest.approx(30.0)
+
+
+def test_metrics_of_synthetic_axisymmetric_record():
+    t = io.Table(axisym_record(kmax=0.4, kcv=0.25), "x.csv")
+    s = metrics.summarize(t)
+    assert s["q_peak_kPa"] == pytest.approx(3 * 100 * 0.4)
+    assert s["eps_d13_at_q_peak_pct"] == pytest.approx(5.0)
+    assert s["sinphi_max"] == pytest.approx(sinphi_of_k(0.4))
+    assert s["sinphi_end"] == pytest.approx(sinphi_of_k(0.25))
+    assert s["void_ratio_at_30pct"] == pytest.approx(0.515 + 0.3 * 0.3)
+    assert max(s["consistency_max"].values()) < 1e-12
+    x, rate = metrics.dilation_rate(t["eps_d13"], t["eps_v"])
+    assert np.allclose(rate, 0.1)
+
+
+# ---- reader ------------------------------------------------------------------------------------------
+
+def test_reader_drops_partial_last_row(tmp_path):
+    cols = axisym_record(0.4, 0.25, n=21)
+    f = tmp_path / "a.csv"
+    io.write_servo_csv(f, cols, partial_tail="2100,0.021,0.0012")
+    t = io.read_servo_csv(f)
+    assert len(t) == 21 and t.dropped_partial
+    assert np.allclose(t["sig1"], cols["sig1"])
+    # an unterminated row cut mid-number (all fields present) is dropped as well
+    line = ",".join(repr(float(cols[c][-1])) for c in cols)
+    io.write_servo_csv(f, cols, partial_tail=line[:-3])
+    assert len(io.read_servo_csv(f)) == 21
+    # a terminated but short final row is dropped; nothing to drop -> flag stays False
+    io.write_servo_csv(f, cols, partial_tail="2100,0.021,0.0012\n")
+    t = io.read_servo_csv(f)
+    assert len(t) == 21 and t.dropped_partial
+    io.write_servo_csv(f, cols)
+    t = io.read_servo_csv(f)
+    assert len(t) == 21 and not t.dropped_partial
+    # damage in the middle is an error, as is a header-only file
+    text = f.read_text().split("\n")
+    text[5] = text[5][:20]
+    f.write_text("\n".join(text))
+    with pytest.raises(ValueError, match=":6: bad row"):
+        io.read_servo_csv(f)
+    f.write_text(",".join(cols) + "\n")
+    with pytest.raises(ValueError, match="no complete data rows"):
+        io.read_servo_csv(f)
+    f.write_text("step,time\n1,2\n")
+    with pytest.raises(ValueError, match="missing column"):
+        io.read_servo_csv(f)
+
+
+def test_print_table_reader(tmp_path):
+    f = tmp_path / "t.txt"
+    f.write_text("# t d fx f1x\n0 1e-9 2.0 -2.0\n1e-9 2e-9 3.0 -3.0\n2e-9 3e-9 4")
+    t = io.read_print_table(f)
+    assert list(t.keys()) == ["t", "d", "fx", "f1x"] and len(t) == 2 and t.dropped_partial
+    f.write_text("time,overlap,normal_force\n0,1e-9,2\n1,2e-9,3\n")
+    t = io.read_print_table(f)
+    assert np.allclose(t["normal_force"], [2, 3]) and not t.dropped_partial
+
+
+# ---- CLI ------------------------------------------------------------------------------------------------
+
+def test_cli_axisym(files):
+    out = os.path.join(files["dir"], "axisym.png")
+    so = run_cli("axisym", files["dense.csv"], files["loose.csv"], "--labels", "dense", "loose",
+                 "--out", out)
+    png_ok(out)
+    d, l = kv(so, "dense"), kv(so, "loose")
+    assert d["q_peak_kPa"] == pytest.approx(120.0, rel=1e-5)
+    assert d["eps_d13_at_q_peak_pct"] == pytest.approx(5.0, rel=1e-5)
+    assert d["sinphi_max"] == pytest.approx(sinphi_of_k(0.4), rel=1e-5)
+    assert d["sinphi_end"] == pytest.approx(sinphi_of_k(0.25), rel=1e-5)
+    assert d["void_ratio_end"] == pytest.approx(0.515 + 0.3 * 0.4, rel=1e-5)
+    assert d["void_ratio_at_30pct"] == pytest.approx(0.515 + 0.3 * 0.3, rel=1e-5)
+    assert d["eps_v_end_pct"] == pytest.approx(-4.0, rel=1e-5)
+    assert l["q_peak_kPa"] == pytest.approx(90.0, rel=1e-5)     # despite the truncated last row
+    assert l["void_ratio_at_30pct"] == pytest.approx(0.618 - 0.02 * 0.3, rel=1e-5)
+    out2 = os.path.join(files["dir"], "axisym_e.png")
+    run_cli("axisym", files["dense.csv"], "--void-ratio", "--out", out2)
+    png_ok(out2)
+
+
+def test_cli_friction(files):
+    out = os.path.join(files["dir"], "friction.png")
+    names = [files[f"sweep_mu{m}.csv"] for m in (0.1, 0.3, 0.5)]
+    so = run_cli("friction", *names, "--mu", 0.1, 0.3, 0.5, "--out", out)
+    png_ok(out)
+    for m, (kmax, kcv) in {0.1: (0.25, 0.2), 0.3: (0.4, 0.25), 0.5: (0.5, 0.3)}.items():
+        r = kv(so, f"sweep_mu{m}")
+        assert r["mu"] == pytest.approx(m)
+        assert r["sinphi_max"] == pytest.approx(sinphi_of_k(kmax), rel=1e-5)
+        assert r["sinphi_cv"] == pytest.approx(sinphi_of_k(kcv), rel=1e-5)
+    run_cli("friction", *names, "--out", out)        # mu from the file names
+
+
+def test_cli_radial(files):
+    out = os.path.join(files["dir"], "radial.png")
+    so = run_cli("radial", files["b0.0.csv"], files["b0.5.csv"], files["b1.0.csv"],
+                 "--labels", "b0", "b05", "b1", "--out", out)
+    png_ok(out)
+    s = kv(so, "surfaces")
+    assert s["sinphi_tc"] == pytest.approx(0.45, rel=1e-5)
+    assert s["eta_LD"] == pytest.approx(10.803, abs=1e-3)           # physics.md §6 table
+    for lab, b, ld, mn in (("b0", 0, 0.45, 0.45), ("b05", 0.5, 0.5346, 0.5029), ("b1", 1, 0.4946, 0.45)):
+        r = kv(so, lab)
+        assert r["b"] == pytest.approx(b, abs=1e-9)
+        assert r["sinphi_max"] == pytest.approx(ld, abs=6e-5)     # peaks built on the LD surface
+        assert r["sinphi_LD"] == pytest.approx(ld, abs=6e-5)
+        assert r["sinphi_MN"] == pytest.approx(mn, abs=6e-5)
+        assert r["lode_deg"] == pytest.approx(math.degrees(math.atan2(math.sqrt(3) * b, 2 - b)), abs=1e-6)
+        assert r["eta_at_peak"] == pytest.approx(s["eta_LD"], rel=1e-5)
+
+
+def test_cli_pi_plane(files):
+    out = os.path.join(files["dir"], "pi.png")
+    so = run_cli("pi-plane", files["cdst.csv"], files["ps.csv"], "--labels", "cdst", "ps", "--out", out)
+    png_ok(out)
+    for lab in ("cdst", "ps"):
+        r = kv(so, lab)
+        assert r["prestrain_eps_q_pct"] == pytest.approx(0.285, rel=1e-5)
+        assert r["prestrain_q_kPa"] == pytest.approx(51.4, rel=1e-5)
+        assert r["stress_rotation_deg"] == pytest.approx(79.0, rel=1e-5)
+        assert r["strain_rotation_deg"] == pytest.approx(60.0, rel=1e-5)
+        assert r["p_max_kPa"] == pytest.approx(100.5, rel=1e-6)
+    out2 = os.path.join(files["dir"], "pi2.png")
+    run_cli("pi-plane", files["b0.5.csv"], "--guide", "both", "--strain-radius", 0.01,
+            "--sinphi-tc", 0.45, "--out", out2)
+    png_ok(out2)
+
+
+def test_nonradial_measures_direct(files):
+    t = io.read_servo_csv(files["ps.csv"])
+    i0 = compare.prestrain_end(t)
+    assert i0 == 29
+    rot = compare.stress_rotation(t)
+    assert rot == pytest.approx((79.0, 60.0))
+    # the triangle guide starts at the prestrain radius, vertices at twice that radius
+    x, y = inv.plane_strain_triangle_pi(1.0)
+    assert np.allclose(y[[0, 2]], 1.0) and np.allclose(np.hypot(x, y), 2.0)
+
+
+def test_cli_table_and_compare(files):
+    res = os.path.join(files["dir"], "ours.json")
+    with open(res, "w") as fh:
+        json.dump({"solid_fraction_dense": 0.655, "b_at_max_sinphi": 0.5, "extra_thing": 1.25}, fh)
+    md = os.path.join(files["dir"], "table.md")
+    so = run_cli("table", res, "--out", md)
+    assert "| quantity | paper | ours | difference | source |" in so
+    assert "| solid_fraction_dense | 0.66 | 0.655 | -0.005 (-0.8 %) |" in so
+    assert "| b_at_max_sinphi | 0.5 | 0.5 | +0 (+0.0 %) |" in so
+    assert "| extra_thing | — | 1.25 | — |" in so
+    assert "| coordination_loose | 5.02 | — | — |" in so
+    assert os.path.getsize(md) > 0
+    so = run_cli("compare", "--dense", files["dense.csv"], "--loose", files["loose.csv"],
+                 "--radial", files["b0.0.csv"], files["b0.5.csv"], files["b1.0.csv"],
+                 "--cdst", files["cdst.csv"], "--plane-strain", files["ps.csv"])
+    rows = {r.split("|")[1].strip().split(" [")[0]: [c.strip() for c in r.split("|")[1:-1]]
+            for r in so.splitlines() if r.startswith("| ") and not r.startswith("| quantity")}
+    assert float(rows["coordination_dense"][2]) == pytest.approx(6.07)
+    assert float(rows["void_ratio_30pct_dense"][2]) == pytest.approx(0.515 + 0.09, rel=1e-3)
+    assert float(rows["eps_d13_at_peak_dense_pct"][2]) == pytest.approx(5.0, rel=1e-3)
+    assert float(rows["b_at_max_sinphi"][2]) == pytest.approx(0.5)
+    assert float(rows["prestrain_q_kPa"][2]) == pytest.approx(51.4, rel=1e-3)
+    assert float(rows["prestrain_eps_d_pct"][2]) == pytest.approx(0.285, rel=1e-3)
+    assert float(rows["cdst_p_deviation_kPa"][2]) == pytest.approx(0.5, rel=1e-3)
+    assert float(rows["ps_stress_rotation_deg"][2]) == pytest.approx(79.0, rel=1e-3)
+
+
+def test_cli_summary(files):
+    so = run_cli("summary", files["dense.csv"], files["loose.csv"])
+    lines = [json.loads(x) for x in so.strip().splitlines()]
+    assert len(lines) == 2
+    d, l = lines
+    assert d["sinphi_max"] == pytest.approx(sinphi_of_k(0.4))
+    assert d["q_peak_kPa"] == pytest.approx(120.0)
+    assert d["solid_fraction_start"] == pytest.approx(1 / 1.515)
+    assert l["rows"] == 401 and l["dropped_partial_row"] is True
+    assert max(d["consistency_max"].values()) < 1e-9
+
+
+def test_cli_two_spheres(files):
+    E, nu, R = 70e9, 0.3, 1e-4
+    estar, rstar = E / (2 * (1 - nu ** 2)), R / 2
+    d = np.linspace(0, 2e-8, 50)
+    f = 4 / 3 * estar * math.sqrt(rstar) * d ** 1.5
+    tab = os.path.join(files["dir"], "two.txt")
+    with open(tab, "w") as fh:
+        fh.write("# t d fx f1x\n")
+        for i in range(len(d)):
+            fh.write(f"{i * 1e-9:.9e} {d[i]!r} {f[i]!r} {-f[i]!r}\n")
+        fh.write("5e-8 2.1e-8")                  # partial last line
+    out = os.path.join(files["dir"], "two.png")
+    so = run_cli("two-spheres", tab, "--out", out, "--E", E, "--nu", nu, "--radius", R)
+    png_ok(out)
+    r = kv(so, "two")
+    assert r["rows"] == 50 and r["x"] == "d" and r["y"] == "fx"
+    assert r["force_max"] == pytest.approx(f[-1], rel=1e-5)
+    assert r["hertz_max_rel_dev"] < 1e-9
+    # CSV form of inputs/two_spheres.in, with JKR curves
+    csv = os.path.join(files["dir"], "two_spheres.csv")
+    with open(csv, "w") as fh:
+        fh.write("time,overlap,normal_force\n")
+        for i in range(len(d)):
+            fh.write(f"{i * 1e-9:.9e},{d[i]!r},{f[i] - 1e-4!r}\n")
+    so = run_cli("two-spheres", csv, "--out", out, "--E", E, "--radius", R, "--gamma", 0.3)
+    r = kv(so, "two_spheres")
+    assert r["force_min"] == pytest.approx(-1e-4, rel=1e-6)
+    assert r["pull_off_theory"] == pytest.approx(3 * math.pi * 0.3 * rstar, rel=1e-5)
+
+
+def test_cli_isotropic_record_does_not_break(tmp_path):
+    # isotropic compaction: q = 0, b and Lode angle undefined (NaN in the CSV)
+    n = 20
+    sig = np.full((n, 3), P0) * np.linspace(0.5, 1.0, n)[:, None]
+    eps = np.full((n, 3), 1e-3) * np.linspace(0, 1, n)[:, None]
+    f = tmp_path / "iso.csv"
+    io.write_servo_csv(f, record(sig, eps))
+    so = run_cli("summary", f)
+    s = json.loads(so)
+    assert s["sinphi_max"] == pytest.approx(0.0, abs=1e-12) and s["q_peak_kPa"] == pytest.approx(0.0, abs=1e-9)
+    out = tmp_path / "iso.png"
+    so = run_cli("pi-plane", f, "--out", out)
+    png_ok(out)
+    assert "prestrain_row" not in so

@@ -1,0 +1,472 @@
+"""fix cell/servo: stress-controlled periodic cell (physics.md sections 5-7).
+
+Every expected number comes from theory or an independent calculation: the Hertz
+closed form of a simple-cubic lattice, the prescribed strain programme, the Pi-plane
+geometry, Mindlin's initial tangential stiffness, and the energy balance of the
+fluctuation-velocity bookkeeping.
+"""
+import os
+
+import numpy as np
+import pytest
+
+from cellspec import (DT, E, HEADER, LATTICE_SPECIMEN, NU, RHO, bisect, effective_modulus,
+                      effective_shear_modulus, hertz_force, pi_coordinates, read_csv,
+                      restart_deck)
+from lmprun import LOAD_TYLMP, run_deck, run_ok
+
+P0 = 1e5      # target mean stress of every test on the specimen [Pa]
+
+
+# ---------------------------------------------------------------------------------------------
+# 1. the specimen: 216 spheres, frictionless isotropic compression to 100 kPa
+
+
+@pytest.fixture(scope="session")
+def specimen(tmp_path_factory):
+    work = tmp_path_factory.mktemp("specimen")
+    deck = LATTICE_SPECIMEN + f"""pair_style thornton/yin
+pair_coeff * * {E} {NU} 0.0 0.0
+neighbor 2e-5 bin
+timestep {DT}
+fix nve all nve/sphere
+fix prep all cell/servo iso {P0} max_rate 2e-3 csv prep.csv 100
+fix damp all damping/cundall 0.2 0.2
+thermo 10000
+run 40000
+unfix damp
+write_restart spec.restart
+"""
+    run_ok(deck, work)
+    rows = read_csv(work / "prep.csv")
+    # the preparation reached a dense, jammed state at the target pressure
+    assert abs(rows["p"][-1] / P0 - 1.0) < 0.01
+    assert rows["solid_fraction"][-1] > 0.6
+    assert rows["Z"][-1] > 4.0
+    return work / "spec.restart"
+
+
+def shear_run(specimen, work, fix_line, steps, extra="", mu=0.3, gamma=0.6, np_ranks=1,
+              name="in.shear"):
+    deck = restart_deck(specimen, mu, gamma) + extra + fix_line + f"\nrun {steps}\n"
+    return run_ok(deck, work, np_ranks=np_ranks, name=name)
+
+
+# ---------------------------------------------------------------------------------------------
+# 2. Hertz lattice: equal spheres on a simple-cubic lattice, closed-form strain at p*
+
+
+def test_hertz_lattice_isotropic_compression(tmp_path):
+    R, n = 1e-4, 4
+    s0 = 2.0 * R * 1.0005           # a small initial gap: the servo starts from a gas
+    p_star = 1e6
+    deck = HEADER + f"""lattice sc {s0}
+region box block 0 {n} 0 {n} 0 {n}
+create_box 1 box
+create_atoms 1 box
+set atom * diameter {2 * R} density {RHO}
+""" + LOAD_TYLMP + f"""pair_style thornton/yin
+pair_coeff * * {E} {NU} 0.0 0.0
+neighbor 2e-5 bin
+timestep {DT}
+fix nve all nve/sphere
+fix cell all cell/servo iso {p_star} csv hertz.csv 50
+fix damp all damping/cundall 0.2 0.2
+run 6000
+"""
+    run_ok(deck, tmp_path)
+    rows = read_csv(tmp_path / "hertz.csv")
+    E_star, R_star = effective_modulus(), R / 2.0
+
+    def strain_at(sigma):
+        # sigma = F/s^2 with F = (4/3) E* sqrt(R*) (2R - s)^(3/2); solve for the spacing s
+        s = bisect(lambda s: hertz_force(2 * R - s, R_star, E_star) / s ** 2 - sigma,
+                   1.9 * R, 2.0 * R)
+        return -np.log(s / s0)
+
+    eps_target = strain_at(p_star)
+    last = {k: v[-1] for k, v in rows.items()}
+    # isotropic cell: the three strains are equal
+    assert last["eps1"] == pytest.approx(last["eps2"], rel=1e-9)
+    assert last["eps1"] == pytest.approx(last["eps3"], rel=1e-9)
+    # the servo reached the target, and the cell strain is the closed-form one
+    assert last["p"] == pytest.approx(p_star, rel=2e-3)
+    assert last["eps1"] == pytest.approx(eps_target, rel=5e-3)
+    # sharper: the lattice state is the closed form at the stress actually measured
+    assert last["eps1"] == pytest.approx(strain_at(last["p"]), rel=1e-4)
+    # solid fraction of a sc lattice of touching-ish spheres: (4/3 pi R^3)/s^3
+    s = s0 * np.exp(-last["eps1"])
+    assert last["solid_fraction"] == pytest.approx(4.0 / 3.0 * np.pi * R ** 3 / s ** 3, rel=1e-9)
+    assert last["Z"] == pytest.approx(6.0)
+
+
+# ---------------------------------------------------------------------------------------------
+# 3. axisymmetric compression and extension at constant p
+
+AXIAL_RATE = 2e-5      # 1/s (scaled time): 1 % axial strain in 25000 steps, I ~ 7e-4
+SHEAR_STEPS = 25000
+
+
+def settled(rows, steps=500):
+    """Rows after the first `steps` steps of the run."""
+    keep = rows["step"] - rows["step"][0] >= steps
+    return {k: v[keep] for k, v in rows.items()}
+
+
+@pytest.mark.parametrize("sign", [+1, -1], ids=["compression", "extension"])
+def test_axisymmetric_constant_p(specimen, tmp_path, sign):
+    rate = sign * AXIAL_RATE
+    shear_run(specimen, tmp_path, f"fix sh all cell/servo axisym x {rate} {P0} csv sh.csv 50",
+              SHEAR_STEPS)
+    rows = read_csv(tmp_path / "sh.csv")
+    n = rows["step"] - rows["step"][0]
+    # the box at the end of step n has been deformed n - 1 times (the rate of a step is
+    # applied at its end, after the row): eps1 = rate * dt * (n - 1), exactly
+    expected = rate * DT * np.maximum(n - 1, 0)
+    assert np.max(np.abs(rows["eps1"] - expected)) < 1e-9 * AXIAL_RATE * DT * SHEAR_STEPS + 1e-15
+    assert np.allclose(rows["rate1"][1:], rate, rtol=1e-12)
+    late = settled(rows)
+    assert np.max(np.abs(late["p"] / P0 - 1.0)) < 0.01
+    # lateral stresses equal; b = 0 in compression (sigma1 major), 1 in extension
+    q = late["q"]
+    big = q > 0.2 * P0
+    assert big.sum() > 0.5 * big.size
+    assert np.max(np.abs(late["sig2"] - late["sig3"])[big] / q[big]) < 0.01
+    b_expected = 0.0 if sign > 0 else 1.0
+    assert np.max(np.abs(late["b"][big] - b_expected)) < 0.01
+    # the axial stress is the major (compression) or minor (extension) one
+    if sign > 0:
+        assert np.all(late["sig1"][big] > late["sig2"][big])
+    else:
+        assert np.all(late["sig1"][big] < late["sig2"][big])
+    # the total axial strain is 1 % (the lateral strains are free: equal stresses, not
+    # equal strains, in a 216-sphere specimen)
+    assert rows["eps1"][-1] == pytest.approx(sign * 0.01, rel=1e-3)
+
+
+# ---------------------------------------------------------------------------------------------
+# 4. constant b at constant p
+
+
+@pytest.mark.parametrize("b", [0.5, 0.25])
+def test_constant_b(specimen, tmp_path, b):
+    shear_run(specimen, tmp_path,
+              f"fix sh all cell/servo constant_b {b} x {AXIAL_RATE} {P0} max_rate 1e-4 "
+              "csv sh.csv 50",
+              SHEAR_STEPS // 2)
+    rows = read_csv(tmp_path / "sh.csv")
+    late = settled(rows)
+    assert np.max(np.abs(late["p"] / P0 - 1.0)) < 0.01
+    big = late["q"] > 0.2 * P0
+    assert big.sum() > 0.5 * big.size
+    # b from the principal stresses, recomputed here: (s2 - s3)/(s1 - s3), x major, z minor
+    s1, s2, s3 = late["sig1"][big], late["sig2"][big], late["sig3"][big]
+    assert np.max(np.abs((s2 - s3) / (s1 - s3) - b)) < 0.01
+    assert np.max(np.abs(late["b"][big] - b)) < 0.01
+    assert np.all(s1 > s2) and np.all(s2 >= s3)
+    # the stress Lode angle: tan(theta) = sqrt3 b/(2 - b)   (physics.md section 6)
+    theta = np.degrees(np.arctan2(np.sqrt(3.0) * b, 2.0 - b))
+    assert np.max(np.abs(late["lode_deg"][big] - theta)) < 1.0
+
+
+# ---------------------------------------------------------------------------------------------
+# 5. prescribed rates from equal-style variables: deviatoric mode, and mixed axes mode
+
+
+def test_deviatoric_mode_with_variables(specimen, tmp_path):
+    # a deliberately non-traceless request: only its deviator is prescribed, the mean
+    # strain rate belongs to the p servo; r2 varies with the step
+    extra = ("variable r1 equal 3e-5\n"
+             "variable r2 equal -1e-5+1e-9*step\n"
+             "variable r3 equal 0.5e-5\n")
+    shear_run(specimen, tmp_path,
+              f"fix sh all cell/servo deviatoric v_r1 v_r2 v_r3 {P0} csv sh.csv 10", 3000,
+              extra=extra)
+    rows = read_csv(tmp_path / "sh.csv")
+    step0 = rows["step"][0]
+    r = rows["step"] > step0 + 1
+    # a row holds the rate applied at the end of the previous step (variables evaluated then)
+    prev = rows["step"][r] - 1
+    req = np.stack([np.full(prev.shape, 3e-5), -1e-5 + 1e-9 * prev, np.full(prev.shape, 0.5e-5)])
+    req_dev = req - req.mean(axis=0)
+    got = np.stack([rows["rate1"][r], rows["rate2"][r], rows["rate3"][r]])
+    got_dev = got - got.mean(axis=0)
+    # (the CSV keeps 12 significant digits)
+    assert np.max(np.abs(got_dev - req_dev)) < 1e-10 * np.max(np.abs(req_dev))
+    late = settled(rows)
+    assert np.max(np.abs(late["p"] / P0 - 1.0)) < 0.01
+
+
+def test_axes_mode_mixed_stress_and_rate(specimen, tmp_path):
+    extra = ("variable rx equal 2e-5*(1+step/1e5)\n"
+             "variable sz equal 1.2e5\n")
+    shear_run(specimen, tmp_path,
+              f"fix sh all cell/servo axes x rate v_rx y stress {P0} z stress v_sz "
+              "csv sh.csv 10", 3000, extra=extra)
+    rows = read_csv(tmp_path / "sh.csv")
+    r = rows["step"] > rows["step"][0] + 1
+    prev = rows["step"][r] - 1
+    assert np.max(np.abs(rows["rate1"][r] - 2e-5 * (1 + prev / 1e5))) < 1e-11 * 2e-5
+    late = settled(rows, 1000)
+    assert np.max(np.abs(late["sig2"] / P0 - 1.0)) < 0.01
+    assert np.max(np.abs(late["sig3"] / 1.2e5 - 1.0)) < 0.01
+
+
+# ---------------------------------------------------------------------------------------------
+# 6. circular strain path in the Pi-plane at constant p
+
+PRESTRAIN = 0.00285    # eps1 - eps3 at the end of the axisymmetric pre-strain leg
+
+
+def strain_pi(rows):
+    e = [rows[f"eps{k}"] for k in (1, 2, 3)]
+    return pi_coordinates(*e)
+
+
+@pytest.mark.parametrize("rotation", ["cw", "ccw"])
+def test_circle_path(specimen, tmp_path, rotation):
+    sweep, speed = 60.0, 3e-5
+    radius = PRESTRAIN * np.sqrt(2.0 / 3.0)     # (d/3)(2,-1,-1): |e| = d sqrt(2/3)
+    length = radius * (1.0 + np.radians(sweep))
+    steps = int(1.05 * length / (speed * DT)) + 200
+    shear_run(specimen, tmp_path,
+              f"fix sh all cell/servo circle {PRESTRAIN} {P0} rotation {rotation} "
+              f"sweep {sweep} speed {speed} csv sh.csv 20", steps)
+    rows = read_csv(tmp_path / "sh.csv")
+    x, y = strain_pi(rows)
+    # the fix's own Pi coordinates agree with the strains it reports
+    assert np.allclose(rows["pi_ex"], x, atol=1e-12) and np.allclose(rows["pi_ey"], y, atol=1e-12)
+    rad = np.hypot(x, y)
+    theta = np.degrees(np.arctan2(x, y))
+    on_arc = rows["progress"] > (radius / length) * 1.0 + 0.01
+    assert on_arc.sum() > 20
+    assert np.max(np.abs(rad[on_arc] / radius - 1.0)) < 0.01
+    # pre-strain leg: along the axis-1 ray (eps2 = eps3 deviatorically: x = 0)
+    leg = (rows["progress"] < radius / length - 0.01) & (rows["step"] > rows["step"][0] + 50)
+    assert np.max(np.abs(x[leg])) < 0.01 * radius
+    # Lode angle of the strain turns monotonically in the requested sense
+    sense = 1.0 if rotation == "cw" else -1.0
+    turn = sense * np.diff(theta[on_arc])
+    assert np.all(turn > -1e-3)
+    assert rows["progress"][-1] == pytest.approx(1.0)
+    assert sense * theta[-1] == pytest.approx(sweep, abs=0.5)
+    late = settled(rows)
+    assert np.max(np.abs(late["p"] / P0 - 1.0)) < 0.01
+
+
+# ---------------------------------------------------------------------------------------------
+# 7. triangular (multi-axial plane strain) path
+
+
+def test_triangle_path(specimen, tmp_path):
+    prestrain, speed = 0.001, 4e-5
+    r = prestrain * np.sqrt(2.0 / 3.0)
+    # vertices (own geometry): A = r at Lode 0; B, C, D at 2r and Lode 60, 180, 300
+    def point(rad, deg):
+        return np.array([rad * np.sin(np.radians(deg)), rad * np.cos(np.radians(deg))])
+    O, A, B, C, D = point(0, 0), point(r, 0), point(2 * r, 60), point(2 * r, 180), point(2 * r, 300)
+    verts = [O, A, B, C, D, A]
+    legs = np.array([np.linalg.norm(verts[k + 1] - verts[k]) for k in range(5)])
+    cum = np.concatenate([[0.0], np.cumsum(legs)]) / legs.sum()
+    steps = int(1.03 * legs.sum() / (speed * DT)) + 200
+    shear_run(specimen, tmp_path,
+              f"fix sh all cell/servo triangle {prestrain} {P0} rotation cw speed {speed} "
+              "csv sh.csv 10", steps)
+    rows = read_csv(tmp_path / "sh.csv")
+    eps = np.stack([rows[f"eps{k}"] for k in (1, 2, 3)])
+    dev = eps - eps.mean(axis=0)          # deviatoric strain e_i
+    x, y = strain_pi(rows)
+    prog = rows["progress"]
+    # legs A-B, B-C, C-D, D-A keep e1, e2, e3, e1 fixed (plane strain of the deviator)
+    for k, axis in zip(range(1, 5), (0, 1, 2, 0)):
+        inside = (prog > cum[k] + 0.005) & (prog < cum[k + 1] - 0.005)
+        assert inside.sum() > 10
+        fixed = dev[axis][inside]
+        expected = 2.0 / 3.0 * prestrain if k != 3 else 2.0 / 3.0 * prestrain
+        # e1 = 2d/3 at A and B (A = (d/3)(2,-1,-1), B = (2d/3)(1,1,-2)/... see strain_path)
+        assert np.max(np.abs(fixed - fixed[0])) < 0.01 * r, (k, np.ptp(fixed) / r)
+    # every vertex is reached (closest recorded point within 1 % of r)
+    for v in (A, B, C, D):
+        assert np.min(np.hypot(x - v[0], y - v[1])) < 0.01 * r
+    assert prog[-1] == pytest.approx(1.0)
+    late = settled(rows)
+    assert np.max(np.abs(late["p"] / P0 - 1.0)) < 0.01
+
+
+# ---------------------------------------------------------------------------------------------
+# 8. periodic bookkeeping: a contact across the boundary = the same contact inside the cell
+
+
+def two_sphere_deck(x1, x2, box, rate, steps, mu=0.3):
+    R = 1e-4
+    return HEADER + f"""region box block 0 {box} 0 {box} 0 {box}
+create_box 1 box
+create_atoms 1 single {x1[0]!r} {x1[1]!r} {x1[2]!r} units box
+create_atoms 1 single {x2[0]!r} {x2[1]!r} {x2[2]!r} units box
+set atom * diameter {2 * R} density {RHO}
+""" + LOAD_TYLMP + f"""pair_style thornton/yin
+pair_coeff * * {E} {NU} {mu} 0.0
+neighbor 2e-5 bin
+timestep {DT}
+fix cell all cell/servo axes x rate {rate} y rate {-rate} z rate 0
+run {steps}
+print "F1 $(fx[1]:%.17g) $(fy[1]:%.17g) $(fz[1]:%.17g)"
+print "F2 $(fx[2]:%.17g) $(fy[2]:%.17g) $(fz[2]:%.17g)"
+print "X1 $(x[1]:%.17g) $(y[1]:%.17g) $(z[1]:%.17g)"
+print "X2 $(x[2]:%.17g) $(y[2]:%.17g) $(z[2]:%.17g)"
+print "L $(lx:%.17g) $(ly:%.17g) $(lz:%.17g)"
+"""
+
+
+def parse_prints(out, key):
+    for line in out.splitlines():
+        if line.startswith(key + " "):
+            return np.array([float(v) for v in line.split()[1:]])
+    raise AssertionError(f"no '{key}' line in the output:\n" + out[-2000:])
+
+
+def test_contact_across_periodic_boundary(tmp_path):
+    """Two spheres at rest (no time integration at all: positions follow the cell only).
+    Branch along (1,1,0)/sqrt2 and rates (r, -r, 0): the affine relative velocity
+    L (x2 - x1) is purely tangential, so every tangential force comes from the affine term."""
+    R, box, rate, steps, mu = 1e-4, 1e-3, 1e-5, 100, 0.3
+    delta0 = 1e-7
+    l = 2 * R - delta0
+    n = np.array([1.0, 1.0, 0.0]) / np.sqrt(2.0)
+    c = np.full(3, 0.5 * box)
+    inside = (c - 0.5 * l * n, c + 0.5 * l * n)
+    # the same pair moved by half a cell along x and y: it straddles both boundaries
+    shift = np.array([0.5 * box, 0.5 * box, 0.0])
+    across = tuple(np.mod(p + shift, box) for p in inside)
+    assert across[0][0] > 0.5 * box and across[1][0] < 0.5 * box
+    out_in = run_ok(two_sphere_deck(*inside, box, rate, steps, mu), tmp_path, name="in.inside")
+    out_x = run_ok(two_sphere_deck(*across, box, rate, steps, mu), tmp_path, name="in.across")
+    F_in, F_x = parse_prints(out_in, "F1"), parse_prints(out_x, "F1")
+    assert np.allclose(parse_prints(out_in, "F2"), -F_in, rtol=0, atol=1e-15 * np.abs(F_in).max())
+    # same forces to round-off (the positions differ by the cell shift only)
+    assert np.max(np.abs(F_x - F_in)) < 1e-7 * np.linalg.norm(F_in)
+
+    # the state after `steps` steps: the cell's rates r, -r, 0 (independent of the fix)
+    x1, x2 = parse_prints(out_in, "X1"), parse_prints(out_in, "X2")
+    branch = x2 - x1
+    strain = rate * DT * steps      # box has been deformed `steps` times (rate at end of step)
+    assert branch[0] == pytest.approx(l * n[0] * np.exp(-strain), rel=1e-9)
+    assert branch[1] == pytest.approx(l * n[1] * np.exp(strain), rel=1e-9)
+    nn = branch / np.linalg.norm(branch)
+    Fn = F_in @ nn
+    T = F_in - Fn * nn
+    # normal force: Hertz at the current overlap (the force on atom 1 points away from 2)
+    E_star, R_star = effective_modulus(), R / 2
+    delta = 2 * R - np.linalg.norm(branch)
+    P = hertz_force(delta, R_star, E_star)
+    assert -Fn == pytest.approx(P, rel=1e-6)
+    # tangential force: present although nothing moves but the cell, along the mean-field
+    # relative velocity of 2 w.r.t. 1, L (x2 - x1) ~ (-1, 1, 0)
+    t_dir = np.array([-1.0, 1.0, 0.0]) / np.sqrt(2.0)
+    assert T @ t_dir > 0.1 * mu * P
+    assert np.linalg.norm(T - (T @ t_dir) * t_dir) < 1e-3 * np.linalg.norm(T)
+    # magnitude: Mindlin loading at constant P from zero, T = mu P (1 - (1 - u/u*)^(3/2)),
+    # u* = 3 mu P/(2 k0), k0 = 8 G* a (Thornton-Randall); u = affine tangential displacement
+    # = |L (x2 - x1)| summed over the steps, the branch turning only to second order
+    a = np.sqrt(R_star * delta)
+    k0 = 8.0 * effective_shear_modulus() * a
+    u = sum(rate * l * np.sqrt(np.cosh(2 * rate * DT * k)) * DT for k in range(steps))
+    u_star = 1.5 * mu * P / k0
+    assert u < 0.5 * u_star
+    T_mindlin = mu * P * (1.0 - (1.0 - u / u_star) ** 1.5)
+    assert T @ t_dir == pytest.approx(T_mindlin, rel=0.01)
+
+
+# ---------------------------------------------------------------------------------------------
+# 9. restart: 1000 steps in one go = 500 + write_restart + new process + 500
+
+SHEAR_FIX = f"fix sh all cell/servo axisym x {AXIAL_RATE} {P0} csv sh.csv 10"
+COMPARED = ["eps1", "eps2", "eps3", "sig1", "sig2", "sig3", "p", "q", "rate1", "rate2",
+            "rate3", "boundary_work", "volume", "Z"]
+
+
+def max_relative_difference(a, b, names=COMPARED):
+    worst = 0.0
+    for k in names:
+        scale = max(np.max(np.abs(a[k])), 1e-300)
+        worst = max(worst, np.max(np.abs(a[k] - b[k])) / scale)
+    return worst
+
+
+# Friction makes the 3D assembly round-off chaotic (tests/test_pair_mpi.py: the 3D
+# Mindlin-Deresiewicz decisions flip on one-ulp changes); a restart rebuilds the neighbor
+# lists, which changes the summation order. The exact comparison therefore uses mu = 0 (with
+# adhesion, Gamma = 0.6); the frictional case is recorded as an expected failure.
+RESTART_CASES = [
+    pytest.param(0.0, id="mu0"),
+    pytest.param(0.3, id="mu0.3", marks=pytest.mark.xfail(
+        strict=True, reason="3D friction is round-off chaotic: a different summation order "
+        "after the restart grows to ~1e-3 relative within 500 steps (same as 1 vs 2 ranks)")),
+]
+
+
+@pytest.mark.parametrize("mu", RESTART_CASES)
+def test_restart_continues_exactly(specimen, tmp_path, mu):
+    one, split = tmp_path / "one", tmp_path / "split"
+    one.mkdir(), split.mkdir()
+    shear_run(specimen, one, SHEAR_FIX, 1000, mu=mu)
+    deck = restart_deck(specimen, mu) + SHEAR_FIX + "\nrun 500\nwrite_restart half.restart\n"
+    run_ok(deck, split, name="in.first")
+    # new process: no pair_style/pair_coeff (kept by the restart), same fix ID and mode
+    second = (LOAD_TYLMP + "read_restart half.restart\ncomm_modify vel yes\n"
+              "neighbor 2e-5 bin\nfix nve all nve/sphere\n" + SHEAR_FIX + "\nrun 500\n")
+    out = run_ok(second, split, name="in.second")
+    assert "restoring pair style thornton/yin" in out
+    a, b = read_csv(one / "sh.csv"), read_csv(split / "sh.csv")
+    # the record continues: no duplicated row at the split, same steps (the time column
+    # restarts, as LAMMPS' own `time` does after read_restart in 29Sep2021)
+    assert np.array_equal(a["step"], b["step"])
+    after = a["step"] > a["step"][0] + 500
+    diff = max_relative_difference({k: v[after] for k, v in a.items()},
+                                   {k: v[after] for k, v in b.items()})
+    print("restart max relative difference", diff)
+    assert diff <= 1e-9, diff
+
+
+# ---------------------------------------------------------------------------------------------
+# 10. MPI: 2 ranks = 1 rank to round-off
+
+
+def test_two_ranks_equal_one(specimen, tmp_path):
+    serial, parallel = tmp_path / "np1", tmp_path / "np2"
+    serial.mkdir(), parallel.mkdir()
+    # mu = 0: friction is round-off chaotic in 3D (see RESTART_CASES); adhesion is on
+    shear_run(specimen, serial, SHEAR_FIX, 200, mu=0.0)
+    shear_run(specimen, parallel, SHEAR_FIX, 200, mu=0.0, np_ranks=2)
+    a, b = read_csv(serial / "sh.csv"), read_csv(parallel / "sh.csv")
+    assert np.array_equal(a["step"], b["step"])
+    diff = max_relative_difference(a, b, COMPARED + ["unbalanced", "p_kinetic", "Zm"])
+    assert diff <= 1e-10, diff
+
+
+# ---------------------------------------------------------------------------------------------
+# 11. energy balance: boundary work = stored + kinetic (incl. rotation) + dissipated
+
+
+@pytest.mark.parametrize("gamma", [0.0, 0.6])
+def test_energy_balance(specimen, tmp_path, gamma):
+    steps = 5000
+    # (compute erot/sphere is not in the Debian build: 0.5 I w^2 with I = 0.4 m r^2)
+    extra = ("variable erot atom 0.2*mass*radius^2*(omegax^2+omegay^2+omegaz^2)\n"
+             "compute erot all reduce sum v_erot\ncompute ke all ke\n"
+             "compute dis all pair thornton/yin\n")
+    report = ('print "E $(step) $(pe:%.17g) $(c_ke:%.17g) $(c_erot:%.17g) '
+              '$(c_dis[1]:%.17g) $(c_dis[2]:%.17g) $(c_dis[3]:%.17g) $(f_sh[33]:%.17g)"\n')
+    deck = (restart_deck(specimen, 0.3, gamma) + extra + SHEAR_FIX
+            + "\nthermo_style custom step pe c_ke c_erot c_dis[1] c_dis[2] c_dis[3] f_sh[33]\n"
+            "thermo 1000\nrun 0\n" + report + f"run {steps}\n" + report)
+    out = run_ok(deck, tmp_path)
+    rows = [np.array([float(v) for v in line.split()[1:]])
+            for line in out.splitlines() if line.startswith("E ")]
+    start, end = rows
+    d = end - start
+    work = d[7]
+    stored, kinetic, dissipated = d[1], d[2] + d[3], d[4] + d[5] + d[6]
+    assert work > 0 and dissipated > 0
+    balance = stored + kinetic + dissipated
+    assert balance == pytest.approx(work, rel=0.01), (work, stored, kinetic, dissipated)

@@ -1,0 +1,273 @@
+"""Tests of tylmp.specimen: size distribution, exact solid fraction, no overlaps
+(including across the periodic faces), determinism, data file read back by LAMMPS.
+
+Run: cd /work/main && /usr/bin/python3 -m pytest tests/test_specimen.py -q -p no:cacheprovider
+"""
+import importlib
+import importlib.util
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+SRC_PY = os.path.join(REPO, "python")
+
+
+def _import_specimen():
+    """tylmp.specimen from sys.path (build/python via conftest, or an install);
+    fall back to the source tree if that copy is missing."""
+    try:
+        mod = importlib.import_module("tylmp.specimen")
+        if hasattr(mod, "generate") and hasattr(mod, "paper_size_distribution"):
+            return mod
+    except ImportError:
+        pass
+    path = os.path.join(SRC_PY, "tylmp", "specimen.py")
+    spec = importlib.util.spec_from_file_location("tylmp_specimen_src", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+sp = _import_specimen()
+MODULE_DIR = os.path.dirname(os.path.dirname(os.path.abspath(sp.__file__)))
+
+MM = 1e-3
+N_QUICK = 500
+N_PAPER = 3620
+LMP = "/usr/bin/lmp" if os.path.exists("/usr/bin/lmp") else shutil.which("lmp")
+
+
+def vol_fraction(d, L):
+    """Independent Σ π d³/6 / L³."""
+    d = np.asarray(d, dtype=np.float64)
+    return float(np.sum(math.pi * d ** 3 / 6.0)) / L ** 3
+
+
+def brute_min_clearance(pos, d, L):
+    """min over pairs of |r_ij|_min-image − (r_i + r_j), brute force O(N²), chunked."""
+    n = len(d)
+    best = np.inf
+    for a in range(0, n, 256):
+        dv = pos[a:a + 256, None, :] - pos[None, :, :]
+        dv -= L * np.round(dv / L)
+        dist = np.sqrt(np.sum(dv * dv, axis=-1))
+        gap = dist - 0.5 * (d[a:a + 256, None] + d[None, :])
+        idx = np.arange(a, min(a + 256, n))
+        gap[idx - a, idx] = np.inf          # self
+        best = min(best, float(gap.min()))
+    return best
+
+
+def kd_min_clearance(pos, d, L):
+    """Same with a periodic KD-tree (scipy) over pairs closer than the largest diameter."""
+    try:
+        from scipy.spatial import cKDTree
+    except ImportError:                     # no scipy: brute force is still fine at N=3620
+        return brute_min_clearance(pos, d, L)
+    tree = cKDTree(pos, boxsize=L)
+    pairs = tree.query_pairs(r=float(d.max()), output_type="ndarray")
+    if len(pairs) == 0:
+        return np.inf
+    i, j = pairs[:, 0], pairs[:, 1]
+    dv = pos[j] - pos[i]
+    dv -= L * np.round(dv / L)
+    dist = np.sqrt(np.sum(dv * dv, axis=1))
+    return float(np.min(dist - 0.5 * (d[i] + d[j])))
+
+
+@pytest.fixture(scope="module")
+def quick():
+    return sp.generate(N_QUICK, 0.5, seed=1)
+
+
+@pytest.fixture(scope="module")
+def paper():
+    t0 = time.perf_counter()
+    out = sp.generate(N_PAPER, 0.5, seed=1)
+    dt = time.perf_counter() - t0
+    print(f"\n[specimen] generation of {N_PAPER} spheres at solid fraction 0.5: {dt:.2f} s, "
+          f"cube side {out[0] / MM:.6f} mm")
+    assert dt < 60.0
+    return out
+
+
+# ---- size distribution -------------------------------------------------------------
+
+def test_paper_size_distribution():
+    d, p = sp.paper_size_distribution()
+    assert len(d) == len(p) == 5
+    assert d[0] == pytest.approx(0.135 * MM, rel=1e-15)
+    assert d[-1] == pytest.approx(0.4 * MM, rel=1e-15)
+    assert np.all(np.diff(d) > 0)
+    assert np.all(p > 0)
+    assert abs(p.sum() - 1.0) < 1e-14
+    assert abs(float(p @ d) / MM - 0.26) < 1e-12
+    # smooth, single-peaked
+    k = int(np.argmax(p))
+    assert np.all(np.diff(p[:k + 1]) > 0) and np.all(np.diff(p[k:]) < 0)
+    # mean-only variant also has the exact mean
+    d1, p1 = sp.paper_size_distribution(match_cell=False)
+    assert abs(float(p1 @ d1) / MM - 0.26) < 1e-12
+
+
+@pytest.mark.parametrize("n", [N_QUICK, N_PAPER, 1000, 8000])
+def test_size_counts(n):
+    d, c = sp.size_counts(n)
+    assert int(c.sum()) == n and np.all(c > 0)
+    assert d[0] == 0.135 * MM and d[-1] == 0.4 * MM
+    assert abs(float(c @ d) / n / MM - 0.26) < 1e-12
+    # the interior diameters move by far less than the spacing
+    d0, p = sp.paper_size_distribution()
+    assert np.max(np.abs(d - d0)) < 0.01 * (d0[1] - d0[0])
+    assert np.max(np.abs(c / n - p)) <= 1.0 / n
+
+
+def test_paper_cell_side_implied():
+    """3620 spheres of the chosen distribution at solid fraction 0.5 fill a cube of
+    ≈4.3 mm, the paper's cell."""
+    d, c = sp.size_counts(N_PAPER)
+    L = sp.box_side(np.repeat(d, c), 0.5)
+    assert abs(L / (4.3 * MM) - 1.0) < 1e-4
+    # the mean-only maximum-entropy distribution would not match the paper's cell
+    d1, c1 = sp.size_counts(N_PAPER, match_cell=False)
+    L1 = sp.box_side(np.repeat(d1, c1), 0.5)
+    assert L1 / (4.3 * MM) > 1.04
+
+
+# ---- generated assemblies ------------------------------------------------------------
+
+def check_assembly(L, d, pos, n, phi):
+    assert d.shape == (n,) and pos.shape == (n, 3)
+    assert abs(d.mean() / MM - 0.26) < 1e-12
+    assert d.min() == 0.135 * MM and d.max() == 0.4 * MM
+    assert abs(vol_fraction(d, L) - phi) < 1e-12
+    assert abs(sp.solid_fraction(d, L) - phi) < 1e-12
+    assert np.all(pos >= 0.0) and np.all(pos < L)
+    sizes, counts = sp.size_counts(n)
+    got = np.array([np.count_nonzero(d == s) for s in sizes])
+    assert np.array_equal(got, counts) and got.sum() == n
+
+
+def test_quick_assembly(quick):
+    L, d, pos = quick
+    check_assembly(L, d, pos, N_QUICK, 0.5)
+    assert brute_min_clearance(pos, d, L) >= 0.0
+    assert len(sp.find_overlaps(pos, d, L)[0]) == 0
+
+
+def test_paper_assembly(paper):
+    L, d, pos = paper
+    check_assembly(L, d, pos, N_PAPER, 0.5)
+    assert abs(L / (4.3 * MM) - 1.0) < 1e-4
+    assert kd_min_clearance(pos, d, L) >= 0.0
+    assert len(sp.find_overlaps(pos, d, L)[0]) == 0
+
+
+def test_rsa_only_low_fraction():
+    """Below the RSA threshold the assembly is pure random sequential addition."""
+    L, d, pos, info = sp.generate(300, 0.25, seed=7, return_info=True)
+    assert info["compress_steps"] == 0
+    assert abs(vol_fraction(d, L) - 0.25) < 1e-12
+    assert brute_min_clearance(pos, d, L) >= 0.0
+
+
+def test_overlap_across_periodic_faces_detected():
+    """The checks see pairs that overlap only through the periodic boundary."""
+    L = 1.0 * MM
+    d = np.array([0.4, 0.4, 0.135]) * MM
+    pos = np.array([[0.01, 0.5, 0.5], [0.99, 0.5, 0.5], [0.5, 0.5, 0.5]]) * MM
+    assert brute_min_clearance(pos, d, L) < 0
+    assert kd_min_clearance(pos, d, L) < 0
+    i, j = sp.find_overlaps(pos, d, L)
+    assert list(zip(i, j)) == [(0, 1)]
+
+
+def test_deterministic(quick):
+    L, d, pos = quick
+    L2, d2, pos2 = sp.generate(N_QUICK, 0.5, seed=1)
+    assert L2 == L and np.array_equal(d2, d) and np.array_equal(pos2, pos)
+    L3, d3, pos3 = sp.generate(N_QUICK, 0.5, seed=2)
+    assert L3 == L and np.array_equal(d3, d) and not np.array_equal(pos3, pos)
+
+
+# ---- data file ---------------------------------------------------------------------------
+
+def run_lmp(workdir, data_name):
+    deck = (
+        "units si\n"
+        "atom_style sphere\n"
+        "boundary p p p\n"
+        f"read_data {data_name}\n"
+        "compute m all property/atom mass\n"
+        "compute mtot all reduce sum c_m\n"
+        "thermo_style custom step atoms c_mtot\n"
+        "thermo_modify format float %.16e\n"
+        "run 0\n"
+        "variable natoms equal atoms\n"
+        "variable mtot equal c_mtot\n"
+        'print "RESULT ${natoms} ${mtot}"\n'
+    )
+    with open(os.path.join(workdir, "in.read"), "w") as f:
+        f.write(deck)
+    r = subprocess.run([LMP, "-in", "in.read", "-log", "none"], cwd=workdir,
+                       capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0, r.stdout[-2000:] + r.stderr[-2000:]
+    m = re.search(r"^RESULT (\S+) (\S+)", r.stdout, re.M)
+    assert m, r.stdout[-2000:]
+    return int(float(m.group(1))), float(m.group(2))
+
+
+def test_write_read_data(tmp_path, quick):
+    L, d, pos = quick
+    path = tmp_path / "specimen.data"
+    sp.write_data(path, L, d, pos)
+    assert sorted(os.listdir(tmp_path)) == ["specimen.data"]      # no temp file left
+    text = path.read_text()
+    assert f"{N_QUICK} atoms" in text and "1 atom types" in text
+    assert re.search(r"^0 \S+ xlo xhi$", text, re.M)
+    assert "Atoms # sphere" in text
+    box, d2, rho, pos2 = sp.read_data(path)
+    assert np.all(box == L)
+    assert np.array_equal(d2, d) and np.array_equal(pos2, pos)
+    assert np.all(rho == 2650e12)
+    # first atom line: id type diameter density x y z
+    line = text.split("Atoms # sphere")[1].strip().splitlines()[0].split()
+    assert len(line) == 7 and line[:2] == ["1", "1"]
+    assert float(line[2]) == d[0] and float(line[3]) == 2650e12
+
+
+@pytest.mark.skipif(LMP is None, reason="lmp not installed")
+@pytest.mark.parametrize("density", [2650e12, 2650.0])
+def test_lammps_reads_data(tmp_path, paper, density):
+    L, d, pos = paper
+    sp.write_data(tmp_path / "specimen.data", L, d, pos, density=density)
+    natoms, mtot = run_lmp(str(tmp_path), "specimen.data")
+    assert natoms == N_PAPER
+    expected = float(np.sum(density * math.pi * d ** 3 / 6.0))
+    assert mtot == pytest.approx(expected, rel=1e-12)
+    # and mass = density × solid fraction × cell volume
+    assert mtot == pytest.approx(density * 0.5 * L ** 3, rel=1e-12)
+
+
+def test_cli(tmp_path):
+    out = tmp_path / "cli.data"
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.pathsep.join(
+        [MODULE_DIR, SRC_PY] + [p for p in env.get("PYTHONPATH", "").split(os.pathsep) if p])
+    r = subprocess.run([sys.executable, "-m", "tylmp.specimen", "--scale", "quick",
+                        "--seed", "3", "--out", str(out)],
+                       capture_output=True, text=True, env=env, timeout=120)
+    assert r.returncode == 0, r.stderr
+    assert "500 spheres" in r.stdout
+    box, d, rho, pos = sp.read_data(out)
+    L, d0, pos0 = sp.generate(N_QUICK, 0.5, seed=3)
+    assert np.all(box == L) and np.array_equal(d, d0) and np.array_equal(pos, pos0)
+    assert np.all(rho == 2650e12)
