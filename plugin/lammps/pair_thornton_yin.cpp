@@ -79,6 +79,7 @@ PairThorntonYin::PairThorntonYin(LAMMPS *lmp) : Pair(lmp)
   neighprev = 0;
   dt = 0.0;
   tally_cell = 0;
+  generic_paths = 0;
   for (double &t : cell_tallies) t = 0.0;
   contact_count = nullptr;
   nmax_count = 0;
@@ -152,9 +153,19 @@ void PairThorntonYin::allocate()
 
 void PairThorntonYin::settings(int narg, char **arg)
 {
-  if (narg != 0)
-    error->all(FLERR, "pair_style thornton/yin takes no arguments (got '{}'); material "
-               "parameters go in pair_coeff I J E nu mu Gamma [damping beta_n beta_t]", arg[0]);
+  // pair_style thornton/yin [paths specialised|generic]: `generic` runs the adhesive, damped
+  // kernel for every scene, for benchmarks of the specialisations (bench/pair_speed.py)
+  generic_paths = 0;
+  if (narg == 2 && strcmp(arg[0], "paths") == 0) {
+    if (strcmp(arg[1], "generic") == 0) generic_paths = 1;
+    else if (strcmp(arg[1], "specialised") != 0)
+      error->all(FLERR, "pair_style thornton/yin: paths must be 'specialised' or 'generic', "
+                 "got '{}'", arg[1]);
+  } else if (narg != 0) {
+    error->all(FLERR, "pair_style thornton/yin takes no arguments except 'paths specialised|"
+               "generic' (got '{}'); material parameters go in pair_coeff I J E nu mu Gamma "
+               "[damping beta_n beta_t]", arg[0]);
+  }
 }
 
 /* ----------------------------------------------------------------------
@@ -402,6 +413,7 @@ void PairThorntonYin::compute(int eflag, int vflag)
       if (surface_energy[i][j] > 0.0) adhesive = 1;
       if (damp_n[i][j] > 0.0 || damp_t[i][j] > 0.0) damped = 1;
     }
+  if (generic_paths) adhesive = damped = 1;
   if (adhesive) {
     if (damped) eval<true, true>(eflag, vflag);
     else eval<true, false>(eflag, vflag);

@@ -64,6 +64,7 @@ class PairThorntonYin : public Pair {
 
   double **damp_n, **damp_t;                     // damping ratios beta_n, beta_t; 0 = off
   int adhesive, damped;                          // chosen once per compute()
+  int generic_paths;                             // 1: never specialise (benchmarks)
   double *maxrad_type;                           // largest radius per type (init_style)
 
   class FixDummy *fix_dummy;
