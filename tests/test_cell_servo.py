@@ -5,7 +5,6 @@ closed form of a simple-cubic lattice, the prescribed strain programme, the Pi-p
 geometry, Mindlin's initial tangential stiffness, and the energy balance of the
 fluctuation-velocity bookkeeping.
 """
-import os
 
 import numpy as np
 import pytest
@@ -91,6 +90,9 @@ run 6000
     assert last["eps1"] == pytest.approx(last["eps3"], rel=1e-9)
     # the servo reached the target, and the cell strain is the closed-form one
     assert last["p"] == pytest.approx(p_star, rel=2e-3)
+    print(f"hertz lattice: eps1={last['eps1']:.8g} closed form at p*: {eps_target:.8g} "
+          f"(rel {last['eps1'] / eps_target - 1:.2g}), at measured p: "
+          f"rel {last['eps1'] / strain_at(last['p']) - 1:.2g}; p/p*-1 = {last['p'] / p_star - 1:.2g}")
     assert last["eps1"] == pytest.approx(eps_target, rel=5e-3)
     # sharper: the lattice state is the closed form at the stress actually measured
     assert last["eps1"] == pytest.approx(strain_at(last["p"]), rel=1e-4)
@@ -120,8 +122,8 @@ def test_axisymmetric_constant_p(specimen, tmp_path, sign):
               SHEAR_STEPS)
     rows = read_csv(tmp_path / "sh.csv")
     n = rows["step"] - rows["step"][0]
-    # the box at the end of step n has been deformed n - 1 times (the rate of a step is
-    # applied at its end, after the row): eps1 = rate * dt * (n - 1), exactly
+    # the box at the end of step n has been deformed n - 1 times (the rate decided at the end
+    # of a step deforms the cell at the start of the next): eps1 = rate * dt * (n - 1)
     expected = rate * DT * np.maximum(n - 1, 0)
     assert np.max(np.abs(rows["eps1"] - expected)) < 1e-9 * AXIAL_RATE * DT * SHEAR_STEPS + 1e-15
     assert np.allclose(rows["rate1"][1:], rate, rtol=1e-12)
@@ -150,6 +152,9 @@ def test_axisymmetric_constant_p(specimen, tmp_path, sign):
 
 @pytest.mark.parametrize("b", [0.5, 0.25])
 def test_constant_b(specimen, tmp_path, b):
+    # max_rate raised: the default cap (servo rate at I = 1e-3, 2.7e-5/s here) saturates the
+    # minor axis, which must extend at about the axial rate plus dilatancy when b = 0.5
+    # (measured with the default: p off by 2 %, b by 0.016)
     shear_run(specimen, tmp_path,
               f"fix sh all cell/servo constant_b {b} x {AXIAL_RATE} {P0} max_rate 1e-4 "
               "csv sh.csv 50",
@@ -241,6 +246,7 @@ def test_circle_path(specimen, tmp_path, rotation):
     on_arc = rows["progress"] > (radius / length) * 1.0 + 0.01
     assert on_arc.sum() > 20
     assert np.max(np.abs(rad[on_arc] / radius - 1.0)) < 0.01
+    print(f"circle {rotation}: max radius error {np.max(np.abs(rad[on_arc] / radius - 1.0)):.3g}")
     # pre-strain leg: along the axis-1 ray (eps2 = eps3 deviatorically: x = 0)
     leg = (rows["progress"] < radius / length - 0.01) & (rows["step"] > rows["step"][0] + 50)
     assert np.max(np.abs(x[leg])) < 0.01 * radius
@@ -266,6 +272,10 @@ def test_triangle_path(specimen, tmp_path):
         return np.array([rad * np.sin(np.radians(deg)), rad * np.cos(np.radians(deg))])
     O, A, B, C, D = point(0, 0), point(r, 0), point(2 * r, 60), point(2 * r, 180), point(2 * r, 300)
     verts = [O, A, B, C, D, A]
+    a = prestrain / 3.0
+    for v, e in ((A, a * np.array([2, -1, -1])), (B, 2 * a * np.array([1, 1, -2])),
+                 (C, 2 * a * np.array([-2, 1, 1])), (D, 2 * a * np.array([1, -2, 1]))):
+        assert np.allclose(pi_coordinates(*e), v, atol=1e-15)
     legs = np.array([np.linalg.norm(verts[k + 1] - verts[k]) for k in range(5)])
     cum = np.concatenate([[0.0], np.cumsum(legs)]) / legs.sum()
     steps = int(1.03 * legs.sum() / (speed * DT)) + 200
@@ -282,9 +292,11 @@ def test_triangle_path(specimen, tmp_path):
         inside = (prog > cum[k] + 0.005) & (prog < cum[k + 1] - 0.005)
         assert inside.sum() > 10
         fixed = dev[axis][inside]
-        expected = 2.0 / 3.0 * prestrain if k != 3 else 2.0 / 3.0 * prestrain
-        # e1 = 2d/3 at A and B (A = (d/3)(2,-1,-1), B = (2d/3)(1,1,-2)/... see strain_path)
-        assert np.max(np.abs(fixed - fixed[0])) < 0.01 * r, (k, np.ptp(fixed) / r)
+        # A = (d/3)(2,-1,-1), B = (2d/3)(1,1,-2), C = (2d/3)(-2,1,1), D = (2d/3)(1,-2,1):
+        # the component held on each leg is 2d/3
+        assert np.max(np.abs(fixed - 2.0 / 3.0 * prestrain)) < 0.01 * r, (k, axis)
+        print(f"triangle leg {k}: max |e_{axis + 1} - 2d/3|/r = "
+              f"{np.max(np.abs(fixed - 2.0 / 3.0 * prestrain)) / r:.3g}")
     # every vertex is reached (closest recorded point within 1 % of r)
     for v in (A, B, C, D):
         assert np.min(np.hypot(x - v[0], y - v[1])) < 0.01 * r
@@ -344,12 +356,16 @@ def test_contact_across_periodic_boundary(tmp_path):
     F_in, F_x = parse_prints(out_in, "F1"), parse_prints(out_x, "F1")
     assert np.allclose(parse_prints(out_in, "F2"), -F_in, rtol=0, atol=1e-15 * np.abs(F_in).max())
     # same forces to round-off (the positions differ by the cell shift only)
+    print(f"periodic: |F_across - F_inside|/|F| = "
+          f"{np.max(np.abs(F_x - F_in)) / np.linalg.norm(F_in):.3g}")
     assert np.max(np.abs(F_x - F_in)) < 1e-7 * np.linalg.norm(F_in)
 
     # the state after `steps` steps: the cell's rates r, -r, 0 (independent of the fix)
     x1, x2 = parse_prints(out_in, "X1"), parse_prints(out_in, "X2")
     branch = x2 - x1
-    strain = rate * DT * steps      # box has been deformed `steps` times (rate at end of step)
+    # the box has been deformed steps - 1 times: the rate decided at the end of a step is
+    # applied at the next step (post_integrate), the first step applies the initial rate 0
+    strain = rate * DT * (steps - 1)
     assert branch[0] == pytest.approx(l * n[0] * np.exp(-strain), rel=1e-9)
     assert branch[1] == pytest.approx(l * n[1] * np.exp(strain), rel=1e-9)
     nn = branch / np.linalg.norm(branch)
@@ -370,10 +386,11 @@ def test_contact_across_periodic_boundary(tmp_path):
     # = |L (x2 - x1)| summed over the steps, the branch turning only to second order
     a = np.sqrt(R_star * delta)
     k0 = 8.0 * effective_shear_modulus() * a
-    u = sum(rate * l * np.sqrt(np.cosh(2 * rate * DT * k)) * DT for k in range(steps))
+    u = sum(rate * l * np.sqrt(np.cosh(2 * rate * DT * k)) * DT for k in range(steps - 1))
     u_star = 1.5 * mu * P / k0
     assert u < 0.5 * u_star
     T_mindlin = mu * P * (1.0 - (1.0 - u / u_star) ** 1.5)
+    print(f"periodic: T = {T @ t_dir:.6g} N, Mindlin {T_mindlin:.6g} N, mu P = {mu * P:.4g} N")
     assert T @ t_dir == pytest.approx(T_mindlin, rel=0.01)
 
 
@@ -393,16 +410,10 @@ def max_relative_difference(a, b, names=COMPARED):
     return worst
 
 
-# Friction makes the 3D assembly round-off chaotic (tests/test_pair_mpi.py: the 3D
-# Mindlin-Deresiewicz decisions flip on one-ulp changes); a restart rebuilds the neighbor
-# lists, which changes the summation order. The exact comparison therefore uses mu = 0 (with
-# adhesion, Gamma = 0.6); the frictional case is recorded as an expected failure.
-RESTART_CASES = [
-    pytest.param(0.0, id="mu0"),
-    pytest.param(0.3, id="mu0.3", marks=pytest.mark.xfail(
-        strict=True, reason="3D friction is round-off chaotic: a different summation order "
-        "after the restart grows to ~1e-3 relative within 500 steps (same as 1 vs 2 ranks)")),
-]
+# mu = 0.3 checks the frictional history too. 3D friction is round-off chaotic
+# (tests/test_pair_mpi.py), and the restart rebuilds the neighbor lists (another summation
+# order); over 500 steps this stayed at 3.7e-10 relative, inside the 1e-9 requirement.
+RESTART_CASES = [pytest.param(0.0, id="mu0"), pytest.param(0.3, id="mu0.3")]
 
 
 @pytest.mark.parametrize("mu", RESTART_CASES)
@@ -424,7 +435,7 @@ def test_restart_continues_exactly(specimen, tmp_path, mu):
     after = a["step"] > a["step"][0] + 500
     diff = max_relative_difference({k: v[after] for k, v in a.items()},
                                    {k: v[after] for k, v in b.items()})
-    print("restart max relative difference", diff)
+    print(f"restart mu={mu}: max relative difference {diff:.3g}")
     assert diff <= 1e-9, diff
 
 
@@ -432,15 +443,27 @@ def test_restart_continues_exactly(specimen, tmp_path, mu):
 # 10. MPI: 2 ranks = 1 rank to round-off
 
 
-def test_two_ranks_equal_one(specimen, tmp_path):
+MPI_CASES = [
+    pytest.param(0.0, id="mu0"),
+    pytest.param(0.3, id="mu0.3", marks=pytest.mark.xfail(
+        strict=True, reason="3D friction is round-off chaotic (tests/test_pair_mpi.py): with "
+        "mu = 0.3 the specimen diverges to ~1e-4 relative within 40 steps and ~1e-3 by 200 "
+        "steps between 1 and 2 ranks -- and equally between newton on and off on 1 rank, "
+        "even with the cell held fixed, so it is the contact law, not the cell bookkeeping")),
+]
+
+
+@pytest.mark.parametrize("mu", MPI_CASES)
+def test_two_ranks_equal_one(specimen, tmp_path, mu):
     serial, parallel = tmp_path / "np1", tmp_path / "np2"
     serial.mkdir(), parallel.mkdir()
-    # mu = 0: friction is round-off chaotic in 3D (see RESTART_CASES); adhesion is on
-    shear_run(specimen, serial, SHEAR_FIX, 200, mu=0.0)
-    shear_run(specimen, parallel, SHEAR_FIX, 200, mu=0.0, np_ranks=2)
+    shear_run(specimen, serial, SHEAR_FIX, 200, mu=mu)
+    out = shear_run(specimen, parallel, SHEAR_FIX, 200, mu=mu, np_ranks=2)
+    assert "on 2 procs" in out
     a, b = read_csv(serial / "sh.csv"), read_csv(parallel / "sh.csv")
     assert np.array_equal(a["step"], b["step"])
     diff = max_relative_difference(a, b, COMPARED + ["unbalanced", "p_kinetic", "Zm"])
+    print("MPI max relative difference", diff)
     assert diff <= 1e-10, diff
 
 
@@ -452,7 +475,8 @@ def test_two_ranks_equal_one(specimen, tmp_path):
 def test_energy_balance(specimen, tmp_path, gamma):
     steps = 5000
     # (compute erot/sphere is not in the Debian build: 0.5 I w^2 with I = 0.4 m r^2)
-    extra = ("variable erot atom 0.2*mass*radius^2*(omegax^2+omegay^2+omegaz^2)\n"
+    extra = ("compute sp all property/atom radius omegax omegay omegaz\n"
+             "variable erot atom 0.2*mass*c_sp[1]^2*(c_sp[2]^2+c_sp[3]^2+c_sp[4]^2)\n"
              "compute erot all reduce sum v_erot\ncompute ke all ke\n"
              "compute dis all pair thornton/yin\n")
     report = ('print "E $(step) $(pe:%.17g) $(c_ke:%.17g) $(c_erot:%.17g) '
@@ -469,4 +493,72 @@ def test_energy_balance(specimen, tmp_path, gamma):
     stored, kinetic, dissipated = d[1], d[2] + d[3], d[4] + d[5] + d[6]
     assert work > 0 and dissipated > 0
     balance = stored + kinetic + dissipated
+    print(f"energy gamma={gamma}: W={work:.6g} dPE={stored:.4g} dKE={kinetic:.4g} "
+          f"D={dissipated:.4g} (friction {d[4]:.4g}, break {d[5]:.4g}, damping {d[6]:.4g}) "
+          f"balance error {(balance - work) / work:.3g}")
     assert balance == pytest.approx(work, rel=0.01), (work, stored, kinetic, dissipated)
+
+
+# ---------------------------------------------------------------------------------------------
+# 12. bad input: each error names the problem
+
+SMALL = """lattice sc 2.8e-4
+region box block 0 2 0 2 0 2
+create_box 1 box
+create_atoms 1 box
+set atom * diameter 2e-4 density {rho}
+""".format(rho=RHO)
+PAIR = f"pair_style thornton/yin\npair_coeff * * {E} {NU} 0.3 0.0\nneighbor 2e-5 bin\n"
+
+
+def small_deck(fix, boundary="p p p", box=None, pair=PAIR, run=10):
+    head = HEADER.replace("boundary p p p", f"boundary {boundary}")
+    body = SMALL if box is None else SMALL.replace(
+        "region box block 0 2 0 2 0 2", box)
+    return head + body + LOAD_TYLMP + pair + f"timestep {DT}\n{fix}\nrun {run}\n"
+
+
+BAD_INPUT = [
+    ("nonperiodic", small_deck(f"fix c all cell/servo iso {P0}", boundary="p p f"),
+     "requires a fully periodic box"),
+    ("triclinic", small_deck(f"fix c all cell/servo iso {P0}",
+                             box="region box prism 0 2 0 2 0 2 0.1 0 0"),
+     "requires an orthogonal box"),
+    ("unknown_mode", small_deck(f"fix c all cell/servo shear {P0}"), "unknown mode 'shear'"),
+    ("unknown_keyword", small_deck(f"fix c all cell/servo iso {P0} gian 0.1"),
+     "unknown keyword 'gian'"),
+    ("b_outside", small_deck(f"fix c all cell/servo constant_b 1.5 x 1e-5 {P0}"),
+     "b = 1.5 is outside [0, 1]"),
+    ("b_negative", small_deck(f"fix c all cell/servo constant_b -0.1 x 1e-5 {P0}"),
+     "is outside [0, 1]"),
+    ("p_zero", small_deck("fix c all cell/servo iso 0"), "must be positive"),
+    ("p_negative", small_deck("fix c all cell/servo axisym x 1e-5 -1e5"), "must be positive"),
+    ("axes_stress_negative", small_deck("fix c all cell/servo axes x stress -1 y rate 0 z rate 0"),
+     "target stress of axis x"),
+    ("axes_missing_axis", small_deck(f"fix c all cell/servo axes x rate 0 y stress {P0}"),
+     "axis z has no control"),
+    ("shrink_below_cutoff",
+     small_deck("fix c all cell/servo axes x rate 0.1 y rate 0 z rate 0", run=1000),
+     "has shrunk below twice the neighbor cutoff"),
+    ("no_thornton_yin", small_deck(f"fix c all cell/servo iso {P0}",
+                                   pair="pair_style zero 3e-4\npair_coeff * *\n"),
+     "requires pair_style thornton/yin"),
+    ("path_without_speed", small_deck(f"fix c all cell/servo circle 0.001 {P0}"),
+     "a Pi-plane path needs 'speed V'"),
+    ("speed_outside_path", small_deck(f"fix c all cell/servo iso {P0} speed 1e-5"),
+     "applies only to circle, triangle and polygon"),
+]
+
+
+@pytest.mark.parametrize("deck,message", [c[1:] for c in BAD_INPUT],
+                         ids=[c[0] for c in BAD_INPUT])
+def test_bad_input(tmp_path, deck, message):
+    rc, out = run_deck(deck, tmp_path)
+    assert "ERROR" in out, out[-2000:]
+    error_line = next(line for line in out.splitlines() if "ERROR" in line)
+    assert message in error_line, error_line
+
+
+def test_good_small_deck_runs(tmp_path):
+    """The bad decks differ from this one only in the item under test."""
+    run_ok(small_deck(f"fix c all cell/servo iso {P0}"), tmp_path)

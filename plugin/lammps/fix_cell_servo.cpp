@@ -140,7 +140,7 @@ FixCellServo::~FixCellServo()
 
 int FixCellServo::setmask()
 {
-  return END_OF_STEP;
+  return POST_INTEGRATE | END_OF_STEP;
 }
 
 /* ----------------------------------------------------------------------
@@ -496,13 +496,14 @@ double FixCellServo::prescribed_rate() const
 }
 
 // cap of the servo part: the strain rate at inertial number max_inertial (physics.md §4),
-// and at least twice the prescribed rate
+// and at least four times the prescribed rate (the minor axis of a constant-b path extends at
+// about the major rate, plus dilatancy)
 double FixCellServo::default_max_rate() const
 {
   return std::max(tycore::quasi_static_strain_rate(inertial_cap,
                                                    target_p > 0.0 ? target_p : 1.0,
                                                    mean_diameter, mean_density),
-                  2.0 * prescribed_rate());
+                  4.0 * prescribed_rate());
 }
 
 void FixCellServo::setup(int)
@@ -623,6 +624,15 @@ void FixCellServo::end_of_step()
   const double volume = domain->xprd * domain->yprd * domain->zprd;
   // boundary work V sigma : deps over this step (contact stress; physics.md §7.1)
   for (int k = 0; k < 3; ++k) boundary_work += volume * stress[k] * rate[k] * update->dt;
+  // the cell deforms at the next step's post_integrate, before its forces: the positions
+  // written at the end of a step are those its forces were computed at, so a restart (or a
+  // new run) recomputes the same forces in setup and continues the trajectory exactly
+}
+
+void FixCellServo::post_integrate()
+{
+  const double rate[3] = {memory.last_strain_rate(0), memory.last_strain_rate(1),
+                          memory.last_strain_rate(2)};
   change_box(rate);
 }
 

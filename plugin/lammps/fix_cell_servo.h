@@ -24,6 +24,7 @@ class FixCellServo : public Fix {
   int setmask() override;
   void init() override;
   void setup(int) override;
+  void post_integrate() override;
   void end_of_step() override;
   double compute_vector(int) override;
   void write_restart(FILE *) override;
