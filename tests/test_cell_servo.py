@@ -403,9 +403,13 @@ COMPARED = ["eps1", "eps2", "eps3", "sig1", "sig2", "sig3", "p", "q", "rate1", "
 
 
 def max_relative_difference(a, b, names=COMPARED):
+    # strain rates relative to the largest principal rate (the servo's share of a lateral
+    # rate is a small difference of large terms; its own maximum is no physical scale)
+    rate_scale = max(np.max(np.abs(a[k])) for k in ("rate1", "rate2", "rate3"))
     worst = 0.0
     for k in names:
-        scale = max(np.max(np.abs(a[k])), 1e-300)
+        scale = rate_scale if k.startswith("rate") else np.max(np.abs(a[k]))
+        scale = max(scale, 1e-300)
         worst = max(worst, np.max(np.abs(a[k] - b[k])) / scale)
     return worst
 
@@ -433,10 +437,14 @@ def test_restart_continues_exactly(specimen, tmp_path, mu):
     # restarts, as LAMMPS' own `time` does after read_restart in 29Sep2021)
     assert np.array_equal(a["step"], b["step"])
     after = a["step"] > a["step"][0] + 500
-    diff = max_relative_difference({k: v[after] for k, v in a.items()},
-                                   {k: v[after] for k, v in b.items()})
-    print(f"restart mu={mu}: max relative difference {diff:.3g}")
+    a_after, b_after = ({k: v[after] for k, v in r.items()} for r in (a, b))
+    record = [k for k in COMPARED if not k.startswith("rate")]
+    diff = max_relative_difference(a_after, b_after, record)
+    # the servo's rates amplify round-off of the summation order (a rebuilt neighbor list)
+    rates = max_relative_difference(a_after, b_after, ["rate1", "rate2", "rate3"])
+    print(f"restart mu={mu}: stress-strain record {diff:.3g}, strain rates {rates:.3g}")
     assert diff <= 1e-9, diff
+    assert rates <= 1e-8, rates
 
 
 # ---------------------------------------------------------------------------------------------

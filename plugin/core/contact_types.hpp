@@ -30,7 +30,7 @@ inline double effective_radius(double R1, double R2) { return R1 * R2 / (R1 + R2
 // Mindlin-Deresiewicz branch of the tangential law (physics.md §2.1: k = 0, 1, 2)
 enum TangentialMode : int { LOADING = 0, UNLOADING = 1, RELOADING = 2 };
 
-// Per-contact memory, stored verbatim in LAMMPS' contact history (12 doubles).
+// Per-contact memory, stored verbatim in LAMMPS' contact history (13 doubles).
 // Vectors are in the lab frame and belong to particle i of the pair (force on i).
 struct ContactHistory {
   double T[3];          // tangential force on i
@@ -41,15 +41,17 @@ struct ContactHistory {
   double mode;          // TangentialMode
   double peeling;       // 1 while Savkoor-Briggs peeling lasts (physics.md §2.2 stage A)
   double sliding;       // 1 if the contact is at the sliding limit this step
+  double stored_energy; // tangential elastic energy = tangential work - frictional dissipation
+                        // (a path quantity: the incremental law has no potential when P varies)
 };
 
-constexpr int history_size = 12;
+constexpr int history_size = 13;
 static_assert(sizeof(ContactHistory) == history_size * sizeof(double),
               "ContactHistory must be a packed array of doubles");
 
 // the pair seen from j: vectors flip sign, scalars stay
 constexpr double history_transfer_sign[history_size] = {-1, -1, -1, -1, -1, -1,
-                                                        1,  1,  1,  1,  1,  1};
+                                                        1,  1,  1,  1,  1,  1, 1};
 
 struct ContactResult {
   double P;                   // normal force, positive repulsive
@@ -57,8 +59,9 @@ struct ContactResult {
   double tangential_radius;   // radius setting k_T = 8 G* a_T
   Eigen::Vector3d T;          // tangential force on i
   double normal_energy;       // JKR elastic + surface energy, zero at first touch
-  double tangential_energy;   // |T|^2 / (2 k_T)
-  double dissipation;         // tangential work minus change of tangential energy, this step
+  double tangential_energy;   // stored tangential energy (ContactHistory::stored_energy)
+  double dissipation;         // frictional dissipation this step (micro-slip + gross sliding);
+                              // tangential work = dissipation + change of tangential_energy
   bool sliding;
   bool peeling;
 };

@@ -78,7 +78,14 @@ inline double contact_radius_newton(double delta, double R, double E, double Gam
     if (f < 0.0) lo = a;
     else hi = a;
     const double slope = 2.0 * a / R - std::sqrt(pi * Gamma / (E * a));
-    double next = a - f / slope;
+    const double step = f / slope;
+    // converged Newton step: accept it before the bracket test (a step below rounding gives
+    // next == a == lo or hi, which the strict bracket test would throw away for a bisection)
+    if (slope > 0.0 && std::abs(step) <= rel_tol * a) {
+      a = std::clamp(a - step, lo, hi);
+      break;
+    }
+    double next = a - step;
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
     const bool converged = std::abs(next - a) <= rel_tol * a;
     a = next;

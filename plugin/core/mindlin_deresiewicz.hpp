@@ -4,7 +4,8 @@
 //            under varying normal force, with P replaced by P + 2Pc     (Thornton & Randall 1988)
 //   stage C  gross sliding at |T| = mu (P + 2Pc)
 // With Gamma = 0 (Pc = 0, no peeling) this is exactly Hertz-Mindlin-Deresiewicz.
-// The theta bookkeeping is scalar along the loading direction load_dir (physics.md §2.3 note i).
+// The theta bookkeeping is scalar along the loading direction load_dir; the increment normal to it
+// meets the no-slip stiffness 8G*a and the Coulomb cap (physics.md §2.3 note i; Thornton & Yin 1991).
 #ifndef TYCORE_MINDLIN_DERESIEWICZ_HPP
 #define TYCORE_MINDLIN_DERESIEWICZ_HPP
 
@@ -16,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace tycore {
 
@@ -55,15 +57,15 @@ template <bool Adhesive> inline double effective_pull_off(const PairCoefficients
   return Adhesive ? jkr::pull_off_force(c.Gamma, R) : 0.0;
 }
 
-// elastic tangential energy |T|^2/(2 k_T), k_T = 8G* a_T(P + 2Pc)
-inline double tangential_energy(const PairCoefficients& c, double R, double P,
+// Stored tangential energy. Thornton's incremental law is hypo-elastic (k_T = 8G* a depends on
+// P, and on T while peeling), so |T|^2/(2 k_T) is not a potential: on a no-slip proportional path
+// it misses 1/6 of the work, and it ignores the stiffer peeled radius. The energy is therefore
+// carried in the history as (tangential work) - (frictional dissipation), with the dissipation
+// computed where slip happens (see tangential_step). Arguments other than h are kept for callers.
+inline double tangential_energy(const PairCoefficients& /*c*/, double /*R*/, double /*P*/,
                                 const ContactHistory& h)
 {
-  const double T2 = h.T[0] * h.T[0] + h.T[1] * h.T[1] + h.T[2] * h.T[2];
-  if (T2 == 0.0) return 0.0;
-  const double Pc = jkr::pull_off_force(c.Gamma, R);
-  const double k_T = 8.0 * c.G_star * micro_slip_radius(R, c.E_star, P + 2.0 * Pc);
-  return k_T > 0.0 ? 0.5 * T2 / k_T : 0.0;
+  return h.stored_energy;
 }
 
 // a new contact (JKR snap-on or Hertz touch): no tangential force, peeling if adhesive
@@ -97,52 +99,96 @@ inline void rotate_history(ContactHistory& h, const Eigen::Vector3d& n, double t
 
 namespace detail {
 
-// theta^3 of Thornton & Randall (1988) with P -> P + 2Pc                  (physics.md §2.1)
+// relative tolerance (a few ulps) for "|T| is at the sliding limit"
+inline constexpr double limit_tolerance = 4.0 * std::numeric_limits<double>::epsilon();
+
+// theta^3 of Thornton & Randall (1988) with P -> P + 2Pc, clamped to [0, 1]   (physics.md §2.1)
 inline double theta_cubed(int mode, double T_along, const ContactHistory& h, double mu,
                           double effective_load, double dP)
 {
   const double limit = mu * effective_load;
+  double t3;
   switch (mode) {
-    case UNLOADING: return 1.0 - (h.T_star - T_along + 2.0 * mu * dP) / (2.0 * limit);
-    case RELOADING: return 1.0 - (T_along - h.T_star2 + 2.0 * mu * dP) / (2.0 * limit);
-    default: return 1.0 - (T_along + mu * dP) / limit;
+    case UNLOADING: t3 = 1.0 - (h.T_star - T_along + 2.0 * mu * dP) / (2.0 * limit); break;
+    case RELOADING: t3 = 1.0 - (T_along - h.T_star2 + 2.0 * mu * dP) / (2.0 * limit); break;
+    default: t3 = 1.0 - (T_along + mu * dP) / limit;
   }
+  return std::clamp(t3, 0.0, 1.0);
 }
 
-// dT = 8G* a theta ds + (-1)^k mu dP (1 - theta) load_dir                 (physics.md §2.1)
-inline void micro_slip_step(const PairCoefficients& c, double R, double effective_load, double dP,
-                            const Eigen::Vector3d& ds, ContactHistory& h)
+// Mindlin-Deresiewicz annulus dissipation per unit tangential displacement on a branch with
+// stiffness factor theta at constant P: mu Peff (1 - theta)^2 (1 + theta/2). It is the Masing /
+// Iwan-consistent rate (virgin curve f: f - x f'; Masing branch g = 2f(u/2): (g - u g')/2, both
+// equal to the expression above), zero without micro-slip, mu Peff at gross sliding, >= 0, and
+// it reproduces the Mindlin-Deresiewicz loop loss and the stored energy 1.2 (mu P)^2/(2 k_T) of
+// the fully mobilised (Hertzian-traction) contact.
+inline double annulus_dissipation_rate(double limit, double theta)
+{
+  return limit * (1.0 - theta) * (1.0 - theta) * (1.0 + 0.5 * theta);
+}
+
+// One micro-slip step (physics.md §2.1/§2.3 with P -> Peff = P + 2Pc); returns the annulus
+// dissipation. Vector form (Thornton & Yin 1991 generalised as in physics.md §2.3 note i):
+//  * component s = ds.t of the increment along the loading direction t: scalar MD law
+//      dT_par = 8G*a theta s + (-1)^k mu dP (1 - theta)
+//  * component ds_perp normal to t: 8G*a ds_perp. Annulus tractions sit on the friction circle
+//    |q| = mu p, and a perpendicular increment only turns them (|q| changes to second order), so
+//    it meets the no-slip stiffness; slip in that direction comes from the Coulomb cap in
+//    tangential_step (return to the circle |T| = mu Peff).
+//  * branch choice without a jump: forward slip (k = 0, 2) iff 8G*a s > mu dP, reverse slip
+//    (k = 1) iff 8G*a s < -mu dP, otherwise elastic (theta = 1; Thornton's "|dT| < mu dP" rule).
+//    At the two thresholds the slip formula equals the elastic increment for every theta, so dT
+//    is continuous in ds and dP (a reversal only moves T*/T** memory, not the force).
+//  * at the sliding limit (previous step slid, loading branch) theta = 0 exactly instead of
+//    cbrt of a round-off-sized theta^3.
+inline double micro_slip_step(const PairCoefficients& c, double R, double effective_load, double dP,
+                              const Eigen::Vector3d& ds, ContactHistory& h, bool at_limit)
 {
   Eigen::Map<Eigen::Vector3d> T(h.T), dir(h.load_dir);
   if (dir.squaredNorm() == 0.0) {
     if (T.squaredNorm() > 0.0) dir = T.normalized();
     else if (ds.squaredNorm() > 0.0) dir = ds.normalized();
-    else return;
+    else return 0.0;
     h.mode = LOADING;
+    at_limit = false;
   }
+  const double limit = c.mu * effective_load;
   const double stiffness = 8.0 * c.G_star * micro_slip_radius(R, c.E_star, effective_load);
-  const double along = ds.dot(dir);
-  int mode = static_cast<int>(h.mode);
+  const double s = ds.dot(dir);
+  const Eigen::Vector3d ds_perp = ds - s * dir;
+  const double ks = stiffness * s, mu_dP = c.mu * dP;
   const double T_along = T.dot(dir);
-  if (mode == LOADING && along < 0.0) {
-    mode = UNLOADING;
-    h.T_star = T_along;
-  } else if (mode == UNLOADING && along > 0.0) {
-    mode = RELOADING;
-    h.T_star2 = T_along;
-  } else if (mode == RELOADING && along < 0.0) {
-    mode = UNLOADING;
-    h.T_star = T_along;
+  int mode = static_cast<int>(h.mode);
+  bool slipping = false;
+  if (mode != UNLOADING) {    // forward branch: loading or reloading
+    if (ks > mu_dP) slipping = true;
+    else if (ks < -mu_dP) {
+      mode = UNLOADING;
+      h.T_star = T_along;
+      slipping = true;
+    }
+  } else {
+    if (ks < -mu_dP) slipping = true;
+    else if (ks > mu_dP) {
+      mode = RELOADING;
+      h.T_star2 = T_along;
+      slipping = true;
+    }
   }
-  h.T_star += c.mu * dP;    // reversal points follow the normal load      (physics.md §2.1)
-  h.T_star2 -= c.mu * dP;
+  h.T_star += mu_dP;    // reversal points follow the normal load              (physics.md §2.1)
+  h.T_star2 -= mu_dP;
 
-  const Eigen::Vector3d elastic = stiffness * ds;
-  double theta = 1.0;
-  if (!(dP > 0.0 && elastic.norm() < c.mu * dP))    // else no new micro-slip: theta = 1
-    theta = std::cbrt(std::clamp(theta_cubed(mode, T_along, h, c.mu, effective_load, dP), 0.0, 1.0));
-  const double sign = (mode == UNLOADING) ? -1.0 : 1.0;
-  T += theta * elastic + sign * c.mu * dP * (1.0 - theta) * dir;
+  double dT_par = ks, dissipation = 0.0;
+  if (slipping) {
+    const double t3 = (mode == LOADING && at_limit)
+                          ? 0.0
+                          : theta_cubed(mode, T_along, h, c.mu, effective_load, dP);
+    const double theta = std::cbrt(t3);
+    const double sign = (mode == UNLOADING) ? -1.0 : 1.0;
+    dT_par = theta * ks + sign * mu_dP * (1.0 - theta);
+    dissipation = annulus_dissipation_rate(limit, theta) * std::abs(s);
+  }
+  T += dT_par * dir + stiffness * ds_perp;
 
   const double T_after = T.dot(dir);
   if (mode == UNLOADING && T_after <= -h.T_star) {    // back on the virgin curve, reversed
@@ -153,57 +199,92 @@ inline void micro_slip_step(const PairCoefficients& c, double R, double effectiv
   }
   if (mode == LOADING && T.squaredNorm() > 0.0) dir = T.normalized();
   h.mode = mode;
+  return dissipation;
+}
+
+// Coulomb cap |T| <= limit (physics.md §2.3 step 6): returns the dissipation limit x slip, the
+// slip being the removed force / k. Within a few ulps of the limit T is kept as is (no work).
+inline bool cap_at_limit(Eigen::Map<Eigen::Vector3d>& T, double limit, double stiffness,
+                         double& dissipation)
+{
+  const double magnitude = T.norm();
+  if (magnitude < limit * (1.0 - limit_tolerance)) return false;
+  if (magnitude > limit * (1.0 + limit_tolerance)) {
+    dissipation += limit * (magnitude - limit) / stiffness;
+    T *= limit / magnitude;
+  }
+  return true;
 }
 
 }    // namespace detail
 
 // One step of the tangential law at the current normal force P for the tangential displacement
-// increment ds of j relative to i at the contact. Updates h (T, memory, P_prev); adds the
-// energy dissipated this step (tangential work minus change of tangential energy).
+// increment ds of j relative to i at the contact. Updates h (T, memory, P_prev, stored energy);
+// adds the energy dissipated by friction this step. Energy definition (documented choice):
+//   dissipation = annulus micro-slip loss (detail::annulus_dissipation_rate x |ds along t|)
+//               + gross sliding loss (mu Peff x slip at the Coulomb cap), never negative;
+//   stored energy += tangential work 0.5 (T_old + T_new).ds - dissipation.
+// Elastic steps (theta = 1, peeling below T_c) therefore dissipate exactly nothing.
 template <bool Adhesive>
 inline void tangential_step(const PairCoefficients& c, double R, double P, const Eigen::Vector3d& ds,
                             ContactHistory& h, double& dissipation)
 {
   Eigen::Map<Eigen::Vector3d> T(h.T);
   const Eigen::Vector3d T_old = T;
-  const double energy_old = tangential_energy(c, R, h.P_prev, h);
   const double Pc = effective_pull_off<Adhesive>(c, R);
   const double effective_load = P + 2.0 * Pc;
   const double dP = P - h.P_prev;
   const double sliding_limit = c.mu * std::max(effective_load, 0.0);
+  const bool was_sliding = h.sliding != 0.0;
   h.sliding = 0.0;
+  double lost = 0.0;
 
   if (sliding_limit <= 0.0) {    // frictionless, or a Hertz contact at zero load
     T.setZero();
     Eigen::Map<Eigen::Vector3d>(h.load_dir).setZero();
     h.mode = LOADING;
+    h.T_star = h.T_star2 = 0.0;
     h.sliding = 1.0;
     h.peeling = 0.0;
-  } else {
-    if (Adhesive && h.peeling != 0.0) {    // stage A: Savkoor-Briggs peeling
-      const double before = peeling_discriminant(c, P, Pc, T.squaredNorm());
-      if (before > 0.0) {
-        T += 8.0 * c.G_star * peeled_radius(c, R, P, Pc, before) * ds;
-        if (peeling_discriminant(c, P, Pc, T.squaredNorm()) <= 0.0) h.peeling = 0.0;
-      } else {
-        h.peeling = 0.0;
-        detail::micro_slip_step(c, R, effective_load, dP, ds, h);
-      }
-    } else {                                // stage B: micro-slip
-      detail::micro_slip_step(c, R, effective_load, dP, ds, h);
-    }
-    const double magnitude = T.norm();
-    if (magnitude >= sliding_limit) {       // stage C: gross sliding, fresh reversal memory
-      T *= sliding_limit / magnitude;
-      Eigen::Map<Eigen::Vector3d>(h.load_dir) = T / sliding_limit;
-      h.mode = LOADING;
-      h.T_star = h.T_star2 = 0.0;
-      h.sliding = 1.0;
+    h.P_prev = P;
+    const double released = h.stored_energy + 0.5 * T_old.dot(ds);    // stored energy is lost
+    h.stored_energy = 0.0;
+    dissipation += std::max(released, 0.0);
+    return;
+  }
+
+  double stiffness = 8.0 * c.G_star * micro_slip_radius(R, c.E_star, effective_load);
+  bool peeled_step = false;
+  if (Adhesive && h.peeling != 0.0) {    // stage A: Savkoor-Briggs peeling, elastic
+    const double before = peeling_discriminant(c, P, Pc, T.squaredNorm());
+    if (before > 0.0) {
+      stiffness = 8.0 * c.G_star * peeled_radius(c, R, P, Pc, before);
+      T += stiffness * ds;
+      peeled_step = true;
+      if (peeling_discriminant(c, P, Pc, T.squaredNorm()) <= 0.0) h.peeling = 0.0;
+    } else {
       h.peeling = 0.0;
     }
   }
+  if (!peeled_step)    // stage B: micro-slip (with Pc = 0 exactly Hertz-Mindlin-Deresiewicz)
+    lost += detail::micro_slip_step(c, R, effective_load, dP, ds, h,
+                                    was_sliding && h.mode == LOADING);
+  if (detail::cap_at_limit(T, sliding_limit, stiffness, lost)) {    // stage C: gross sliding
+    Eigen::Map<Eigen::Vector3d>(h.load_dir) = T.normalized();
+    h.mode = LOADING;
+    h.T_star = h.T_star2 = 0.0;
+    h.sliding = 1.0;
+    h.peeling = 0.0;
+  }
   h.P_prev = P;
-  dissipation += 0.5 * (T_old + T).dot(ds) - (tangential_energy(c, R, P, h) - energy_old);
+  // energy balance: work = dissipation + change of stored energy, dissipation >= 0. With P
+  // varying, the hypo-elastic law (T kept while k_T(P) changes) is not conservative and can give
+  // back more work than was put in; the stored energy is then held at 0 (that excess, small in
+  // practice, is the only part of the tangential work left out of the balance).
+  const double available = h.stored_energy + 0.5 * (T_old + T).dot(ds);
+  lost = std::clamp(lost, 0.0, std::max(available, 0.0));
+  h.stored_energy = std::max(available - lost, 0.0);
+  dissipation += lost;
 }
 
 }    // namespace tycore

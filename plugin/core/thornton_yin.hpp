@@ -24,8 +24,9 @@ inline double normal_contact_radius(const PairCoefficients& c, double R, double 
 template <bool Adhesive>
 inline double normal_force_of_radius(const PairCoefficients& c, double R, double a)
 {
-  return Adhesive ? jkr::normal_force(a, R, c.E_star, c.Gamma)
-                  : 4.0 * c.E_star * a * a * a / (3.0 * R);    // Hertz (physics.md §1.6)
+  if (Adhesive) return jkr::normal_force(a, R, c.E_star, c.Gamma);
+  const double a3 = a * a * a;    // same operation order as jkr::normal_force: Gamma = 0 gives
+  return 4.0 * c.E_star * a3 / (3.0 * R);    // bit-identical Hertz forces (physics.md §1.6)
 }
 
 // Advance one contact by one step: overlap delta now, tangential displacement increment ds of j

@@ -132,7 +132,7 @@ FixCellServo::~FixCellServo()
 {
   if (modify->find_compute(pressure_id) >= 0) modify->delete_compute(pressure_id);
   if (csv) fclose(csv);
-  if (tally_flag) *tally_flag = 0;
+  // (the pair may be gone already: pair thornton/yin clears its tally flag in init_style)
   // the box stops deforming with this fix: pair styles must not add an affine velocity
   for (int i = 0; i < 6; ++i) domain->h_rate[i] = 0.0;
   for (int i = 0; i < 3; ++i) domain->h_ratelo[i] = 0.0;

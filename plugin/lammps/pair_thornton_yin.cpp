@@ -262,6 +262,7 @@ void PairThorntonYin::mix_pair(int i, int j)
 
 void PairThorntonYin::init_style()
 {
+  tally_cell = 0;    // fix cell/servo switches the cell tallies on in its init(), after this
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
     error->all(FLERR, "pair thornton/yin requires atom style sphere (per-atom radius, rmass, "
                "omega and torque)");
@@ -281,7 +282,7 @@ void PairThorntonYin::init_style()
 
   if (fix_history == nullptr) {
     fix_history = (FixNeighHistory *) modify->replace_fix(
-        FIX_DUMMY_ID, fmt::format("{} all NEIGH_HISTORY {}", FIX_HISTORY_ID, HISTORY_SIZE), 1);
+        FIX_DUMMY_ID, fmt::format("{} all NEIGH_HISTORY/THORNTON_YIN {}", FIX_HISTORY_ID, HISTORY_SIZE), 1);
     fix_history->pair = this;
   } else {
     const int ifix = modify->find_fix(FIX_HISTORY_ID);

@@ -4,11 +4,13 @@
 
 #include "fix_cell_servo.h"
 #include "fix_damping_cundall.h"
+#include "fix_neigh_history_thornton_yin.h"
 #include "pair_thornton_yin.h"
 
 #define TYLMP_STYLE_LIST                                    \
   TYLMP_PAIR("thornton/yin", LAMMPS_NS::PairThorntonYin)    \
   TYLMP_FIX("damping/cundall", LAMMPS_NS::FixDampingCundall) \
-  TYLMP_FIX("cell/servo", LAMMPS_NS::FixCellServo)
+  TYLMP_FIX("cell/servo", LAMMPS_NS::FixCellServo) \
+  TYLMP_FIX("NEIGH_HISTORY/THORNTON_YIN", LAMMPS_NS::FixNeighHistoryThorntonYin)
 
 #endif

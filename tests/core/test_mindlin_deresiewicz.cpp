@@ -98,8 +98,11 @@ TEST(MindlinLoading, MonotonicFollowsMindlinCurve)
 }
 
 // §2.1: sliding at T = mu P, reached at x = d; then the dissipation grows by mu P per unit slip.
-// Energy with the header's accounting (E_T = |T|^2/(2 k_T), k_T = 8G*a): at full mobilisation
-// work = int_0^d f = 0.6 mu P d, E_T = (mu P)^2/(16 G* a) = mu P d/3, so D = 4/15 mu P d.
+// Energy at full mobilisation: work = int_0^d f = 0.6 mu P d. The traction is then q = mu p
+// (Hertzian shape), whose elastic energy (Johnson's u_x for q0 sqrt(1 - r^2/a^2)) is
+// 1.2 (mu P)^2/(2 k_T) = 0.4 mu P d, so D = 0.2 mu P d -- equal to the Masing/Iwan annulus loss
+// int_0^d (f - x f') dx = 2 x 0.6 - 1 (mu P d). [Corrected: the earlier 4/15 took |T|^2/(2 k_T)
+// as the stored energy, which undercounts it by the factor 1.2.]
 TEST(MindlinLoading, GrossSlidingAtMuP)
 {
   const double P = 1e-3, mu = 0.3;
@@ -117,7 +120,8 @@ TEST(MindlinLoading, GrossSlidingAtMuP)
   EXPECT_NEAR(drv.T().norm(), mu * P, 1e-14 * mu * P);
   EXPECT_NEAR(drv.T().x(), mu * P, 1e-14 * mu * P);
   EXPECT_EQ(drv.h.sliding, 1.0);
-  const double expected = 4.0 / 15.0 * mu * P * md.d + mu * P * (2 * n * dx - md.d);
+  const double expected = 0.2 * mu * P * md.d + mu * P * (2 * n * dx - md.d);
+  EXPECT_NEAR(drv.h.stored_energy, 0.4 * mu * P * md.d, 1e-4 * mu * P * md.d);
   EXPECT_NEAR(drv.dissipation, expected, 1e-4 * expected);
   // one more slip step: dissipation grows by exactly mu P ds
   const double before = drv.dissipation;
@@ -246,15 +250,8 @@ TEST(MindlinProportional, NoSlipPathDissipatesNothing)
   }
   const double P = 4.0 / 3.0 * kEstar * std::sqrt(kRstar) * std::pow(delta_end, 1.5);
   const double E_T = tycore::tangential_energy(drv.c, kRstar, P, drv.h);
-  if (std::abs(drv.dissipation) > 1e-3 * E_T)
-    GTEST_SKIP() << "SUSPECTED BUG (tangential_step dissipation accounting): along a no-slip "
-                    "proportional path (theta = 1) the reported dissipation is "
-                 << drv.dissipation << " J = " << drv.dissipation / E_T
-                 << " x E_T (E_T = |T|^2/(2 k_T(P)) = " << E_T << " J, tangential work " << work
-                 << " J); expected ~0. With T ~ delta^1.5 and k_T ~ delta^0.5, "
-                    "work - Delta(|T|^2/(2k_T)) = int |T|^2 dk_T/(2k_T^2) = 0.2 E_T exactly: "
-                    "|T|^2/(2 k_T(P)) is not the stored energy when P varies.";
   EXPECT_NEAR(drv.dissipation, 0.0, 1e-3 * E_T);
+  EXPECT_NEAR(E_T, work, 1e-9 * work);    // all the work is stored
 }
 
 // with mu = 0 or a non-adhesive contact at zero load there is no tangential force
@@ -522,13 +519,6 @@ TEST(MindlinSliding, ForceTurnsTowardsNewSlipDirection)
   EXPECT_NEAR(T.norm(), mu * P, 1e-12 * mu * P);
   const double cos_y = T.y() / T.norm();
   const double lost = drv.dissipation - d0;
-  if (cos_y < 0.9)
-    GTEST_SKIP() << "SUSPECTED BUG (micro_slip_step at the sliding limit): after 10 d of slip "
-                    "along y, T = (" << T.x() << ", " << T.y() << ") N, i.e. cos(T, slip) = "
-                 << cos_y << " (expected ~1), dissipated " << lost << " J vs mu P x slip = "
-                 << mu * P * 10 * md.d << " J. At |T| = mu P, theta^3 = 1 - T_along/(mu P) = 0 "
-                    "(or round-off, amplified by cbrt), so the elastic increment 8G*a theta ds is "
-                    "~0 and T keeps its old direction while sliding perpendicular to it.";
   EXPECT_GT(cos_y, 0.9);
   EXPECT_NEAR(lost, mu * P * 10 * md.d, 0.2 * mu * P * 10 * md.d);
 }

@@ -148,16 +148,7 @@ TEST(ThorntonYinSpecialisation, GammaZeroEqualsAdhesiveTemplateWithSliding)
     if (dev > worst) worst = dev, worst_at = i;
   }
   EXPECT_GT(slides, 100);
-  if (worst > 1e-6)
-    GTEST_SKIP() << "SUSPECTED BUG (micro_slip_step / tangential_step near the sliding limit, "
-                    "ill-conditioned): Adhesive=true with Gamma=0 and Adhesive=false (identical "
-                    "maths, P equal to 1 ulp) diverge by up to |dT| = " << worst << " mu P (step "
-                 << worst_at << "), ||T|| differing by up to " << worst_norm << " mu P. At |T| = "
-                    "mu P, theta^3 = 1 - (T + mu dP)/(mu P) = O(eps) and theta = cbrt() turns eps into "
-                    "~eps^(1/3) of the elastic increment (observed: 1e-6..1e-5 mu P per sliding "
-                    "episode, sliding flag flipping between the two runs, T*/T** reset in one and "
-                    "shifted in the other), and the divergence then grows over later cycles.";
-  EXPECT_LE(worst, 1e-6);
+  EXPECT_LE(worst, 1e-6) << "step " << worst_at << ", ||T|| differing by " << worst_norm << " mu P";
 }
 
 // calling evaluate_contact again with the same overlap and a zero increment changes nothing:
@@ -292,9 +283,13 @@ TEST(ThorntonYinOblique, PeelingRadiusThenSlidingLimit)
     tycore::ContactResult r = tycore::evaluate_contact<true>(c, kRstar, d, Vector3d::Zero(), h);
     const double dx = 1e-12;
     bool was_peeling = true;
+    double work = 0.0, diss = 0.0;
     int i = 0;
     for (; i < 400000 && !r.sliding; ++i) {
+      const double T_old = r.T.x();
       r = tycore::evaluate_contact<true>(c, kRstar, d, Vector3d(dx, 0, 0), h);
+      work += 0.5 * (T_old + r.T.x()) * dx;
+      diss += r.dissipation;
       EXPECT_NEAR(r.P, P, 1e-9 * s.Pc) << dd;
       const double T2 = r.T.squaredNorm();
       if (r.peeling) {
@@ -305,9 +300,13 @@ TEST(ThorntonYinOblique, PeelingRadiusThenSlidingLimit)
       } else {
         EXPECT_NEAR(r.tangential_radius, std::cbrt(3.0 * kRstar * Peff / (4.0 * kEstar)), 1e-13 * s.a0) << dd;
       }
-      EXPECT_NEAR(r.tangential_energy,
-                  T2 / (2.0 * 8.0 * kGstar * std::cbrt(3.0 * kRstar * Peff / (4.0 * kEstar))),
-                  1e-12 * r.tangential_energy + 1e-30) << dd;
+      // stored energy = work - dissipation; peeling is elastic, so it dissipates nothing
+      // [corrected: this asserted |T|^2/(2 * 8G* a_T(Peff)), which is not the stored energy
+      // while peeling, where k_T = 8G* a_peel]
+      EXPECT_NEAR(r.tangential_energy, work - diss, 1e-10 * work + 1e-30) << dd;
+      if (r.peeling) {
+        EXPECT_EQ(diss, 0.0) << dd;
+      }
       was_peeling = r.peeling;
     }
     ASSERT_TRUE(r.sliding) << dd;
@@ -368,12 +367,5 @@ TEST(ThorntonYinEnergy, PeelingLoadingDissipatesNothing)
     work += 0.5 * (T_old.x() + r.T.x()) * dx;
     diss += r.dissipation;
   }
-  if (std::abs(diss) > 1e-3 * work)
-    GTEST_SKIP() << "SUSPECTED BUG (dissipation / tangential_energy during peeling): elastic "
-                    "peeling to T = 0.9 T_c at delta = 0 (work " << work << " J) reports "
-                    "cumulative dissipation " << diss << " J = " << diss / work << " x work; "
-                    "expected ~0. E_T = |T|^2/(2*8G* a_T) uses the Hertz radius of P + 2Pc, but "
-                    "while peeling k_T = 8G* a_peel > 8G* a_T, so work < E_T and the reported "
-                    "dissipation goes negative.";
   EXPECT_NEAR(diss, 0.0, 1e-3 * work);
 }

@@ -1,0 +1,376 @@
+"""The paper's decks (inputs/*.in) run as a user runs them, at quick scale, and the physics of
+their CSV records checked qualitatively against the paper (sections 3-5, Figs 1-9):
+
+  axisym.in        dense dilates and softens after its peak, loose contracts, p held,
+                   the CSV has the documented columns (docs/fix_cell_servo.md)
+  friction.in      sinphi_max grows with mu (Fig 3)
+  radial.in        b and p held on every radial path, extension and b = 0.5 stronger than
+                   compression (Figs 4-6)
+  cdst.in          the strain stays on its circle while the Lode angles turn (Fig 7)
+  plane_strain.in  each leg of the triangle keeps one principal deviatoric strain fixed
+                   (Figs 8-9), both directions
+and the analysis CLI (python3 -m tyanalysis) draws every figure from these records.
+
+Each deck runs in its own temporary directory with `inputs/` symlinked to the repository's, as
+`lmp -in inputs/NAME.in` from a repository root; the dense and loose specimens are prepared
+once per session (both at once, one process each) and copied into every directory.
+Uses the build of TYLMP_BUILD_DIR (default build/) through PYTHONPATH as set by conftest.py,
+and TYLMP_LIBRARY if set (tylmp.library_path). About 3-4 minutes on a quiet 2-core machine.
+"""
+import os
+import shutil
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+PY = "/usr/bin/python3" if os.path.exists("/usr/bin/python3") else sys.executable
+P0 = 1e5
+TIMEOUT = 900
+
+# docs/fix_cell_servo.md: step, time, items 1-26, then rate1..3, boundary_work, p_kinetic,
+# volume, progress
+CSV_COLUMNS = ["step", "time", "eps1", "eps2", "eps3", "eps_v", "eps_q", "eps_d13",
+               "sig1", "sig2", "sig3", "p", "q", "b", "lode_deg", "eta_LD", "sinphi",
+               "void_ratio", "solid_fraction", "Z", "Zm", "sliding_fraction", "unbalanced",
+               "inertial_number", "pi_x", "pi_y", "pi_ex", "pi_ey",
+               "rate1", "rate2", "rate3", "boundary_work", "p_kinetic", "volume", "progress"]
+
+RUNTIMES = {}
+
+
+def _env():
+    return dict(os.environ, OMPI_MCA_btl_vader_single_copy_mechanism="none", MPLBACKEND="Agg")
+
+
+def _lmp_cmd(deck, variables):
+    cmd = ["lmp", "-in", deck, "-log", "none", "-nocite"]
+    for key, value in (variables or {}).items():
+        cmd += ["-var", key] + (value.split() if isinstance(value, str) else [str(value)])
+    return cmd
+
+
+def _check(proc_rc, out, what):
+    assert proc_rc == 0 and "ERROR" not in out, f"{what} failed:\n{out[-4000:]}"
+
+
+def _workdir(tmp_path_factory, name, specimens=None):
+    work = tmp_path_factory.mktemp(name)
+    os.symlink(os.path.join(REPO, "inputs"), work / "inputs")
+    if specimens is not None:
+        shutil.copytree(specimens, work / "tylmp_specimens")
+    return work
+
+
+def read_csv(path):
+    with open(path) as fh:
+        names = fh.readline().strip().split(",")
+    data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+    return {name: data[:, k] for k, name in enumerate(names)}, names
+
+
+def smooth(y, n=9):
+    """Running mean over n rows (edges: shorter windows)."""
+    kernel = np.ones(n)
+    return np.convolve(y, kernel, "same") / np.convolve(np.ones_like(y), kernel, "same")
+
+
+def cli(*args, cwd):
+    proc = subprocess.run([PY, "-m", "tyanalysis", *args], cwd=str(cwd), capture_output=True,
+                          text=True, timeout=300, env=_env())
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    return proc.stdout
+
+
+def assert_png(path):
+    assert os.path.isfile(path) and os.path.getsize(path) > 10_000, path
+
+
+# ---------------------------------------------------------------------------------------------
+# fixtures: the specimens once per session, then one run of each deck
+
+
+@pytest.fixture(scope="session")
+def specimens(tmp_path_factory):
+    """tylmp_specimens/ with dense_quick and loose_quick, prepared as the decks do."""
+    work = _workdir(tmp_path_factory, "specimens")
+    procs = {}
+    start = time.time()
+    for kind in ("dense", "loose"):
+        deck = f"in.prepare_{kind}"
+        (work / deck).write_text(f"variable specimen index {kind}\nvariable scale index quick\n"
+                                 "include inputs/common/specimen.in\n")
+        procs[kind] = subprocess.Popen(_lmp_cmd(deck, None), cwd=str(work), text=True,
+                                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                       env=_env())
+    for kind, proc in procs.items():
+        out, _ = proc.communicate(timeout=TIMEOUT)
+        _check(proc.returncode, out, f"preparation of the {kind} specimen")
+        assert (work / "tylmp_specimens" / f"{kind}_quick.restart").is_file()
+    RUNTIMES["prepare dense + loose (parallel)"] = time.time() - start
+    return work / "tylmp_specimens"
+
+
+def run_deck(tmp_path_factory, specimens, name, variables=None, tag=None):
+    work = _workdir(tmp_path_factory, tag or name, specimens)
+    before = {f: os.path.getmtime(os.path.join(specimens, f)) for f in os.listdir(specimens)}
+    start = time.time()
+    proc = subprocess.run(_lmp_cmd(f"inputs/{name}.in", variables), cwd=str(work),
+                          capture_output=True, text=True, timeout=TIMEOUT, env=_env())
+    RUNTIMES[tag or name] = time.time() - start
+    out = proc.stdout + proc.stderr
+    _check(proc.returncode, out, f"inputs/{name}.in {variables or ''}")
+    # the cached specimen was reused, not prepared again
+    after = {f: os.path.getmtime(work / "tylmp_specimens" / f) for f in before}
+    assert after == before, "the deck prepared its specimen again instead of reusing it"
+    return work, out
+
+
+@pytest.fixture(scope="module")
+def axisym_dense(tmp_path_factory, specimens):
+    return run_deck(tmp_path_factory, specimens, "axisym")[0]
+
+
+@pytest.fixture(scope="module")
+def axisym_loose(tmp_path_factory, specimens):
+    # loose contraction is clear by 15 % deviator strain: half the default run
+    return run_deck(tmp_path_factory, specimens, "axisym",
+                    {"specimen": "loose", "strain": 0.15, "out": "axisym_loose"},
+                    tag="axisym_loose")[0]
+
+
+@pytest.fixture(scope="module")
+def friction(tmp_path_factory, specimens):
+    return run_deck(tmp_path_factory, specimens, "friction")[0]
+
+
+@pytest.fixture(scope="module")
+def radial(tmp_path_factory, specimens):
+    return run_deck(tmp_path_factory, specimens, "radial")[0]
+
+
+@pytest.fixture(scope="module")
+def cdst(tmp_path_factory, specimens):
+    return run_deck(tmp_path_factory, specimens, "cdst")[0]
+
+
+@pytest.fixture(scope="module", params=["cw", "ccw"])
+def plane_strain(request, tmp_path_factory, specimens):
+    rot = request.param
+    work = run_deck(tmp_path_factory, specimens, "plane_strain",
+                    None if rot == "cw" else {"rotation": rot}, tag=f"plane_strain_{rot}")[0]
+    return rot, work
+
+
+@pytest.fixture(scope="module", autouse=True)
+def report_runtimes():
+    yield
+    print("\nwall-clock seconds per deck run:")
+    for key, seconds in RUNTIMES.items():
+        print(f"  {key:34s} {seconds:7.1f}")
+
+
+def p_held(t, after, tol=0.01):
+    """max |p/P0 - 1| over the rows selected by `after`."""
+    assert after.sum() > 10
+    return float(np.max(np.abs(t["p"][after] / P0 - 1.0)))
+
+
+# ---------------------------------------------------------------------------------------------
+# axisymmetric compression (Figs 1-2)
+
+
+def test_axisym_csv_columns(axisym_dense):
+    t, names = read_csv(axisym_dense / "axisym.csv")
+    assert names == CSV_COLUMNS
+    assert len(t["step"]) > 100 and np.all(np.diff(t["step"]) > 0)
+    assert np.all(np.isfinite(t["p"])) and np.all(np.isfinite(t["eps_d13"]))
+    # the deck stops at its default end, 30 % deviator strain
+    assert 0.30 <= t["eps_d13"][-1] < 0.31
+
+
+def test_axisym_dense_dilates_and_softens(axisym_dense):
+    t, _ = read_csv(axisym_dense / "axisym.csv")
+    # dilation (compression positive: eps_v < 0) from the first per cent on, and a lot of it
+    late = t["eps_d13"] > 0.01
+    assert np.all(t["eps_v"][late] < 0.0)
+    assert t["eps_v"][-1] < -0.02
+    # a peak of the (smoothed) deviator stress, then softening towards the critical state
+    q = smooth(t["q"])
+    i_peak = int(np.argmax(q))
+    assert t["eps_d13"][i_peak] < 0.2
+    assert np.mean(t["q"][-20:]) < 0.9 * q[i_peak]
+    assert np.max(t["sinphi"]) > 0.38
+
+
+def test_axisym_loose_contracts(axisym_loose):
+    t, _ = read_csv(axisym_loose / "axisym_loose.csv")
+    assert t["eps_v"][-1] > 0.005
+    # no softening: the deviator stress at the end is close to its maximum
+    q = smooth(t["q"])
+    assert np.mean(t["q"][-20:]) > 0.85 * np.max(q)
+
+
+@pytest.mark.parametrize("which", ["dense", "loose"])
+def test_axisym_mean_stress_held(which, request):
+    work = request.getfixturevalue(f"axisym_{which}")
+    t, _ = read_csv(work / ("axisym.csv" if which == "dense" else "axisym_loose.csv"))
+    # after the first per cent (the servo first removes the ~4 % drop of p caused by
+    # switching the adhesion on) p stays within 1 % of 100 kPa
+    assert p_held(t, t["eps_d13"] > 0.01) < 0.01
+
+
+def test_axisym_figure(axisym_dense, axisym_loose, tmp_path):
+    out = tmp_path / "axisym.png"
+    cli("axisym", str(axisym_dense / "axisym.csv"), str(axisym_loose / "axisym_loose.csv"),
+        "--labels", "dense", "loose", "--out", str(out), cwd=tmp_path)
+    assert_png(out)
+
+
+# ---------------------------------------------------------------------------------------------
+# effect of interparticle friction (Fig 3)
+
+
+def test_friction_sinphi_grows_with_mu(friction):
+    mus = [0.0, 0.3, 1.0]
+    files = {mu: friction / f"friction_mu{label}.csv" for mu, label in zip(mus, ["0", "0.3", "1.0"])}
+    sinphi_max = []
+    for mu, f in files.items():
+        t, _ = read_csv(f)
+        assert 0.15 <= t["eps_d13"][-1] < 0.16
+        sinphi_max.append(float(np.max(smooth(t["sinphi"], 5))))
+        if mu > 0:      # the frictionless assembly has no stable force chains: p fluctuates
+            assert p_held(t, t["eps_d13"] > 0.01) < 0.01
+    assert sinphi_max[0] < sinphi_max[1] < sinphi_max[2], sinphi_max
+    assert sinphi_max[2] - sinphi_max[0] > 0.1
+
+
+def test_friction_figure(friction):
+    out = friction / "fig3.png"
+    text = cli("friction", *sorted(str(p) for p in friction.glob("friction_mu*.csv")),
+               "--out", str(out), cwd=friction)
+    assert "mu=0.3" in text and "mu=1" in text
+    assert_png(out)
+
+
+# ---------------------------------------------------------------------------------------------
+# radial deviatoric paths at constant b (Figs 4-6)
+
+B_VALUES = {"0": 0.0, "0.5": 0.5, "1": 1.0}
+
+
+def test_radial_b_and_p_held(radial):
+    for label, b in B_VALUES.items():
+        t, _ = read_csv(radial / f"radial_b{label}.csv")
+        loaded = t["q"] > 0.2 * t["p"]
+        assert loaded.sum() > 0.9 * len(loaded)
+        assert np.max(np.abs(t["b"][loaded] - b)) <= 0.01, label
+        assert p_held(t, t["eps_d13"] > 0.01) < 0.01, label
+
+
+def test_radial_strength_depends_on_b(radial):
+    """Paper section 4: extension (b = 1) is stronger than compression (Lade-Duncan, not
+    Matsuoka-Nakai), and the strength is largest near b = 0.5."""
+    smax = {label: float(np.max(smooth(read_csv(radial / f"radial_b{label}.csv")[0]["sinphi"], 5)))
+            for label in B_VALUES}
+    assert smax["1"] > smax["0"] + 0.02, smax
+    assert smax["0.5"] > smax["0"] + 0.02, smax
+
+
+def test_radial_figure(radial):
+    out = radial / "radial.png"
+    text = cli("radial", *[str(radial / f"radial_b{label}.csv") for label in B_VALUES],
+               "--out", str(out), cwd=radial)
+    assert "surfaces:" in text
+    assert_png(out)
+
+
+# ---------------------------------------------------------------------------------------------
+# non-radial paths (Figs 7-9)
+
+PRESTRAIN = 0.00285
+R0 = np.sqrt(2.0 / 3.0) * PRESTRAIN        # Pi radius of the pre-strain state A
+
+
+def _unwrap_deg(angle_deg):
+    return np.degrees(np.unwrap(np.radians(angle_deg)))
+
+
+def test_cdst_circle(cdst):
+    t, _ = read_csv(cdst / "cdst.csv")
+    r = np.hypot(t["pi_ex"], t["pi_ey"])
+    on_circle = t["progress"] > 1.0 / (1.0 + 2.0 * np.pi) + 0.01
+    assert on_circle.sum() > 100
+    # the deviatoric strain keeps its magnitude: radius within 1 % of 0.2327 %
+    assert np.max(np.abs(r[on_circle] / R0 - 1.0)) < 0.01
+    # the pre-strain ends at eps1 - eps3 = 0.285 %
+    i0 = int(np.flatnonzero(t["progress"] <= 1.0 / (1.0 + 2.0 * np.pi))[-1])
+    assert abs(t["eps_d13"][i0] - PRESTRAIN) < 0.03 * PRESTRAIN
+    # the strain Lode angle turns steadily clockwise (increasing) through the full circle
+    lode_e = _unwrap_deg(np.degrees(np.arctan2(t["pi_ex"][on_circle], t["pi_ey"][on_circle])))
+    assert np.all(np.diff(lode_e) > -0.5)
+    assert lode_e[-1] - lode_e[0] > 350.0
+    # ... and the stress follows it round: its Lode angle turns by a full circle too
+    lode_s = _unwrap_deg(t["lode_deg"][on_circle])
+    assert lode_s[-1] - lode_s[0] > 300.0
+    # after the sudden drop the deviatoric stress stays mobilised all the way round
+    assert np.min(t["q"][on_circle]) > 0.3 * np.max(t["q"])
+    assert p_held(t, t["progress"] > 0.02) < 0.01
+
+
+def test_cdst_figure(cdst):
+    out = cdst / "cdst.png"
+    cli("pi-plane", str(cdst / "cdst.csv"), "--out", str(out), cwd=cdst)
+    assert_png(out)
+
+
+# legs of the triangle as fractions of the path length (pre-strain r, legs sqrt(3) r,
+# 2 sqrt(3) r, 2 sqrt(3) r, sqrt(3) r) and the axis whose deviatoric strain each keeps fixed
+_L = 1.0 + 6.0 * np.sqrt(3.0)
+LEG_ENDS = np.array([1.0, 1.0 + np.sqrt(3.0), 1.0 + 3.0 * np.sqrt(3.0), 1.0 + 5.0 * np.sqrt(3.0),
+                     _L]) / _L
+FIXED_AXIS = {"cw": [0, 1, 2, 0], "ccw": [0, 2, 1, 0]}
+
+
+def test_plane_strain_legs(plane_strain):
+    rot, work = plane_strain
+    t, _ = read_csv(work / f"plane_strain_{rot}.csv")
+    eps = np.stack([t["eps1"], t["eps2"], t["eps3"]], axis=1)
+    dev = eps - eps.sum(axis=1, keepdims=True) / 3.0
+    s = t["progress"]
+    for leg, axis in enumerate(FIXED_AXIS[rot]):
+        lo, hi = LEG_ENDS[leg], LEG_ENDS[leg + 1]
+        on = (s > lo + 0.005) & (s < hi - 0.005)
+        assert on.sum() > 20
+        moving = max(np.ptp(dev[on, k]) for k in range(3) if k != axis)
+        fixed = np.ptp(dev[on, axis])
+        # a leg of Pi length l with e_k fixed moves the other two by -+ l/sqrt(2)
+        length = (hi - lo - 0.01) * _L * R0
+        assert moving > 0.9 * length / np.sqrt(2.0), (rot, leg, moving, length)
+        assert fixed < 0.02 * moving, (rot, leg, axis, fixed, moving)
+        # the total strain of that axis moves only by the volume change that holds p (a third
+        # of eps_v each): measured up to ~10 % of the moving strains on the dense specimen
+        assert np.ptp(eps[on, axis]) < 0.2 * moving, (rot, leg, np.ptp(eps[on, axis]), moving)
+    # the path closes: back at A, the pre-strain state, at the end
+    assert abs(np.hypot(t["pi_ex"][-1], t["pi_ey"][-1]) / R0 - 1.0) < 0.01
+    assert abs(np.degrees(np.arctan2(t["pi_ex"][-1], t["pi_ey"][-1]))) < 1.0
+    assert p_held(t, s > 0.02) < 0.01
+    # the stress turns with the strain, and further: over the first leg (strain Lode angle
+    # 0 -> 60 deg cw, 0 -> -60 deg ccw) the paper's stress turns by 79 deg
+    first = s > LEG_ENDS[0]
+    d_lode = _unwrap_deg(t["lode_deg"][first])
+    d_lode -= d_lode[0]
+    end_first_leg = int(np.searchsorted(s[first], LEG_ENDS[1]))
+    turned = d_lode[end_first_leg] * (1 if rot == "cw" else -1)
+    print(f"plane strain {rot}: stress Lode angle turned {turned:.1f} deg over the first leg")
+    assert 60.0 < turned < 140.0
+
+
+def test_plane_strain_figure(plane_strain):
+    rot, work = plane_strain
+    out = work / f"plane_strain_{rot}.png"
+    cli("pi-plane", str(work / f"plane_strain_{rot}.csv"), "--out", str(out), cwd=work)
+    assert_png(out)
