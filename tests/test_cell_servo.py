@@ -264,7 +264,15 @@ def test_circle_path(specimen, tmp_path, rotation):
 # 7. triangular (multi-axial plane strain) path
 
 
-def test_triangle_path(specimen, tmp_path):
+def deviator_from_pi(xy):
+    # inverse of the Pi coordinates for a traceless triple (physics.md §6)
+    ex = np.array([0.0, 1.0, -1.0]) / np.sqrt(2.0)
+    ey = np.array([2.0, -1.0, -1.0]) / np.sqrt(6.0)
+    return xy[0] * ex + xy[1] * ey
+
+
+@pytest.mark.parametrize("plane", ["total", "deviatoric"])
+def test_triangle_path(specimen, tmp_path, plane):
     prestrain, speed = 0.001, 4e-5
     r = prestrain * np.sqrt(2.0 / 3.0)
     # vertices (own geometry): A = r at Lode 0; B, C, D at 2r and Lode 60, 180, 300
@@ -281,12 +289,30 @@ def test_triangle_path(specimen, tmp_path):
     steps = int(1.03 * legs.sum() / (speed * DT)) + 200
     shear_run(specimen, tmp_path,
               f"fix sh all cell/servo triangle {prestrain} {P0} rotation cw speed {speed} "
-              "csv sh.csv 10", steps)
+              f"plane_strain {plane} csv sh.csv 10", steps)
     rows = read_csv(tmp_path / "sh.csv")
     eps = np.stack([rows[f"eps{k}"] for k in (1, 2, 3)])
     dev = eps - eps.mean(axis=0)          # deviatoric strain e_i
     x, y = strain_pi(rows)
     prog = rows["progress"]
+    if plane == "total":
+        # true plane strain (paper section 5): on legs A-B, B-C, C-D, D-A the total strain of
+        # axis 1, 2, 3, 1 does not move; each leg ends where the two free axes have the
+        # difference of its end vertex (e.g. B: eps2 - eps3 = e2 - e3 = 2d)
+        ends = (B, C, D, A)
+        for k, axis in zip(range(1, 5), (0, 1, 2, 0)):
+            inside = (prog > cum[k] + 0.005) & (prog < cum[k + 1] - 0.005)
+            assert inside.sum() > 10
+            assert np.all(rows[f"rate{axis + 1}"][inside] == 0.0), k
+            held = eps[axis][inside]
+            assert np.ptp(held) <= 1e-12 * max(np.max(np.abs(held)), prestrain), k
+            i, j = (axis + 1) % 3, (axis + 2) % 3
+            vertex = deviator_from_pi(ends[k - 1])
+            end_row = np.argmin(np.abs(prog - cum[k + 1]))
+            assert abs((eps[i] - eps[j])[end_row] - (vertex[i] - vertex[j])) < 0.02 * r, k
+        late = settled(rows)
+        assert np.max(np.abs(late["p"] / P0 - 1.0)) < 0.01
+        return
     # legs A-B, B-C, C-D, D-A keep e1, e2, e3, e1 fixed (plane strain of the deviator)
     for k, axis in zip(range(1, 5), (0, 1, 2, 0)):
         inside = (prog > cum[k] + 0.005) & (prog < cum[k + 1] - 0.005)

@@ -346,16 +346,19 @@ def test_plane_strain_legs(plane_strain):
         on = (s > lo + 0.005) & (s < hi - 0.005)
         assert on.sum() > 20
         moving = max(np.ptp(dev[on, k]) for k in range(3) if k != axis)
-        fixed = np.ptp(dev[on, axis])
-        # a leg of Pi length l with e_k fixed moves the other two by -+ l/sqrt(2)
+        # a leg of Pi length l with axis k fixed moves the other two by about -+ l/sqrt(2)
         length = (hi - lo - 0.01) * _L * R0
-        assert moving > 0.9 * length / np.sqrt(2.0), (rot, leg, moving, length)
-        assert fixed < 0.02 * moving, (rot, leg, axis, fixed, moving)
-        # the total strain of that axis moves only by the volume change that holds p (a third
-        # of eps_v each): measured up to ~10 % of the moving strains on the dense specimen
-        assert np.ptp(eps[on, axis]) < 0.2 * moving, (rot, leg, np.ptp(eps[on, axis]), moving)
+        assert moving > 0.8 * length / np.sqrt(2.0), (rot, leg, moving, length)
+        # true plane strain (the deck's default): the fixed axis does not move at all
+        assert np.all(t[f"rate{axis + 1}"][on] == 0.0), (rot, leg, axis)
+        assert np.ptp(eps[on, axis]) <= 1e-12 * max(np.max(np.abs(eps[on, axis])), 1e-3)
     # the path closes: back at A, the pre-strain state, at the end
-    assert abs(np.hypot(t["pi_ex"][-1], t["pi_ey"][-1]) / R0 - 1.0) < 0.01
+    # the path closes in kind: back in axisymmetric compression (Lode 0) at the end. Under
+    # true plane strain the volume change holding p is taken by the free axes only, so the
+    # radius differs from A by the dilatancy of the cycle (measured 0.87 R0 cw, 0.85 ccw)
+    radius = np.hypot(t["pi_ex"][-1], t["pi_ey"][-1]) / R0
+    print(f"plane strain {rot}: end radius {radius:.3f} R0, eps_v {t['eps_v'][-1]:.2e}")
+    assert abs(radius - 1.0) < 0.2
     assert abs(np.degrees(np.arctan2(t["pi_ex"][-1], t["pi_ey"][-1]))) < 1.0
     assert p_held(t, s > 0.02) < 0.01
     # the stress turns with the strain, and further: over the first leg (strain Lode angle

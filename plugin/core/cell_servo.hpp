@@ -339,15 +339,48 @@ inline ServoCommand servo_step(const MixedControl& control, const CellMeasuremen
   return command;
 }
 
-// constant p* while the deviatoric strain follows a Pi-plane path at speed v (|de/dt|)
+// Multi-axial plane-strain leg (paper section 5: "no strain was permitted in the
+// 1-direction"): the fixed axis k has zero total strain rate; the free axes i, j take the
+// leg's difference rate (d_i - d_j)/2 (e_i - e_j), and the p servo acts on e_i + e_j only.
+// The Pi-plane point then also moves by the volume change of the free axes (dilatancy), which
+// a purely deviatoric leg would hide in the fixed axis.
+inline MixedControl plane_strain_control(double mean_stress,
+                                         const Eigen::Vector3d& deviatoric_strain_rate,
+                                         int fixed_axis)
+{
+  require_positive_stress("p", mean_stress);
+  require_axis_index(fixed_axis);
+  const int i = (fixed_axis + 1) % 3, j = (fixed_axis + 2) % 3;
+  const double half_difference =
+      0.5 * (deviatoric_strain_rate(i) - deviatoric_strain_rate(j));
+  MixedControl c;
+  c.prescribed_strain_rate(i) = half_difference;
+  c.prescribed_strain_rate(j) = -half_difference;
+  Eigen::Vector3d free_axes = Eigen::Vector3d::Ones();
+  free_axes(fixed_axis) = 0.0;
+  c.add(free_axes, Eigen::Vector3d::Constant(1.0 / 3.0), mean_stress);
+  return c;
+}
+
+enum class PlaneStrain { TOTAL, DEVIATORIC };
+
+// constant p* while the deviatoric strain follows a Pi-plane path at speed v (|de/dt|); on a
+// leg with a zero deviatoric rate along one axis, PlaneStrain::TOTAL also keeps that axis'
+// total strain rate at zero (true plane strain), DEVIATORIC lets the p servo act on all axes
 inline ServoCommand path_servo_step(const PiPath& path, double speed, double mean_stress,
                                     const CellMeasurement& cell, const ServoSettings& settings,
-                                    double dt, ServoMemory& memory)
+                                    double dt, ServoMemory& memory,
+                                    PlaneStrain plane_strain = PlaneStrain::TOTAL)
 {
+  const int leg = path.segment_at(std::clamp(memory.path_length, 0.0, path.length()));
+  const int fixed_axis = plane_strain == PlaneStrain::TOTAL
+                             ? plane_strain_axis(path.segments()[leg]) : -1;
   const PathStep step = follow_path(path, memory.path_length, cell.strain, speed, dt);
   memory.path_length = step.path_length;
-  return servo_step(mean_stress_control(mean_stress, step.deviatoric_strain_rate), cell,
-                    settings, dt, memory);
+  const MixedControl control =
+      fixed_axis >= 0 ? plane_strain_control(mean_stress, step.deviatoric_strain_rate, fixed_axis)
+                      : mean_stress_control(mean_stress, step.deviatoric_strain_rate);
+  return servo_step(control, cell, settings, dt, memory);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -30,7 +30,7 @@ inline double effective_radius(double R1, double R2) { return R1 * R2 / (R1 + R2
 // Mindlin-Deresiewicz branch of the tangential law (physics.md §2.1: k = 0, 1, 2)
 enum TangentialMode : int { LOADING = 0, UNLOADING = 1, RELOADING = 2 };
 
-// Per-contact memory, stored verbatim in LAMMPS' contact history (13 doubles).
+// Per-contact memory, stored verbatim in LAMMPS' contact history (14 doubles).
 // Vectors are in the lab frame and belong to particle i of the pair (force on i).
 struct ContactHistory {
   double T[3];          // tangential force on i
@@ -43,15 +43,25 @@ struct ContactHistory {
   double sliding;       // 1 if the contact is at the sliding limit this step
   double stored_energy; // tangential elastic energy = tangential work - frictional dissipation
                         // (a path quantity: the incremental law has no potential when P varies)
+  double radius;        // JKR contact radius of the last evaluated step: warm start of the
+                        // delta -> a inversion (jkr::contact_radius_warm); 0 = none yet
 };
 
-constexpr int history_size = 13;
+constexpr int history_size = 14;
 static_assert(sizeof(ContactHistory) == history_size * sizeof(double),
               "ContactHistory must be a packed array of doubles");
 
 // the pair seen from j: vectors flip sign, scalars stay
 constexpr double history_transfer_sign[history_size] = {-1, -1, -1, -1, -1, -1,
-                                                        1,  1,  1,  1,  1,  1, 1};
+                                                        1,  1,  1,  1,  1,  1, 1, 1};
+
+// optional parts of ContactResult (evaluate_contact's `parts`); parts not asked for are 0
+enum ResultParts : unsigned {
+  RESULT_FORCES = 0,                  // P, contact_radius, T, tangential_energy, dissipation, flags
+  RESULT_NORMAL_ENERGY = 1u << 0,     // + normal_energy
+  RESULT_TANGENTIAL_RADIUS = 1u << 1, // + tangential_radius
+  RESULT_ALL = RESULT_NORMAL_ENERGY | RESULT_TANGENTIAL_RADIUS
+};
 
 struct ContactResult {
   double P;                   // normal force, positive repulsive

@@ -27,7 +27,7 @@ inline constexpr double savkoor_briggs_shear_factor = 0.25;
 // a_T^3 = 3R*(P + 2Pc)/(4E*): Hertz radius of the effective load (physics.md §2.2 stage B)
 inline double micro_slip_radius(double R, double E, double effective_load)
 {
-  return std::cbrt(3.0 * R * std::max(effective_load, 0.0) / (4.0 * E));
+  return jkr::fast_cbrt(3.0 * R * std::max(effective_load, 0.0) / (4.0 * E));
 }
 
 // 4 P Pc + 4 Pc^2 - T^2 E*/(4G*); peeling ends where it vanishes          (physics.md §2.2)
@@ -40,8 +40,8 @@ inline double peeling_discriminant(const PairCoefficients& c, double P, double P
 inline double peeled_radius(const PairCoefficients& c, double R, double P, double Pc,
                             double discriminant)
 {
-  return std::cbrt(3.0 * R * (P + 2.0 * Pc + std::sqrt(std::max(discriminant, 0.0))) /
-                   (4.0 * c.E_star));
+  return jkr::fast_cbrt(3.0 * R * (P + 2.0 * Pc + std::sqrt(std::max(discriminant, 0.0))) /
+                        (4.0 * c.E_star));
 }
 
 // T_c = 4 sqrt(Pc (P + Pc) G*/E*): tangential force at the end of peeling (physics.md §2.2)
@@ -79,20 +79,30 @@ inline void begin_contact(ContactHistory& h, double P_now, bool adhesive)
 
 // carry the stored vectors with the contact: onto the new tangent plane (magnitude kept), then
 // about the normal by the mean spin of the two spheres, twist = (w_i + w_j).n dt / 2
+// (per-step twists are tiny: below 1e-3 rad the Taylor polynomials of cos and sin, whose
+// remainders t^6/720 and t^7/5040 are < 1.5e-21, replace the libm calls exactly to round-off)
 inline void rotate_history(ContactHistory& h, const Eigen::Vector3d& n, double twist)
 {
-  const double c = std::cos(twist), s = std::sin(twist);
+  double c, s;
+  if (std::abs(twist) < 1e-3) {
+    const double t2 = twist * twist;
+    c = 1.0 - t2 * (0.5 - t2 * (1.0 / 24.0));
+    s = twist * (1.0 - t2 * (1.0 / 6.0 - t2 * (1.0 / 120.0)));
+  } else {
+    c = std::cos(twist);
+    s = std::sin(twist);
+  }
   for (double* v : {h.T, h.load_dir}) {
     Eigen::Map<Eigen::Vector3d> x(v);
-    const double magnitude = x.norm();
-    if (magnitude == 0.0) continue;
+    const double magnitude2 = x.squaredNorm();
+    if (magnitude2 == 0.0) continue;
     x -= x.dot(n) * n;
-    const double in_plane = x.norm();
-    if (in_plane == 0.0) {
+    const double in_plane2 = x.squaredNorm();
+    if (in_plane2 == 0.0) {
       x.setZero();
       continue;
     }
-    x *= magnitude / in_plane;
+    x *= std::sqrt(magnitude2 / in_plane2);
     if (twist != 0.0) x = (c * x + s * n.cross(x)).eval();
   }
 }
@@ -141,8 +151,10 @@ inline double annulus_dissipation_rate(double limit, double theta)
 //    is continuous in ds and dP (a reversal only moves T*/T** memory, not the force).
 //  * at the sliding limit (previous step slid, loading branch) theta = 0 exactly instead of
 //    cbrt of a round-off-sized theta^3.
-inline double micro_slip_step(const PairCoefficients& c, double R, double effective_load, double dP,
-                              const Eigen::Vector3d& ds, ContactHistory& h, bool at_limit)
+//  stiffness = 8G* a_T(effective_load), computed once by the caller.
+inline double micro_slip_step(const PairCoefficients& c, double stiffness, double effective_load,
+                              double dP, const Eigen::Vector3d& ds, ContactHistory& h,
+                              bool at_limit)
 {
   Eigen::Map<Eigen::Vector3d> T(h.T), dir(h.load_dir);
   if (dir.squaredNorm() == 0.0) {
@@ -153,7 +165,6 @@ inline double micro_slip_step(const PairCoefficients& c, double R, double effect
     at_limit = false;
   }
   const double limit = c.mu * effective_load;
-  const double stiffness = 8.0 * c.G_star * micro_slip_radius(R, c.E_star, effective_load);
   const double s = ds.dot(dir);
   const Eigen::Vector3d ds_perp = ds - s * dir;
   const double ks = stiffness * s, mu_dP = c.mu * dP;
@@ -183,7 +194,7 @@ inline double micro_slip_step(const PairCoefficients& c, double R, double effect
     const double t3 = (mode == LOADING && at_limit)
                           ? 0.0
                           : theta_cubed(mode, T_along, h, c.mu, effective_load, dP);
-    const double theta = std::cbrt(t3);
+    const double theta = jkr::fast_cbrt(t3);
     const double sign = (mode == UNLOADING) ? -1.0 : 1.0;
     dT_par = theta * ks + sign * mu_dP * (1.0 - theta);
     dissipation = annulus_dissipation_rate(limit, theta) * std::abs(s);
@@ -225,9 +236,12 @@ inline bool cap_at_limit(Eigen::Map<Eigen::Vector3d>& T, double limit, double st
 //               + gross sliding loss (mu Peff x slip at the Coulomb cap), never negative;
 //   stored energy += tangential work 0.5 (T_old + T_new).ds - dissipation.
 // Elastic steps (theta = 1, peeling below T_c) therefore dissipate exactly nothing.
+// hertz_radius: the contact radius a(delta), if the caller has it (< 0: not given). Without
+// adhesion (Pc = 0) it is the micro-slip radius (a_T^3 = 3R*P/(4E*) = a^3, physics.md §1.6), so
+// the cube root is skipped; the two differ by round-off only.
 template <bool Adhesive>
 inline void tangential_step(const PairCoefficients& c, double R, double P, const Eigen::Vector3d& ds,
-                            ContactHistory& h, double& dissipation)
+                            ContactHistory& h, double& dissipation, double hertz_radius = -1.0)
 {
   Eigen::Map<Eigen::Vector3d> T(h.T);
   const Eigen::Vector3d T_old = T;
@@ -253,7 +267,7 @@ inline void tangential_step(const PairCoefficients& c, double R, double P, const
     return;
   }
 
-  double stiffness = 8.0 * c.G_star * micro_slip_radius(R, c.E_star, effective_load);
+  double stiffness = 0.0;    // k_T of this step: peeled or micro-slip radius
   bool peeled_step = false;
   if (Adhesive && h.peeling != 0.0) {    // stage A: Savkoor-Briggs peeling, elastic
     const double before = peeling_discriminant(c, P, Pc, T.squaredNorm());
@@ -266,9 +280,13 @@ inline void tangential_step(const PairCoefficients& c, double R, double P, const
       h.peeling = 0.0;
     }
   }
-  if (!peeled_step)    // stage B: micro-slip (with Pc = 0 exactly Hertz-Mindlin-Deresiewicz)
-    lost += detail::micro_slip_step(c, R, effective_load, dP, ds, h,
+  if (!peeled_step) {    // stage B: micro-slip (with Pc = 0 exactly Hertz-Mindlin-Deresiewicz)
+    stiffness = 8.0 * c.G_star *
+        ((Pc == 0.0 && hertz_radius >= 0.0) ? hertz_radius
+                                             : micro_slip_radius(R, c.E_star, effective_load));
+    lost += detail::micro_slip_step(c, stiffness, effective_load, dP, ds, h,
                                     was_sliding && h.mode == LOADING);
+  }
   if (detail::cap_at_limit(T, sliding_limit, stiffness, lost)) {    // stage C: gross sliding
     Eigen::Map<Eigen::Vector3d>(h.load_dir) = T.normalized();
     h.mode = LOADING;

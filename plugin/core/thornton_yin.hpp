@@ -31,27 +31,39 @@ inline double normal_force_of_radius(const PairCoefficients& c, double R, double
 
 // Advance one contact by one step: overlap delta now, tangential displacement increment ds of j
 // relative to i at the contact (already rotated into the current tangent plane, see
-// rotate_history). h must have been started by begin_contact.
+// rotate_history). h must have been started by begin_contact. The JKR radius is found by Newton
+// warm-started from the previous step's (h.radius; closed form on the first step, physics.md
+// §1.4). `parts` selects the optional outputs (ResultParts); the others are left at 0.
 template <bool Adhesive>
 inline ContactResult evaluate_contact(const PairCoefficients& c, double R, double delta,
-                                      const Eigen::Vector3d& ds, ContactHistory& h)
+                                      const Eigen::Vector3d& ds, ContactHistory& h,
+                                      unsigned parts = RESULT_ALL)
 {
   ContactResult r{};
-  r.contact_radius = normal_contact_radius<Adhesive>(c, R, delta);
+  r.contact_radius = Adhesive ? jkr::contact_radius_warm(delta, R, c.E_star, c.Gamma, h.radius)
+                              : std::sqrt(R * std::max(delta, 0.0));
+  h.radius = r.contact_radius;
   r.P = normal_force_of_radius<Adhesive>(c, R, r.contact_radius);
   r.dissipation = 0.0;
-  tangential_step<Adhesive>(c, R, r.P, ds, h, r.dissipation);
+  tangential_step<Adhesive>(c, R, r.P, ds, h, r.dissipation, r.contact_radius);
 
-  const double Pc = effective_pull_off<Adhesive>(c, R);
-  if (Adhesive && h.peeling != 0.0) {
-    const Eigen::Map<const Eigen::Vector3d> T(h.T);
-    r.tangential_radius = peeled_radius(c, R, r.P, Pc, peeling_discriminant(c, r.P, Pc, T.squaredNorm()));
-  } else {
-    r.tangential_radius = micro_slip_radius(R, c.E_star, r.P + 2.0 * Pc);
+  if (parts & RESULT_TANGENTIAL_RADIUS) {
+    const double Pc = effective_pull_off<Adhesive>(c, R);
+    if (Adhesive && h.peeling != 0.0) {
+      const Eigen::Map<const Eigen::Vector3d> T(h.T);
+      r.tangential_radius =
+          peeled_radius(c, R, r.P, Pc, peeling_discriminant(c, r.P, Pc, T.squaredNorm()));
+    } else {
+      r.tangential_radius = (Pc == 0.0) ? r.contact_radius
+                                        : micro_slip_radius(R, c.E_star, r.P + 2.0 * Pc);
+    }
   }
   r.T = Eigen::Map<const Eigen::Vector3d>(h.T);
-  r.normal_energy = Adhesive ? jkr::stored_energy(r.contact_radius, R, c.E_star, c.Gamma)
-                             : 8.0 * c.E_star * std::pow(r.contact_radius, 5) / (15.0 * R * R);
+  if (parts & RESULT_NORMAL_ENERGY) {
+    const double a = r.contact_radius, a2 = a * a;
+    r.normal_energy = Adhesive ? jkr::stored_energy(a, R, c.E_star, c.Gamma)
+                               : 8.0 * c.E_star * (a2 * a2 * a) / (15.0 * R * R);
+  }
   r.tangential_energy = tangential_energy(c, R, r.P, h);
   r.sliding = h.sliding != 0.0;
   r.peeling = h.peeling != 0.0;

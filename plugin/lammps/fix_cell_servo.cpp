@@ -71,7 +71,7 @@ int axis_index(const char *name)
 
 FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), target_p(0.0), major_axis(0), major_rate(0.0), b_target(0.0),
-    path_speed(0.0), inertial_cap(1e-3), equilibrium_every(0), equilibrium_reached(0),
+    path_speed(0.0), prestrain(0.0), inertial_cap(1e-3), equilibrium_every(0), equilibrium_reached(0),
     boundary_work(0.0), restored(0), contacts(0.0), sliding(0.0), force_sum(0.0),
     measured_step(-1), output_step(-1), mean_diameter(0.0), mean_density(0.0),
     solid_volume(0.0), pressure(nullptr), pair(nullptr), tally_flag(nullptr), csv_every(0),
@@ -237,47 +237,11 @@ void FixCellServo::parse_mode(int narg, char **arg, int &iarg)
   } else if (name == "circle" || name == "triangle") {
     mode = Mode::PATH;
     need(2);
-    const double prestrain = utils::numeric(FLERR, arg[iarg++], false, lmp);
+    prestrain = utils::numeric(FLERR, arg[iarg++], false, lmp);
     if (!(prestrain > 0.0))
       error->all(FLERR, "fix cell/servo {}: pre-strain {} must be positive", name, prestrain);
     target_p = stress_arg("mean stress p");
-    // options of the path itself, read here because they shape it
-    auto rotation = tycore::Rotation::CLOCKWISE;
-    auto measure = tycore::DeviatoricStrainMeasure::STRAIN_DIFFERENCE_13;
-    bool with_prestrain = true;
-    double sweep = 360.0;
-    while (iarg < narg) {
-      const std::string key = arg[iarg];
-      if (key == "rotation" && iarg + 1 < narg) {
-        if (strcmp(arg[iarg + 1], "cw") == 0) rotation = tycore::Rotation::CLOCKWISE;
-        else if (strcmp(arg[iarg + 1], "ccw") == 0) rotation = tycore::Rotation::ANTICLOCKWISE;
-        else error->all(FLERR, "fix cell/servo {}: rotation must be cw or ccw", name);
-      } else if (key == "measure" && iarg + 1 < narg) {
-        if (strcmp(arg[iarg + 1], "d13") == 0)
-          measure = tycore::DeviatoricStrainMeasure::STRAIN_DIFFERENCE_13;
-        else if (strcmp(arg[iarg + 1], "q") == 0)
-          measure = tycore::DeviatoricStrainMeasure::EPS_Q;
-        else error->all(FLERR, "fix cell/servo {}: measure must be d13 or q", name);
-      } else if (key == "prestrain_leg" && iarg + 1 < narg) {
-        with_prestrain = strcmp(arg[iarg + 1], "yes") == 0;
-        if (!with_prestrain && strcmp(arg[iarg + 1], "no") != 0)
-          error->all(FLERR, "fix cell/servo {}: prestrain_leg must be yes or no", name);
-      } else if (key == "sweep" && iarg + 1 < narg && name == "circle") {
-        sweep = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-        if (!(sweep > 0.0)) error->all(FLERR, "fix cell/servo circle: sweep must be positive");
-      } else {
-        break;
-      }
-      iarg += 2;
-    }
-    try {
-      path = name == "circle"
-          ? tycore::constant_deviatoric_strain_path(prestrain, measure, rotation, with_prestrain,
-                                                    sweep)
-          : tycore::multiaxial_plane_strain_path(prestrain, measure, rotation, with_prestrain);
-    } catch (std::exception &e) {
-      error->all(FLERR, "fix cell/servo {}: {}", name, e.what());
-    }
+    path_kind = name;    // built in parse_keywords(), after its options
   } else if (name == "polygon") {
     mode = Mode::PATH;
     need(1);
@@ -303,6 +267,10 @@ void FixCellServo::parse_mode(int narg, char **arg, int &iarg)
 void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
 {
   settings.max_strain_rate = 0.0;    // 0: default set in init() from the inertial number
+  auto rotation = tycore::Rotation::CLOCKWISE;
+  auto measure = tycore::DeviatoricStrainMeasure::STRAIN_DIFFERENCE_13;
+  bool with_prestrain = true;
+  double sweep = 360.0;
   while (iarg < narg) {
     const std::string key = arg[iarg];
     auto value = [&](int k = 1) {
@@ -310,7 +278,46 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
         error->all(FLERR, "fix cell/servo: keyword '{}' needs a value", key);
       return arg[iarg + k];
     };
-    if (key == "speed") {
+    auto path_only = [&]() {
+      if (mode != Mode::PATH)
+        error->all(FLERR, "fix cell/servo: keyword '{}' applies only to circle, triangle and "
+                   "polygon paths", key);
+    };
+    if (key == "rotation") {
+      path_only();
+      const std::string v = value();
+      if (v == "cw") rotation = tycore::Rotation::CLOCKWISE;
+      else if (v == "ccw") rotation = tycore::Rotation::ANTICLOCKWISE;
+      else error->all(FLERR, "fix cell/servo: rotation must be cw or ccw, got '{}'", v);
+      iarg += 2;
+    } else if (key == "measure") {
+      path_only();
+      const std::string v = value();
+      if (v == "d13") measure = tycore::DeviatoricStrainMeasure::STRAIN_DIFFERENCE_13;
+      else if (v == "q") measure = tycore::DeviatoricStrainMeasure::EPS_Q;
+      else error->all(FLERR, "fix cell/servo: measure must be d13 or q, got '{}'", v);
+      iarg += 2;
+    } else if (key == "prestrain_leg") {
+      path_only();
+      const std::string v = value();
+      if (v != "yes" && v != "no")
+        error->all(FLERR, "fix cell/servo: prestrain_leg must be yes or no, got '{}'", v);
+      with_prestrain = v == "yes";
+      iarg += 2;
+    } else if (key == "sweep") {
+      if (path_kind != "circle")
+        error->all(FLERR, "fix cell/servo: keyword 'sweep' applies only to the circle path");
+      sweep = utils::numeric(FLERR, value(), false, lmp);
+      if (!(sweep > 0.0)) error->all(FLERR, "fix cell/servo circle: sweep must be positive");
+      iarg += 2;
+    } else if (key == "plane_strain") {
+      path_only();
+      const std::string v = value();
+      if (v == "total") plane_strain = tycore::PlaneStrain::TOTAL;
+      else if (v == "deviatoric") plane_strain = tycore::PlaneStrain::DEVIATORIC;
+      else error->all(FLERR, "fix cell/servo: plane_strain must be total or deviatoric, got '{}'", v);
+      iarg += 2;
+    } else if (key == "speed") {
       path_speed = utils::numeric(FLERR, value(), false, lmp);
       if (!(path_speed > 0.0))
         error->all(FLERR, "fix cell/servo: path speed must be positive, got {}", path_speed);
@@ -363,6 +370,16 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
       iarg += 2;
     } else {
       error->all(FLERR, "fix cell/servo: unknown keyword '{}'", key);
+    }
+  }
+  if (!path_kind.empty()) {
+    try {
+      path = path_kind == "circle"
+          ? tycore::constant_deviatoric_strain_path(prestrain, measure, rotation, with_prestrain,
+                                                    sweep)
+          : tycore::multiaxial_plane_strain_path(prestrain, measure, rotation, with_prestrain);
+    } catch (std::exception &e) {
+      error->all(FLERR, "fix cell/servo {}: {}", path_kind, e.what());
     }
   }
   if (mode == Mode::PATH && !(path_speed > 0.0))
@@ -594,7 +611,8 @@ void FixCellServo::end_of_step()
   tycore::ServoCommand command;
   try {
     command = mode == Mode::PATH
-        ? tycore::path_servo_step(path, path_speed, target_p, cell, settings, update->dt, memory)
+        ? tycore::path_servo_step(path, path_speed, target_p, cell, settings, update->dt, memory,
+                                  plane_strain)
         : tycore::servo_step(current_control(), cell, settings, update->dt, memory);
   } catch (std::exception &e) {
     error->all(FLERR, "fix cell/servo: {}", e.what());

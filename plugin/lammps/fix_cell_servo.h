@@ -58,6 +58,9 @@ class FixCellServo : public Fix {
   AxisInput axis_input[3];
   tycore::PiPath path;
   double path_speed;               // Pi-plane speed |de/dt| [1/s]
+  std::string path_kind;           // circle, triangle (built after the keywords) or empty
+  double prestrain;                // circle, triangle
+  tycore::PlaneStrain plane_strain = tycore::PlaneStrain::TOTAL;
   tycore::ServoSettings settings;
   double inertial_cap;             // default cap: strain rate at this inertial number
 

@@ -499,7 +499,7 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
       const double delta = radsum - r;
       const double share = (newton_pair || j < nlocal) ? 1.0 : 0.5;
 
-      if (touch[jj]) {
+      if (touch[jj] && delta < 0.0) {    // delta_f <= 0: only tensile contacts can break
         const double delta_break = ADHESIVE ? tycore::jkr::break_overlap(R, c.E_star, c.Gamma)
                                             : 0.0;
         if (delta < delta_break) {    // Thornton & Yin (1991): separation at delta_f
@@ -525,6 +525,7 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
         const double a = ADHESIVE ? tycore::jkr::contact_radius(delta, R, c.E_star, c.Gamma)
                                   : std::sqrt(R * delta);
         tycore::begin_contact(h, tycore::jkr::normal_force(a, R, c.E_star, c.Gamma), ADHESIVE);
+        h.radius = a;    // warm start of this step's radius
       } else {
         h = load_history(slot);
       }
@@ -559,14 +560,16 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
         tycore::rotate_history(h, normal, twist);
         // tangential displacement of j relative to i at the contact this step
         const Eigen::Vector3d ds(-vt1 * dt, -vt2 * dt, -vt3 * dt);
-        const tycore::ContactResult res = tycore::evaluate_contact<ADHESIVE>(c, R, delta, ds, h);
+        const tycore::ContactResult res = tycore::evaluate_contact<ADHESIVE>(
+            c, R, delta, ds, h, eflag_either ? tycore::RESULT_NORMAL_ENERGY : tycore::RESULT_FORCES);
         P = res.P;
         contact_radius = res.contact_radius;
         stored_energy = res.normal_energy + res.tangential_energy;
         dissipated_friction += share * res.dissipation;
       } else {
-        contact_radius = ADHESIVE ? tycore::jkr::contact_radius(delta, R, c.E_star, c.Gamma)
-                                  : std::sqrt(R * delta);
+        contact_radius = ADHESIVE
+            ? tycore::jkr::contact_radius_warm(delta, R, c.E_star, c.Gamma, h.radius)
+            : std::sqrt(R * delta);
         P = tycore::jkr::normal_force(contact_radius, R, c.E_star, c.Gamma);
         if (eflag)
           stored_energy = tycore::jkr::stored_energy(contact_radius, R, c.E_star, c.Gamma) +

@@ -249,3 +249,38 @@ TEST(CellServo, EquilibriumNeedsAWindowOfPassingSamples)
   EXPECT_FALSE(update_equilibrium(state, shaking, criteria).reached);
   EXPECT_EQ(state.passing_samples, 0);
 }
+
+// multi-axial plane strain (paper section 5): on every plane-strain leg the fixed axis has
+// exactly zero total strain rate while p is held by the two free axes
+TEST(CellServo, TrianglePathHoldsTotalPlaneStrain)
+{
+  Plant plant = make_plant(0.3, p_target);
+  plant.drift = Eigen::Vector3d::Constant(-1e-4 * p_target);   // dilatancy to compensate
+  ServoSettings s = settings_with_cap(1.0);
+  ServoMemory memory;
+  const PiPath path = multiaxial_plane_strain_path(
+      0.00285, DeviatoricStrainMeasure::STRAIN_DIFFERENCE_13, Rotation::CLOCKWISE, true);
+  const double speed = 1e-2;
+  const int steps = static_cast<int>(path.length() / (speed * dt)) + 10;
+  int plane_strain_steps = 0;
+  for (int n = 0; n < steps; ++n) {
+    const int leg = path.segment_at(memory.path_length);
+    const int fixed = plane_strain_axis(path.segments()[leg]);
+    const ServoCommand c =
+        path_servo_step(path, speed, p_target, plant.measure(), s, dt, memory);
+    if (fixed >= 0 && memory.path_length < path.segment_end(leg)) {
+      EXPECT_EQ(c.strain_rate(fixed), 0.0);
+      ++plane_strain_steps;
+    }
+    plant.apply(c.strain_rate, dt);
+    if (n > 100) EXPECT_NEAR(plant.stress.mean(), p_target, 1e-3 * p_target);
+  }
+  EXPECT_GT(plane_strain_steps, steps / 2);
+  // the deviatoric variant shares the volume change among all three axes instead
+  ServoMemory deviatoric;
+  deviatoric.path_length = path.segment_end(0) + 1e-6;
+  Plant other = make_plant(0.3, 0.99 * p_target);
+  const ServoCommand c = path_servo_step(path, speed, p_target, other.measure(), s, dt,
+                                         deviatoric, PlaneStrain::DEVIATORIC);
+  EXPECT_NE(c.strain_rate(0), 0.0);
+}

@@ -1,0 +1,104 @@
+// The hot-loop numerics of the contact law (plugin/core/jkr.hpp): tycore::jkr::fast_cbrt
+// against std::cbrt, and the warm-started delta -> a inversion jkr::contact_radius_warm against
+// the closed form of physics.md §1.4a and an independent bisection.
+#include "contact_types.hpp"
+#include "jkr.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+namespace {
+
+namespace jkr = tycore::jkr;
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kE = 70e9, kNu = 0.3, kRstar = 5e-5;
+const double kEstar = kE / (2.0 * (1.0 - kNu * kNu));
+
+// fast_cbrt: two Halley steps and one Newton step from a 3.3 % guess; stated tolerance 1e-15
+// relative (about 4.5 ulps; the measured worst case is ~3 ulps)
+constexpr double kCbrtTol = 1e-15;
+
+double rel(double a, double b) { return std::abs(a - b) / std::abs(b); }
+
+}    // namespace
+
+TEST(FastCbrt, MatchesStdCbrtOverTheWholeNormalRange)
+{
+  std::mt19937_64 gen(12345);
+  std::uniform_real_distribution<double> exponent(-307.0, 307.0);
+  double worst = 0.0;
+  for (int k = 0; k < 2000000; ++k) {
+    const double x = std::pow(10.0, exponent(gen));
+    worst = std::max(worst, rel(jkr::fast_cbrt(x), std::cbrt(x)));
+  }
+  EXPECT_LE(worst, kCbrtTol);
+}
+
+TEST(FastCbrt, MatchesStdCbrtOnUnitIntervalAndExactCubes)
+{
+  double worst = 0.0;
+  for (int k = 1; k <= 1000000; ++k) {    // theta^3 in (0, 1], densely
+    const double x = k * 1e-6;
+    worst = std::max(worst, rel(jkr::fast_cbrt(x), std::cbrt(x)));
+  }
+  for (int m = 1; m < 3000; ++m) {    // exact cubes: within the tolerance of the integer
+    const double y = m * 0.125;
+    worst = std::max(worst, rel(jkr::fast_cbrt(y * y * y), y));
+  }
+  for (double x : {std::numeric_limits<double>::min(), std::numeric_limits<double>::max(), 1.0,
+                   8.0, 0.125, 2.0, 3.0})
+    worst = std::max(worst, rel(jkr::fast_cbrt(x), std::cbrt(x)));
+  EXPECT_LE(worst, kCbrtTol);
+}
+
+TEST(FastCbrt, SpecialArgumentsAsStdCbrt)
+{
+  EXPECT_EQ(jkr::fast_cbrt(0.0), 0.0);
+  EXPECT_EQ(jkr::fast_cbrt(-8.0), -2.0);
+  EXPECT_EQ(jkr::fast_cbrt(-0.0), 0.0);
+  const double denormal = std::numeric_limits<double>::denorm_min() * 1000.0;
+  EXPECT_EQ(jkr::fast_cbrt(denormal), std::cbrt(denormal));
+  EXPECT_TRUE(std::isinf(jkr::fast_cbrt(std::numeric_limits<double>::infinity())));
+  EXPECT_TRUE(std::isnan(jkr::fast_cbrt(std::numeric_limits<double>::quiet_NaN())));
+}
+
+// warm-started Newton in sqrt(a): <= 1e-12 relative to the closed form along a quasi-static path
+// (1-3 iterations), after large jumps, from bad guesses (below the break radius, 0, negative:
+// closed form) and on the first step of a contact (guess 0)
+TEST(JkrWarmInversion, MatchesClosedFormAlongPathsAndJumps)
+{
+  for (double Gamma : {0.3, 0.6, 3.0}) {
+    const double Pc = 3.0 * kPi * Gamma * kRstar;
+    const double a0 = std::cbrt(3.0 * kRstar * Pc / kEstar), du = a0 * a0 / kRstar;
+    // quasi-static path, compressive to just above the break and back
+    double a = 0.0;
+    int worst_it = 0;
+    for (int i = 0; i < 20000; ++i) {
+      const double d = du * (2.0 - 2.26 * std::sin(kPi * i / 20000.0));    // down to -0.26 du
+      int it = 0;
+      a = jkr::contact_radius_warm(d, kRstar, kEstar, Gamma, a, &it);
+      const double closed = jkr::contact_radius(d, kRstar, kEstar, Gamma);
+      ASSERT_NEAR(a, closed, 1e-12 * closed) << Gamma << " " << i;
+      if (i > 0) worst_it = std::max(worst_it, it);
+    }
+    EXPECT_GE(worst_it, 1);
+    EXPECT_LE(worst_it, 4);
+    // jumps between any two states, and unusable guesses
+    const double ds[] = {-0.27, -0.2, -0.13, 0.0, 0.3, 1.0, 10.0, 1e3, 1e5};
+    for (double from : ds)
+      for (double to : ds) {
+        const double guess = jkr::contact_radius(from * du, kRstar, kEstar, Gamma);
+        const double closed = jkr::contact_radius(to * du, kRstar, kEstar, Gamma);
+        EXPECT_NEAR(jkr::contact_radius_warm(to * du, kRstar, kEstar, Gamma, guess), closed,
+                    1e-12 * closed) << from << " -> " << to;
+        for (double bad : {0.0, -1.0, 0.1 * a0, 0.3 * a0, 1e3 * a0})
+          EXPECT_NEAR(jkr::contact_radius_warm(to * du, kRstar, kEstar, Gamma, bad), closed,
+                      1e-12 * closed) << bad << " -> " << to;
+      }
+  }
+  // Hertz limit: exactly the closed form
+  EXPECT_EQ(jkr::contact_radius_warm(1e-8, kRstar, kEstar, 0.0, 1e-6), std::sqrt(kRstar * 1e-8));
+}
