@@ -4,10 +4,15 @@ styles on the same packed specimen, plain NVE, identical neighbor settings and s
 
     /usr/bin/python3 bench/pair_speed.py [--specimen tylmp_specimens/dense_quick.restart]
         [--steps 2000] [--repeats 5] [--ranks 1] [--out bench/results/pair_speed]
+        [--variant NAME=PATH/tylmp.so ...]
 
 Every case runs `repeats` times, the cases taken in alternation so that drifts of the
 machine's speed hit all of them alike; the figure is the median of the LAMMPS loop time,
 reported as atom-steps per second and as a ratio to thornton/yin with Gamma = 0.6.
+With --variant (repeatable) every thornton/yin case runs once per build of the library
+(TYLMP_LIBRARY set per run), all in the same alternation, to compare code variants; the
+table then also gives, per case, the median over repeats of the per-repeat time ratio of each
+variant to the first one.
 Writes OUT.csv (every run), OUT.json (medians and ratios) and prints a table.
 """
 import argparse
@@ -58,14 +63,17 @@ run {steps}
 """
 
 
-def run_case(specimen, name, steps, ranks, workdir):
+def run_case(specimen, name, steps, ranks, workdir, library=None):
     path = os.path.join(workdir, "in.bench")
     with open(path, "w") as fh:
         fh.write(deck(specimen, CASES[name], steps))
     cmd = ["lmp", "-in", path, "-log", "none", "-nocite"]
     if ranks > 1:
         cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(ranks)] + cmd
-    out = subprocess.run(cmd, cwd=workdir, capture_output=True, text=True).stdout
+    env = dict(os.environ)
+    if library:
+        env["TYLMP_LIBRARY"] = library
+    out = subprocess.run(cmd, cwd=workdir, capture_output=True, text=True, env=env).stdout
     m = re.search(r"Loop time of ([0-9.eE+-]+) on \d+ procs for (\d+) steps with (\d+) atoms", out)
     if not m:
         raise RuntimeError(f"{name}: no loop time\n{out[-2000:]}")
@@ -82,7 +90,16 @@ def main(argv=None):
     ap.add_argument("--ranks", type=int, default=1)
     ap.add_argument("--cases", nargs="*", default=list(CASES))
     ap.add_argument("--out", default=os.path.join(REPO, "bench", "results", "pair_speed"))
+    ap.add_argument("--variant", action="append", default=[],
+                    help="NAME=PATH of a tylmp.so build; thornton/yin cases run once per variant")
     args = ap.parse_args(argv)
+    variants = [tuple(v.split("=", 1)) for v in args.variant]
+    runs = []    # (label, case, library)
+    for name in args.cases:
+        if variants and name.startswith("thornton/yin"):
+            runs += [(f"{name} [{vn}]", name, os.path.abspath(lib)) for vn, lib in variants]
+        else:
+            runs.append((name, name, os.path.abspath(variants[0][1]) if variants else None))
     specimen = os.path.abspath(args.specimen)
     if not os.path.exists(specimen):
         sys.exit(f"no specimen {specimen}: run 'lmp -in inputs/axisym.in' once from the "
@@ -91,28 +108,46 @@ def main(argv=None):
     rows = []
     with tempfile.TemporaryDirectory() as work:
         for rep in range(args.repeats):
-            for name in args.cases:
-                loop, rate, pair = run_case(specimen, name, args.steps, args.ranks, work)
-                rows.append({"case": name, "repeat": rep, "ranks": args.ranks,
+            for label, name, library in runs:
+                loop, rate, pair = run_case(specimen, name, args.steps, args.ranks, work, library)
+                rows.append({"case": label, "repeat": rep, "ranks": args.ranks,
                              "loop_s": loop, "atom_steps_per_s": rate, "pair_s": pair})
-                print(f"  {name:34s} run {rep}: {rate:.4g} atom-steps/s", flush=True)
+                print(f"  {label:44s} run {rep}: {rate:.4g} atom-steps/s", flush=True)
     with open(args.out + ".csv", "w") as fh:
         fh.write("case,repeat,ranks,loop_s,atom_steps_per_s,pair_s\n")
         for r in rows:
             fh.write(f"{r['case']},{r['repeat']},{r['ranks']},{r['loop_s']},"
                      f"{r['atom_steps_per_s']},{r['pair_s']}\n")
-    medians = {name: statistics.median(r["atom_steps_per_s"] for r in rows if r["case"] == name)
-               for name in args.cases}
-    base = medians.get("thornton/yin G=0.6")
+    medians = {label: statistics.median(r["atom_steps_per_s"] for r in rows if r["case"] == label)
+               for label, _, _ in runs}
+    base = medians.get("thornton/yin G=0.6") or medians.get(
+        f"thornton/yin G=0.6 [{variants[0][0]}]" if variants else "")
+    speedups = {}
+    if len(variants) > 1:
+        for name in args.cases:
+            if not name.startswith("thornton/yin"):
+                continue
+            first = f"{name} [{variants[0][0]}]"
+            for vn, _ in variants[1:]:
+                label = f"{name} [{vn}]"
+                ratios = [a["loop_s"] / b["loop_s"]
+                          for a in rows if a["case"] == first
+                          for b in rows if b["case"] == label and b["repeat"] == a["repeat"]]
+                speedups[label] = statistics.median(ratios)
     summary = {"specimen": specimen, "steps": args.steps, "repeats": args.repeats,
                "ranks": args.ranks, "median_atom_steps_per_s": medians,
-               "ratio_to_thornton_yin_G0.6": {k: v / base for k, v in medians.items()} if base else {}}
+               "ratio_to_thornton_yin_G0.6": {k: v / base for k, v in medians.items()} if base else {},
+               "speedup_vs_first_variant": speedups}
     with open(args.out + ".json", "w") as fh:
         json.dump(summary, fh, indent=2)
     print(f"\n| case ({args.ranks} rank(s), {args.steps} steps, median of {args.repeats}) "
           f"| atom-steps/s | ratio to thornton/yin G=0.6 |\n|---|---|---|")
     for name, v in medians.items():
         print(f"| {name} | {v:.4g} | {v / base if base else float('nan'):.3f} |")
+    if speedups:
+        print(f"\n| variant | median per-repeat speed-up vs [{variants[0][0]}] |\n|---|---|")
+        for label, v in speedups.items():
+            print(f"| {label} | {v:.3f} |")
 
 
 if __name__ == "__main__":

@@ -273,7 +273,7 @@ TEST(CellServo, TrianglePathHoldsTotalPlaneStrain)
       ++plane_strain_steps;
     }
     plant.apply(c.strain_rate, dt);
-    if (n > 100) EXPECT_NEAR(plant.stress.mean(), p_target, 1e-3 * p_target);
+    if (n > 100) { EXPECT_NEAR(plant.stress.mean(), p_target, 1e-3 * p_target); }
   }
   EXPECT_GT(plane_strain_steps, steps / 2);
   // the deviatoric variant shares the volume change among all three axes instead
