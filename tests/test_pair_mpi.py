@@ -27,12 +27,11 @@ between ranks. What can and cannot be asserted (measured on this plugin, 2000 st
 * Full physics in a planar assembly (500 spheres in one layer, motion in the plane: friction
   sliding and dissipating ~0.7 J, adhesive tensile contacts, ~950 contacts formed and ~600
   broken, ~200 atoms changing owner, ~120 crossing the periodic boundary): 2 ranks match
-  1 rank to 7e-11 over 2000 steps with the earlier law and to 3e-9 (newton on) / 7e-9
-  (newton off) with the current one, whose branch choice is continuous in the force but
-  still resets the turning-point memory (helper measurements, 2026-11-25; at neighbouring
-  drift speeds both laws range from 6e-13 to 2e-8). -> test_full_physics_matches_one_rank
-  asserts 1e-8: the 1e-9 of the requirement holds for the bookkeeping (first test), not
-  for a history-dependent friction law over 2000 steps.
+  1 rank to 2e-10 over 2000 steps (worst of x, v, omega, f over all dumps, newton on and
+  off, measured 2026-11-25 with the current kernel; an intermediate version of the law reached
+  7e-9 at this drift speed, and at neighbouring drift speeds laws ranged from 6e-13 to 2e-8:
+  the margin depends on which branch switches round-off happens to hit).
+  -> test_full_physics_matches_one_rank (1e-9)
 
 Atom IDs (hence diameters) must not depend on the rank count: create_atoms numbers atoms
 rank by rank, so the domain is split along the slowest lattice loop index (processors).
@@ -209,11 +208,13 @@ def test_smooth_law_bookkeeping_is_exact(tmp_path, newton, gamma):
 
 @pytest.mark.parametrize("newton", ["on", "off"])
 def test_full_physics_matches_one_rank(tmp_path, newton):
-    """mu = 0.3, Gamma = 0.6, 500 spheres, 2000 steps: 1 and 2 ranks agree to 1e-8."""
+    """mu = 0.3, Gamma = 0.6, 500 spheres, 2000 steps: 1 and 2 ranks agree to 1e-9."""
     one = Run(tmp_path, "planar", 1, newton=newton)
     two = Run(tmp_path, "planar", 2, newton=newton)
     for step in one.steps():
-        assert deviation(one.atoms(step), two.atoms(step), BOX["planar"]) <= 1e-8, step
+        worst = deviation(one.atoms(step), two.atoms(step), BOX["planar"])
+        print(f"planar full physics, step {step}: 1 vs 2 ranks {worst:.3g}")
+        assert worst <= 1e-9, step
     # atoms change owner and cross the periodic boundary
     assert migrated(two) > 100
     assert np.count_nonzero(two.atoms(STEPS)[:, 14:17]) > 50
