@@ -21,12 +21,12 @@ def rayleigh_time(R, E=E, nu=NU, rho=RHO):
 
 def test_fast_impact_with_a_large_overlap_stops_with_a_clear_error(tmp_path):
     R = 1e-4
-    # 0.5 Rayleigh step and 2000 m/s: the spheres pass half a radius into each other per step
-    deck = impact_deck(R, R, E, NU, E, NU, RHO, RHO, 0.3, 0.0, (1000.0, 0, 0), (-1000.0, 0, 0),
+    # 0.5 Rayleigh step and 4000 m/s: the spheres pass two radii into each other per step
+    deck = impact_deck(R, R, E, NU, E, NU, RHO, RHO, 0.3, 0.0, (2000.0, 0, 0), (-2000.0, 0, 0),
                        0.5 * rayleigh_time(R), 200)
     rc, out = run_deck(deck, tmp_path)
     assert rc != 0
-    assert "exceeds their effective radius" in out and "reduce the timestep" in out
+    assert "exceeds the radius of the smaller sphere" in out and "reduce the timestep" in out
 
 
 @pytest.mark.parametrize("speed", [1.0, 30.0])

@@ -25,13 +25,13 @@ between ranks. What can and cannot be asserted (measured on this plugin, 2000 st
   -> test_3d_friction_is_roundoff_chaotic asserts this quantitatively.
 
 * Full physics in a planar assembly (500 spheres in one layer, motion in the plane: friction
-  sliding and dissipating ~0.7 J, adhesive tensile contacts, ~950 contacts formed and ~600
-  broken, ~200 atoms changing owner, ~120 crossing the periodic boundary): 2 ranks match
-  1 rank to 2e-10 over 2000 steps (worst of x, v, omega, f over all dumps, newton on and
-  off, measured 2026-11-25 with the current kernel; an intermediate version of the law reached
-  7e-9 at this drift speed, and at neighbouring drift speeds laws ranged from 6e-13 to 2e-8:
-  the margin depends on which branch switches round-off happens to hit).
-  -> test_full_physics_matches_one_rank (1e-9)
+  sliding and dissipating ~0.7 J, adhesive tensile contacts, contacts forming and
+  breaking, ~100 atoms changing owner, many crossing the periodic boundary): 2 ranks match
+  1 rank to 5e-14 over 2000 steps (worst of x, v, omega, f over all dumps, newton on and
+  off, measured 2026-11-25). The first design shook twice as fast and reached overlaps of the
+  order of the sphere radius, which pair thornton/yin now stops as an invalid state; there,
+  1 vs 2 ranks ranged from 6e-13 to 2e-8 depending on the version of the law, because deep,
+  violent contacts hit many branch switches. -> test_full_physics_matches_one_rank (1e-9)
 
 Atom IDs (hence diameters) must not depend on the rank count: create_atoms numbers atoms
 rank by rank, so the domain is split along the slowest lattice loop index (processors).
@@ -90,7 +90,7 @@ velocity all set 0.3 0.5 ${drift} units box
 """ + COMMON_RUN
 
 # 500 spheres in one layer (20 x 25, spacing 0.24 mm, diameters 0.18-0.22 mm), shaken with
-# random in-plane velocities ~0.5 m/s plus a drift along y (the split direction): a dense
+# random in-plane velocities ~0.25 m/s plus a drift along y (the split direction): a dense
 # granular gas whose collisions last ~1000 steps, so contacts form, stick, slide, go tensile
 # and break; z stays exactly 0, so every contact's tangential motion lies in the plane.
 ASSEMBLY_PLANAR = """
@@ -109,9 +109,9 @@ create_atoms 1 region layer
 variable d atom 1.8e-4+4e-5*(0.6180339887*id-floor(0.6180339887*id))
 set atom * diameter v_d density 2650e6
 displace_atoms all random 2e-5 2e-5 0 4711 units box
-velocity all create 4e20 8123 loop geom
+velocity all create 1e20 8123 loop geom
 velocity all set NULL NULL 0.0
-velocity all set 1.0 ${drift} 0.0 sum yes units box
+velocity all set 0.5 $(v_drift/2) 0.0 sum yes units box
 """ + COMMON_RUN
 
 BOX = {"3d": np.array([8, 8, 8]) * 1.9e-4, "planar": np.array([20, 25, 8]) * 2.4e-4}
@@ -216,7 +216,7 @@ def test_full_physics_matches_one_rank(tmp_path, newton):
         print(f"planar full physics, step {step}: 1 vs 2 ranks {worst:.3g}")
         assert worst <= 1e-9, step
     # atoms change owner and cross the periodic boundary
-    assert migrated(two) > 100
+    assert migrated(two) >= 50
     assert np.count_nonzero(two.atoms(STEPS)[:, 14:17]) > 50
     # friction and adhesion really act: energy dissipated by micro-slip and sliding and at
     # adhesive separations, contacts seen sliding and tensile, contacts formed and broken

@@ -498,13 +498,13 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
       const double r = std::sqrt(rsq);
       const double delta = radsum - r;
       const double share = (newton_pair || j < nlocal) ? 1.0 : 0.5;
-      // Hertz/JKR contact mechanics assume delta << R; beyond R* (half the smaller radius for
-      // equal spheres) the law and the explicit step have already failed
-      if (delta > R)
-        error->one(FLERR, "pair thornton/yin: overlap {:.4g} of atoms {} and {} exceeds their "
-                   "effective radius {:.4g}: the contact law is no longer valid; reduce the "
-                   "timestep (see the Rayleigh-time warning) or the impact velocity",
-                   delta, atom->tag[i], atom->tag[j], R);
+      // Hertz/JKR contact mechanics assume delta << R; once the overlap exceeds the smaller
+      // radius the law and the explicit step have long failed
+      if (delta > MIN(radi, radj))
+        error->one(FLERR, "pair thornton/yin: overlap {:.4g} of atoms {} and {} exceeds the "
+                   "radius of the smaller sphere {:.4g}: the contact law is no longer valid; "
+                   "reduce the timestep (see the Rayleigh-time warning) or the impact velocity",
+                   delta, atom->tag[i], atom->tag[j], MIN(radi, radj));
 
       if (touch[jj] && delta < 0.0) {    // delta_f <= 0: only tensile contacts can break
         const double delta_break = ADHESIVE ? tycore::jkr::break_overlap(R, c.E_star, c.Gamma)
