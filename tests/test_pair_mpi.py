@@ -25,7 +25,7 @@ between ranks. What can and cannot be asserted (measured on this plugin, 2000 st
   -> test_3d_friction_is_roundoff_chaotic asserts this quantitatively.
 
 * Full physics in a planar assembly (500 spheres in one layer, motion in the plane: friction
-  sliding and dissipating ~0.7 J, adhesive tensile contacts, contacts forming and
+  sliding and dissipating, adhesive tensile contacts, contacts forming and
   breaking, ~100 atoms changing owner, many crossing the periodic boundary): 2 ranks match
   1 rank to 5e-14 over 2000 steps (worst of x, v, omega, f over all dumps, newton on and
   off, measured 2026-11-25). The first design shook twice as fast and reached overlaps of the
