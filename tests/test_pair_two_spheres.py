@@ -271,3 +271,22 @@ print "AFTER ${{fx}} ${{fy}} ${{fz}} ${{x2}} ${{y2}} ${{z2}}"
     F_before, F_after = before[:3], after[:3]
     assert np.linalg.norm(F_before[1:]) > 0.1 * mu * P                     # tangentially loaded
     assert np.allclose(F_after, rot @ F_before, rtol=0, atol=1e-4 * np.linalg.norm(F_before))
+
+
+def test_example_deck_two_spheres(tmp_path, repo):
+    """inputs/two_spheres.in as a user runs it: snap-on at -8/9 Pc, minimum -Pc, break on
+    retraction just past delta_f at about -5/9 Pc (physics.md §1.2)."""
+    import os
+    import subprocess
+    deck = os.path.join(repo, "inputs", "two_spheres.in")
+    out = subprocess.run(["lmp", "-in", deck, "-log", "none"], cwd=tmp_path,
+                         capture_output=True, text=True)
+    assert out.returncode == 0 and "ERROR" not in out.stdout, out.stdout[-2000:]
+    d = np.genfromtxt(tmp_path / "two_spheres.csv", delimiter=",", names=True)
+    Pc = 3 * np.pi * 0.3 * 0.5e-4          # Gamma = 0.3 J/m^2, R* = 0.05 mm
+    touching = np.flatnonzero(d["normal_force"] != 0.0)
+    assert d["normal_force"][touching[0]] / Pc == pytest.approx(-8.0 / 9.0, rel=1e-9)
+    assert d["normal_force"].min() / Pc == pytest.approx(-1.0, rel=1e-4)
+    last = d["normal_force"][touching[-1]] / Pc
+    assert -0.60 < last < -5.0 / 9.0      # sampled every 10 steps just before delta_f
+    assert d["overlap"][-1] < d["overlap"][touching[-1]] < 0.0
