@@ -73,7 +73,7 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), target_p(0.0), major_axis(0), major_rate(0.0), b_target(0.0),
     path_speed(0.0), prestrain(0.0), inertial_cap(1e-3), equilibrium_every(0), equilibrium_reached(0),
     boundary_work(0.0), restored(0), contacts(0.0), sliding(0.0), force_sum(0.0),
-    measured_step(-1), output_step(-1), mean_diameter(0.0), mean_density(0.0),
+    measured_step(-1), output_step(-1), particle_step(-1), mean_diameter(0.0), mean_density(0.0),
     solid_volume(0.0), pressure(nullptr), pair(nullptr), tally_flag(nullptr), csv_every(0),
     csv(nullptr), wall_start(0.0), step_start(0), saturated_steps(0)
 {
@@ -532,6 +532,7 @@ void FixCellServo::setup(int)
   }
   measure();
   compute_outputs();
+  compute_particle_outputs();
   wall_start = MPI_Wtime();
   step_start = update->ntimestep;
 
@@ -554,8 +555,8 @@ void FixCellServo::setup(int)
 }
 
 /* ----------------------------------------------------------------------
-   stress (compression positive) from the pair virial, affine stiffness and contact
-   statistics from the pair tallies, kinetic stress of the fluctuation velocities
+   what the servo needs every step: stress (compression positive) from the pair virial,
+   affine stiffness and contact statistics from the pair tallies
 ------------------------------------------------------------------------- */
 
 void FixCellServo::measure()
@@ -573,14 +574,6 @@ void FixCellServo::measure()
   contacts = sums[TALLY_CONTACTS];
   sliding = sums[TALLY_SLIDING];
   force_sum = sums[TALLY_FORCE];
-
-  double local[3] = {0.0, 0.0, 0.0};
-  double **v = atom->v;
-  for (int i = 0; i < atom->nlocal; ++i)
-    for (int k = 0; k < 3; ++k) local[k] += atom->rmass[i] * v[i][k] * v[i][k];
-  MPI_Allreduce(local, kinetic_stress, 3, MPI_DOUBLE, MPI_SUM, world);
-  const double volume = domain->xprd * domain->yprd * domain->zprd;
-  for (double &s : kinetic_stress) s /= volume;
   measured_step = update->ntimestep;
 }
 
@@ -605,7 +598,10 @@ void FixCellServo::end_of_step()
 {
   measure();
   compute_outputs();
-  if (csv_every > 0 && update->ntimestep % csv_every == 0) write_csv_row();
+  if (csv_every > 0 && update->ntimestep % csv_every == 0) {
+    compute_particle_outputs();
+    write_csv_row();
+  }
 
   const tycore::CellMeasurement cell = cell_measurement();
   tycore::ServoCommand command;
@@ -619,6 +615,7 @@ void FixCellServo::end_of_step()
   }
 
   if (equilibrium_every > 0 && update->ntimestep % equilibrium_every == 0) {
+    compute_particle_outputs();
     tycore::EquilibriumSample sample;
     sample.stress = cell.stress;
     sample.target_stress = Eigen::Vector3d::Constant(target_p);
@@ -632,7 +629,7 @@ void FixCellServo::end_of_step()
 
   // a servo held at its cap for long has lost control of the stress: say what to change
   saturated_steps = command.saturated ? saturated_steps + 1 : 0;
-  if (saturated_steps == SATURATION_WARN_STEPS && comm->me == 0 && output[Z] > 0.0)
+  if (saturated_steps == SATURATION_WARN_STEPS && comm->me == 0 && contacts > 0.0)
     error->warning(FLERR, "fix cell/servo: the servo has been at its strain-rate cap max_rate = "
                    "{:.3g} for {} steps while the cell carries load (p = {:.4g}, target {:.4g}); "
                    "raise max_rate or lower the prescribed rate", settings.max_strain_rate,
@@ -705,26 +702,7 @@ void FixCellServo::compute_outputs()
   output[SOLID_FRACTION] = solid_volume / volume;
   output[VOID_RATIO] = volume / solid_volume - 1.0;
 
-  // coordination: Z = 2C/N; Zm = (2C - N1)/(N - N0 - N1) without rattlers (Thornton 2000)
-  int dim;
-  const double *count = static_cast<double *>(pair->extract("contact_count", dim));
-  double local[5] = {0.0, 0.0, 0.0, 0.0, 0.0}, total[5];
-  double **f = atom->f;
-  for (int i = 0; i < atom->nlocal; ++i) {
-    const long c = count ? std::lround(count[i]) : 0;
-    local[0] += 1.0;
-    local[1] += c;
-    if (c == 0) local[2] += 1.0;
-    if (c == 1) local[3] += 1.0;
-    local[4] += std::sqrt(f[i][0] * f[i][0] + f[i][1] * f[i][1] + f[i][2] * f[i][2]);
-  }
-  MPI_Allreduce(local, total, 5, MPI_DOUBLE, MPI_SUM, world);
-  const double n = total[0], ends = total[1], n0 = total[2], n1 = total[3];
-  output[Z] = ends / n;
-  output[ZM] = n - n0 - n1 > 0.0 ? (ends - n1) / (n - n0 - n1) : 0.0;
   output[SLIDING_FRACTION] = contacts > 0.0 ? sliding / contacts : 0.0;
-  // mean |resultant force on a particle| / mean |contact force|
-  output[UNBALANCED] = force_sum > 0.0 ? (total[4] / n) / (force_sum / contacts) : NaN;
 
   const Eigen::Vector3d rate = memory.last_strain_rate;
   // I = eps_dot_q d sqrt(rho/p), eps_dot_q = sqrt(2/3 e':e')   (physics.md §4)
@@ -749,9 +727,48 @@ void FixCellServo::compute_outputs()
   output[EQUILIBRIUM] = equilibrium_reached;
   output[RATE1] = rate(0), output[RATE2] = rate(1), output[RATE3] = rate(2);
   output[BOUNDARY_WORK] = boundary_work;
-  output[P_KINETIC] = (kinetic_stress[0] + kinetic_stress[1] + kinetic_stress[2]) / 3.0;
   output[VOLUME] = volume;
   output_step = update->ntimestep;
+}
+
+/* ----------------------------------------------------------------------
+   per-particle statistics (a pass over the atoms and a reduction): only on the steps that
+   output or test them, not on every servo step
+------------------------------------------------------------------------- */
+
+bool FixCellServo::is_particle_output(int n)
+{
+  return n == Z || n == ZM || n == UNBALANCED || n == P_KINETIC;
+}
+
+void FixCellServo::compute_particle_outputs()
+{
+  if (particle_step == update->ntimestep) return;
+  // coordination: Z = 2C/N; Zm = (2C - N1)/(N - N0 - N1) without rattlers (Thornton 2000);
+  // kinetic stress of the fluctuation velocities
+  int dim;
+  const double *count = static_cast<double *>(pair->extract("contact_count", dim));
+  double local[8] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0}, total[8];
+  double **f = atom->f, **v = atom->v;
+  for (int i = 0; i < atom->nlocal; ++i) {
+    const long c = count ? std::lround(count[i]) : 0;
+    local[0] += 1.0;
+    local[1] += c;
+    if (c == 0) local[2] += 1.0;
+    if (c == 1) local[3] += 1.0;
+    local[4] += std::sqrt(f[i][0] * f[i][0] + f[i][1] * f[i][1] + f[i][2] * f[i][2]);
+    for (int k = 0; k < 3; ++k) local[5 + k] += atom->rmass[i] * v[i][k] * v[i][k];
+  }
+  MPI_Allreduce(local, total, 8, MPI_DOUBLE, MPI_SUM, world);
+  const double n = total[0], ends = total[1], n0 = total[2], n1 = total[3];
+  output[Z] = ends / n;
+  output[ZM] = n - n0 - n1 > 0.0 ? (ends - n1) / (n - n0 - n1) : 0.0;
+  // mean |resultant force on a particle| / mean |contact force|
+  output[UNBALANCED] = force_sum > 0.0 ? (total[4] / n) / (force_sum / contacts) : NaN;
+  const double volume = domain->xprd * domain->yprd * domain->zprd;
+  for (int k = 0; k < 3; ++k) kinetic_stress[k] = total[5 + k] / volume;
+  output[P_KINETIC] = (kinetic_stress[0] + kinetic_stress[1] + kinetic_stress[2]) / 3.0;
+  particle_step = update->ntimestep;
 }
 
 double FixCellServo::compute_vector(int n)
@@ -760,6 +777,7 @@ double FixCellServo::compute_vector(int n)
     measure();
     compute_outputs();
   }
+  if (is_particle_output(n)) compute_particle_outputs();
   return output[n];
 }
 

@@ -82,6 +82,7 @@ class FixCellServo : public Fix {
   bigint measured_step;
   double output[N_OUTPUT];
   bigint output_step;
+  bigint particle_step;            // step of the per-particle outputs (Z, Zm, unbalanced, p_kin)
 
   // particle statistics fixed at init
   double mean_diameter, mean_density, solid_volume;
@@ -110,6 +111,8 @@ class FixCellServo : public Fix {
   tycore::CellMeasurement cell_measurement() const;
   void change_box(const double strain_rate[3]);
   void compute_outputs();
+  void compute_particle_outputs();
+  static bool is_particle_output(int);
   void write_csv_row();
   double default_max_rate() const;
   double prescribed_rate() const;
