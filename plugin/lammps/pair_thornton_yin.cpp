@@ -627,11 +627,14 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
         ev_tally_xyz(i, j, nlocal, newton_pair, stored_energy, 0.0, fx, fy, fz, delx, dely,
                      delz);
       if (tally) {
-        // affine stiffness of this contact (physics.md §5.2), k_T = 8 G* a_T(P + 2Pc)
+        // affine stiffness of this contact (physics.md §5.2), k_T = 8 G* a_T(P + 2Pc); without
+        // adhesion a_T is the Hertz radius itself, as in evaluate_contact
         const double k_N = tycore::jkr::normal_stiffness(contact_radius, R, c.E_star, c.Gamma);
-        const double Pc = ADHESIVE ? tycore::jkr::pull_off_force(c.Gamma, R) : 0.0;
-        const double k_T =
-            8.0 * c.G_star * tycore::micro_slip_radius(R, c.E_star, P + 2.0 * Pc);
+        const double tangential_radius = ADHESIVE
+            ? tycore::micro_slip_radius(R, c.E_star,
+                                        P + 2.0 * tycore::jkr::pull_off_force(c.Gamma, R))
+            : contact_radius;
+        const double k_T = 8.0 * c.G_star * tangential_radius;
         const double n2[3] = {nx * nx, ny * ny, nz * nz};
         const int a_of[6] = {0, 1, 2, 0, 0, 1}, b_of[6] = {0, 1, 2, 1, 2, 2};
         for (int k = 0; k < 6; ++k) {
