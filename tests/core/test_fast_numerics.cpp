@@ -4,6 +4,8 @@
 #include "contact_types.hpp"
 #include "jkr.hpp"
 
+#include "glass_pair.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,9 +15,7 @@
 namespace {
 
 namespace jkr = tycore::jkr;
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kE = 70e9, kNu = 0.3, kRstar = 5e-5;
-const double kEstar = kE / (2.0 * (1.0 - kNu * kNu));
+using namespace glass_pair;    // physics.md §1.7 glass pair
 
 // fast_cbrt: two Halley steps and one Newton step from a 3.3 % guess; stated tolerance 1e-15
 // relative (about 4.5 ulps; the measured worst case is ~3 ulps)

@@ -5,6 +5,8 @@
 #include "jkr.hpp"
 #include "mindlin_deresiewicz.hpp"
 
+#include "glass_pair.hpp"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -15,16 +17,7 @@ using Eigen::Vector3d;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-// physics.md §1.7 glass pair
-constexpr double kE = 70e9, kNu = 0.3, kRstar = 5e-5;
-const double kEstar = kE / (2.0 * (1.0 - kNu * kNu));
-const double kGstar = kE / (2.0 * (1.0 + kNu)) / (2.0 * (2.0 - kNu));
-
-tycore::PairCoefficients coefficients(double mu, double Gamma)
-{
-  return tycore::PairCoefficients{kEstar, kGstar, mu, Gamma};
-}
+using namespace glass_pair;    // physics.md §1.7 glass pair
 
 double hertz_radius(double P) { return std::cbrt(3.0 * kRstar * P / (4.0 * kEstar)); }
 

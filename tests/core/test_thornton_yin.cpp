@@ -6,6 +6,8 @@
 #include "mindlin_deresiewicz.hpp"
 #include "thornton_yin.hpp"
 
+#include "glass_pair.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,15 +17,7 @@ using Eigen::Vector3d;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kE = 70e9, kNu = 0.3, kRstar = 5e-5;
-const double kEstar = kE / (2.0 * (1.0 - kNu * kNu));
-const double kGstar = kE / (2.0 * (1.0 + kNu)) / (2.0 * (2.0 - kNu));
-
-tycore::PairCoefficients coefficients(double mu, double Gamma)
-{
-  return tycore::PairCoefficients{kEstar, kGstar, mu, Gamma};
-}
+using namespace glass_pair;    // physics.md §1.7 glass pair
 
 // JKR scales of physics.md §1.1
 struct Jkr {
