@@ -5,7 +5,9 @@ import pytest
 
 from lmprun import LOAD_TYLMP, run_ok
 
-FREE_SPHERE = """
+def one_sphere(x, y, z):
+    """A 1 mm glass sphere alone in a 1 cm periodic box, with the styles loaded."""
+    return f"""
 units si
 atom_style sphere
 atom_modify map array
@@ -13,12 +15,15 @@ boundary p p p
 comm_modify vel yes
 region box block 0 1e-2 0 1e-2 0 1e-2
 create_box 1 box
-create_atoms 1 single 5e-3 5e-3 5e-3
+create_atoms 1 single {x} {y} {z}
 set atom 1 diameter 1e-3 density 2650
-{load}
+{LOAD_TYLMP}
 pair_style thornton/yin
 pair_coeff * * 70e9 0.3 0.3 0.0
-velocity all set {v0} 0 0
+"""
+
+
+FREE_SPHERE = one_sphere(5e-3, 5e-3, 5e-3) + """velocity all set {v0} 0 0
 fix push all addforce {force} 0 0
 fix nve all nve/sphere
 {damping}
@@ -33,7 +38,7 @@ MASS = 2650 * np.pi / 6 * 1e-3 ** 3
 def final_velocity(tmp_path, v0, force, damping):
     work = tmp_path / f"{v0}_{force}_{'d' if damping else 'n'}"
     work.mkdir()
-    deck = FREE_SPHERE.format(load=LOAD_TYLMP, v0=v0, force=force,
+    deck = FREE_SPHERE.format(v0=v0, force=force,
                               damping="fix damp all damping/cundall 0.3 0.3" if damping else "")
     out = run_ok(deck, work)
     return float([l for l in out.splitlines() if l.startswith("VX ")][-1].split()[1])
@@ -55,20 +60,7 @@ def test_no_damping_of_the_affine_motion_in_a_deforming_cell(tmp_path):
     """In fix cell/servo the velocities are fluctuations: a sphere carried by the cell's
     homogeneous strain has none, so damping does nothing and the sphere keeps its place in
     box (lamda) coordinates."""
-    deck = f"""
-units si
-atom_style sphere
-atom_modify map array
-boundary p p p
-comm_modify vel yes
-region box block 0 1e-2 0 1e-2 0 1e-2
-create_box 1 box
-create_atoms 1 single 2e-3 7e-3 4e-3
-set atom 1 diameter 1e-3 density 2650
-{LOAD_TYLMP}
-pair_style thornton/yin
-pair_coeff * * 70e9 0.3 0.3 0.0
-fix nve all nve/sphere
+    deck = one_sphere(2e-3, 7e-3, 4e-3) + f"""fix nve all nve/sphere
 fix damp all damping/cundall 0.3 0.3
 fix cell all cell/servo axes x rate 1.0 y rate -0.5 z rate 0.2
 timestep 1e-3
