@@ -1,14 +1,51 @@
 #!/usr/bin/env python3
 """Throughput of pair thornton/yin (and its specialised kernels) against LAMMPS's granular
-styles on the same packed specimen, plain NVE, identical neighbor settings and step counts.
+styles and LIGGGHTS's Hertz model on the same packed specimen, plain NVE, identical neighbor
+settings, timestep and step counts.
 
-    /usr/bin/python3 bench/pair_speed.py [--specimen tylmp_specimens/dense_quick.restart]
-        [--steps 2000] [--repeats 5] [--ranks 1] [--out bench/results/pair_speed]
-        [--variant NAME=PATH/tylmp.so ...]
+    /usr/bin/python3 bench/pair_speed.py [--data bench/data/dense_paper_100kPa.data |
+        --specimen RESTART] [--steps 2000] [--repeats 5] [--ranks 1]
+        [--out bench/results/pair_speed] [--cases NAME ...] [--variant NAME=PATH/tylmp.so ...]
+        [--liggghts liggghts]
+
+Specimen: every case starts from the same LAMMPS data file, by default the committed
+bench/data/dense_paper_100kPa.data (3620 spheres of the paper's size distribution, dense,
+isotropic p = 100 kPa, positions and velocities; how it was made: bench/data/README.md).
+LAMMPS cases read it with `atom_style sphere`, `units si`, `boundary p p p`, `read_data`;
+the LIGGGHTS case with `atom_style granular` and `read_data` of the same file (the Atoms and
+Velocities columns of the two styles are identical: id type diameter density x y z, and
+id vx vy vz wx wy wz). --specimen RESTART (a restart of the plugin's styles, e.g.
+tylmp_specimens/dense_quick.restart written by `lmp -in inputs/axisym.in`) is first turned
+into a data file in the temporary directory (`read_restart` + `write_data ... nocoeff`), which
+every case then reads. All cases: `neighbor 1.35e-5 bin`, `neigh_modify every 1 delay 0 check
+yes`, velocities communicated to ghosts, `fix nve/sphere`, the same timestep (0.2 Rayleigh
+times of the smallest sphere, 0.0144 s with the scaled density 2.65e15 kg/m^3).
+
+Cases: thornton/yin with Gamma = 0.6 and 0, with and without `paths generic`; LAMMPS
+`granular` jkr+mindlin and hertz/material+mindlin; LAMMPS `gran/hertz/history`; and
+"liggghts hertz+history": LIGGGHTS `pair_style gran model hertz tangential history` with
+the material in `fix property/global` (youngsModulus 70e9, poissonsRatio 0.3,
+coefficientFriction 0.3, coefficientRestitution 1.0, the largest LIGGGHTS accepts: its
+damping coefficient is proportional to ln(e), so e = 1 means exactly no damping, like every
+other case). LIGGGHTS needs `newton off` (its shear history requires newton pair off; the
+LAMMPS cases keep LAMMPS's default newton on), `hard_particles yes` (it refuses E > 1e9 Pa in SI
+units otherwise) and `communicate single vel yes`. Its Hertz-Mindlin law (kt = 8 G* a,
+Coulomb cap at mu Fn) is that of `granular hertz/material ... tangential mindlin NULL 0 0.3`
+(they differ only in how the history is incremented and rotated);
+bench/check_liggghts_equivalence.py checks that the stresses at step 0 agree to 1e-6.
+
+LIGGGHTS (Debian 12: LIGGGHTS-PUBLIC 3.8.0, binary /usr/bin/liggghts, MPI-enabled):
+
+    apt-get update && apt-get install -y liggghts
+
+Without the binary (or --liggghts PATH) the LIGGGHTS case is skipped with a message; the
+others run. With --ranks N > 1 every case, LIGGGHTS's included, runs under
+`mpirun --allow-run-as-root --oversubscribe -np N`.
 
 Every case runs `repeats` times, the cases taken in alternation so that drifts of the
-machine's speed hit all of them alike; the figure is the median of the LAMMPS loop time,
-reported as atom-steps per second and as a ratio to thornton/yin with Gamma = 0.6.
+machine's speed hit all of them alike; the figure is the median of the loop time ("Loop time
+of ..." in both programs' output), reported as atom-steps per second and as a ratio to
+thornton/yin with Gamma = 0.6.
 With --variant (repeatable) every thornton/yin case runs once per build of the library
 (TYLMP_LIBRARY set per run), all in the same alternation, to compare code variants; the
 table then also gives, per case, the median over repeats of the per-repeat time ratio of each
@@ -17,14 +54,17 @@ Writes OUT.csv (every run), OUT.json (medians and ratios) and prints a table.
 """
 import argparse
 import json
+import math
 import os
 import re
+import shutil
 import statistics
 import subprocess
 import sys
 import tempfile
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+DATA = os.path.join(REPO, "bench", "data", "dense_paper_100kPa.data")
 LOAD = ('python tylmp_load input 1 SELF format p here "from tylmp import load as tylmp_load"\n'
         "python tylmp_load invoke\n")
 
@@ -33,6 +73,10 @@ E, NU, MU, GAMMA = 70e9, 0.3, 0.3, 0.6
 E_STAR = E / (2 * (1 - NU ** 2))
 KN_HOOKE_HERTZ = 4.0 / 3.0 * E_STAR          # gran/hertz/history: F = kn sqrt(R* delta) delta
 KT_HOOKE_HERTZ = KN_HOOKE_HERTZ * 2 * (1 - NU) / (2 - NU)
+# 0.2 Rayleigh times of the smallest sphere (R = 0.0675 mm, scaled density 2.65e15 kg/m^3,
+# G = E/2.6), as inputs/common/numerics.in; one number written into every deck
+DT = 0.2 * math.pi * 0.0675e-3 * math.sqrt(2650e12 / (E / 2.6)) / (0.1631 * NU + 0.8766)
+NEIGHBOR = "neighbor 1.35e-5 bin\nneigh_modify every 1 delay 0 check yes\n"
 
 CASES = {
     "thornton/yin G=0.6": f"pair_style thornton/yin\npair_coeff * * {E} {NU} {MU} {GAMMA}\n",
@@ -48,68 +92,147 @@ CASES = {
         f"damping viscoelastic tangential mindlin NULL 0.0 {MU}\n"),
     "gran/hertz/history": (f"pair_style gran/hertz/history {KN_HOOKE_HERTZ} {KT_HOOKE_HERTZ} "
                            f"0.0 0.0 {MU} 0\npair_coeff * *\n"),
+    # LIGGGHTS: damping ~ ln(coefficientRestitution), so e = 1 is exactly undamped (e <= 1 is
+    # required); one atom type, as in the data file
+    "liggghts hertz+history": (
+        f"fix m1 all property/global youngsModulus peratomtype {E}\n"
+        f"fix m2 all property/global poissonsRatio peratomtype {NU}\n"
+        f"fix m3 all property/global coefficientRestitution peratomtypepair 1 1.0\n"
+        f"fix m4 all property/global coefficientFriction peratomtypepair 1 {MU}\n"
+        "pair_style gran model hertz tangential history\npair_coeff * *\n"),
 }
+LIGGGHTS_CASES = {"liggghts hertz+history"}
+LIGGGHTS_MISSING = ("no LIGGGHTS binary '{}' on PATH: skipping the case 'liggghts hertz+history' "
+                    "(install it with 'apt-get install liggghts'; Debian 12: LIGGGHTS-PUBLIC "
+                    "3.8.0)")
 
 
-def deck(specimen, pair_lines, steps):
-    return f"""{LOAD}read_restart {specimen}
+def deck(data, pair_lines, steps, measure=None):
+    """LAMMPS deck: read_data of `data`, then plain NVE for `steps` steps; `measure` replaces
+    the default `thermo STEPS` (computes, thermo_style ...)."""
+    return f"""{LOAD}atom_style sphere
+units si
+boundary p p p
+read_data {data}
 comm_modify vel yes
-{pair_lines}neighbor 1.35e-5 bin
-neigh_modify every 1 delay 0 check yes
-timestep $(0.2*PI*0.0675e-3*sqrt(2650e12/(70e9/2.6))/(0.1631*0.3+0.8766))
+{pair_lines}{NEIGHBOR}timestep {DT!r}
 fix integrate all nve/sphere
-thermo {steps}
+{measure or f"thermo {steps}"}
 run {steps}
 """
 
 
-def run_case(specimen, name, steps, ranks, workdir, library=None):
+def liggghts_deck(data, pair_lines, steps, measure=None):
+    """The same for LIGGGHTS: newton off (its shear history requires newton pair off),
+    hard_particles yes (E = 70 GPa is above its SI sanity limit of 1e9 Pa)."""
+    return f"""atom_style granular
+hard_particles yes
+units si
+boundary p p p
+newton off
+communicate single vel yes
+read_data {data}
+{pair_lines}{NEIGHBOR}timestep {DT!r}
+fix integrate all nve/sphere
+{measure or f"thermo {steps}"}
+run {steps}
+"""
+
+
+def restart_to_data(restart, workdir):
+    """A data file in workdir with the atoms of a restart of the plugin's styles."""
+    path = os.path.join(workdir, "specimen.data")
+    with open(os.path.join(workdir, "in.restart_to_data"), "w") as fh:
+        fh.write(f"{LOAD}read_restart {restart}\nwrite_data {path} nocoeff\n")
+    proc = subprocess.run(["lmp", "-in", "in.restart_to_data", "-log", "none", "-nocite"],
+                          cwd=workdir, capture_output=True, text=True)
+    if proc.returncode != 0 or not os.path.exists(path):
+        raise RuntimeError(f"write_data from {restart} failed\n{proc.stdout[-2000:]}{proc.stderr}")
+    return path
+
+
+def run_deck(name, text, ranks, workdir, library=None, liggghts="liggghts"):
+    """Run one deck (LIGGGHTS for the LIGGGHTS cases, lmp otherwise); returns its stdout."""
     path = os.path.join(workdir, "in.bench")
     with open(path, "w") as fh:
-        fh.write(deck(specimen, CASES[name], steps))
-    cmd = ["lmp", "-in", path, "-log", "none", "-nocite"]
+        fh.write(text)
+    exe = liggghts if name in LIGGGHTS_CASES else "lmp"
+    cmd = [exe, "-in", path, "-log", "none", "-nocite"]
     if ranks > 1:
         cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(ranks)] + cmd
     env = dict(os.environ)
     if library:
         env["TYLMP_LIBRARY"] = library
-    out = subprocess.run(cmd, cwd=workdir, capture_output=True, text=True, env=env).stdout
+    proc = subprocess.run(cmd, cwd=workdir, capture_output=True, text=True, env=env)
+    if proc.returncode != 0:
+        raise RuntimeError(f"{name}: {' '.join(cmd)} failed ({proc.returncode})\n"
+                           f"{proc.stdout[-2000:]}{proc.stderr[-2000:]}")
+    return proc.stdout
+
+
+def case_deck(name, data, steps, measure=None):
+    build = liggghts_deck if name in LIGGGHTS_CASES else deck
+    return build(data, CASES[name], steps, measure)
+
+
+def run_case(data, name, steps, ranks, workdir, library=None, liggghts="liggghts"):
+    out = run_deck(name, case_deck(name, data, steps), ranks, workdir, library, liggghts)
+    # LAMMPS and LIGGGHTS 3.8 ("..., finish time ...") both print this line
     m = re.search(r"Loop time of ([0-9.eE+-]+) on \d+ procs for (\d+) steps with (\d+) atoms", out)
     if not m:
         raise RuntimeError(f"{name}: no loop time\n{out[-2000:]}")
     loop, nsteps, natoms = float(m.group(1)), int(m.group(2)), int(m.group(3))
-    pair = re.search(r"^Pair\s*\|\s*[0-9.]+\s*\|\s*([0-9.]+)", out, re.M)
+    pair = (re.search(r"^Pair\s*\|\s*[0-9.]+\s*\|\s*([0-9.eE+-]+)", out, re.M)    # LAMMPS
+            or re.search(r"^Pair\s+time \(%\) = ([0-9.eE+-]+)", out, re.M))      # LIGGGHTS
     return loop, natoms * nsteps / loop, float(pair.group(1)) if pair else float("nan")
 
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--specimen", default=os.path.join(REPO, "tylmp_specimens", "dense_quick.restart"))
+    src = ap.add_mutually_exclusive_group()
+    src.add_argument("--data", default=DATA,
+                     help="LAMMPS data file (atom_style sphere) every case starts from")
+    src.add_argument("--specimen", default=None,
+                     help="a restart of the plugin's styles instead of --data (converted to a "
+                          "data file in the temporary directory)")
     ap.add_argument("--steps", type=int, default=2000)
     ap.add_argument("--repeats", type=int, default=5)
     ap.add_argument("--ranks", type=int, default=1)
-    ap.add_argument("--cases", nargs="*", default=list(CASES))
+    ap.add_argument("--cases", nargs="*", default=list(CASES), choices=list(CASES),
+                    metavar="CASE", help="; ".join(CASES))
     ap.add_argument("--out", default=os.path.join(REPO, "bench", "results", "pair_speed"))
     ap.add_argument("--variant", action="append", default=[],
                     help="NAME=PATH of a tylmp.so build; thornton/yin cases run once per variant")
+    ap.add_argument("--liggghts", default="liggghts", help="LIGGGHTS executable")
     args = ap.parse_args(argv)
     variants = [tuple(v.split("=", 1)) for v in args.variant]
+    skipped = []
+    if any(name in LIGGGHTS_CASES for name in args.cases) and not shutil.which(args.liggghts):
+        print(LIGGGHTS_MISSING.format(args.liggghts), flush=True)
+        skipped = [name for name in args.cases if name in LIGGGHTS_CASES]
     runs = []    # (label, case, library)
     for name in args.cases:
+        if name in skipped:
+            continue
         if variants and name.startswith("thornton/yin"):
             runs += [(f"{name} [{vn}]", name, os.path.abspath(lib)) for vn, lib in variants]
+        elif name in LIGGGHTS_CASES:
+            runs.append((name, name, None))
         else:
             runs.append((name, name, os.path.abspath(variants[0][1]) if variants else None))
-    specimen = os.path.abspath(args.specimen)
-    if not os.path.exists(specimen):
-        sys.exit(f"no specimen {specimen}: run 'lmp -in inputs/axisym.in' once from the "
-                 "repository root (it prepares tylmp_specimens/dense_quick.restart)")
+    source = os.path.abspath(args.specimen or args.data)
+    if not os.path.exists(source):
+        sys.exit(f"no specimen {source}" + (
+            ": run 'lmp -in inputs/axisym.in' once from the repository root (it prepares "
+            "tylmp_specimens/dense_quick.restart)" if args.specimen else ""))
     os.makedirs(os.path.dirname(args.out) or ".", exist_ok=True)
     rows = []
     with tempfile.TemporaryDirectory() as work:
+        data = restart_to_data(source, work) if args.specimen else source
         for rep in range(args.repeats):
             for label, name, library in runs:
-                loop, rate, pair = run_case(specimen, name, args.steps, args.ranks, work, library)
+                loop, rate, pair = run_case(data, name, args.steps, args.ranks, work, library,
+                                            args.liggghts)
                 rows.append({"case": label, "repeat": rep, "ranks": args.ranks,
                              "loop_s": loop, "atom_steps_per_s": rate, "pair_s": pair})
                 print(f"  {label:44s} run {rep}: {rate:.4g} atom-steps/s", flush=True)
@@ -134,7 +257,8 @@ def main(argv=None):
                           for a in rows if a["case"] == first
                           for b in rows if b["case"] == label and b["repeat"] == a["repeat"]]
                 speedups[label] = statistics.median(ratios)
-    summary = {"specimen": specimen, "steps": args.steps, "repeats": args.repeats,
+    summary = {"data": None if args.specimen else source, "specimen": args.specimen and source,
+               "timestep": DT, "skipped": skipped, "steps": args.steps, "repeats": args.repeats,
                "ranks": args.ranks, "median_atom_steps_per_s": medians,
                "ratio_to_thornton_yin_G0.6": {k: v / base for k, v in medians.items()} if base else {},
                "speedup_vs_first_variant": speedups}

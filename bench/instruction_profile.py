@@ -1,0 +1,93 @@
+#!/usr/bin/env python3
+"""Instructions executed in the pair force computation per atom-step, for the cases of
+bench/pair_speed.py, counted by valgrind's callgrind: a figure of the work per contact that
+does not depend on the machine's load (wall-clock ratios from pair_speed.py need a quiet
+machine; this one does not).
+
+    /usr/bin/python3 bench/instruction_profile.py [--data bench/data/dense_paper_100kPa.data]
+        [--steps 200] [--cases NAME ...] [--out bench/results/instruction_profile]
+
+Each case runs the deck of pair_speed.py (same data file, neighbor settings, timestep) under
+`valgrind --tool=callgrind --toggle-collect=<the pair style's compute()>`, so only the pair
+compute and what it calls are counted (not neighbor builds, communication or integration).
+Writes OUT.json and prints instructions per atom-step and the ratio to thornton/yin G=0.6.
+"""
+import argparse
+import json
+import os
+import re
+import subprocess
+import sys
+import shutil
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import pair_speed    # noqa: E402
+
+COMPUTE = {    # case -> the function whose inclusive cost is counted
+    "thornton/yin": "LAMMPS_NS::PairThorntonYin::compute*",
+    "granular": "LAMMPS_NS::PairGranular::compute*",
+    "gran/hertz/history": "LAMMPS_NS::PairGranHertzHistory::compute*",
+    "liggghts": "LAMMPS_NS::PairGran::compute*",
+}
+
+
+def toggle_for(case):
+    for prefix, pattern in COMPUTE.items():
+        if case.startswith(prefix):
+            return pattern
+    raise KeyError(case)
+
+
+def count(case, data, steps, work):
+    deck = pair_speed.case_deck(case, data, steps)
+    path = os.path.join(work, "in.profile")
+    with open(path, "w") as fh:
+        fh.write(deck)
+    out = os.path.join(work, "callgrind.out")
+    exe = "liggghts" if case in pair_speed.LIGGGHTS_CASES else "lmp"
+    cmd = ["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}",
+           f"--toggle-collect={toggle_for(case)}", exe, "-in", path, "-log", "none", "-nocite"]
+    proc = subprocess.run(cmd, cwd=work, capture_output=True, text=True)
+    if proc.returncode != 0:
+        raise RuntimeError(f"{case}: {proc.stderr[-2000:]}")
+    summary = subprocess.run(["callgrind_annotate", out], capture_output=True, text=True).stdout
+    m = re.search(r"^\s*([\d,]+)\s.*PROGRAM TOTALS", summary, re.M)
+    total = int(m.group(1).replace(",", "")) if m else 0
+    natoms = int(re.search(r"^(\d+) atoms", open(data).read(4096), re.M).group(1))
+    return total, total / (natoms * (steps + 1))    # setup computes the forces once more
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--data", default=pair_speed.DATA)
+    ap.add_argument("--steps", type=int, default=200)
+    ap.add_argument("--cases", nargs="*", default=list(pair_speed.CASES))
+    ap.add_argument("--out", default=os.path.join(pair_speed.REPO, "bench", "results",
+                                                  "instruction_profile"))
+    args = ap.parse_args(argv)
+    data = os.path.abspath(args.data)
+    rows = {}
+    with tempfile.TemporaryDirectory() as work:
+        for case in args.cases:
+            if case in pair_speed.LIGGGHTS_CASES and not shutil.which("liggghts"):
+                print(f"  {case}: skipped (no liggghts binary)")
+                continue
+            total, per_atom_step = count(case, data, args.steps, work)
+            if total == 0:
+                print(f"  {case}: no instructions counted (no symbol {toggle_for(case)})")
+                continue
+            rows[case] = {"instructions": total, "per_atom_step": per_atom_step}
+            print(f"  {case:36s} {per_atom_step:8.0f} instructions per atom-step", flush=True)
+    base = rows.get("thornton/yin G=0.6", {}).get("per_atom_step")
+    for r in rows.values():
+        r["ratio_to_thornton_yin_G0.6"] = r["per_atom_step"] / base if base else None
+    os.makedirs(os.path.dirname(args.out), exist_ok=True)
+    with open(args.out + ".json.tmp", "w") as fh:
+        json.dump({"data": os.path.relpath(data, pair_speed.REPO), "steps": args.steps,
+                   "cases": rows}, fh, indent=1)
+    os.replace(args.out + ".json.tmp", args.out + ".json")
+
+
+if __name__ == "__main__":
+    main()
