@@ -66,3 +66,27 @@ def test_timestep_near_rayleigh_limit_warns(tmp_path):
     rc, out = run_deck(text, tmp_path)
     assert rc == 0
     assert "exceeds 0.3 x the Rayleigh time" in out and "reduce the timestep" in out, out[-2000:]
+
+
+def deforming_deck(deform):
+    # two touching spheres in a periodic box deformed by fix deform with remap x
+    return deck().replace("run 0", f"""fix integrate all nve/sphere
+fix deform all deform 1 {deform} remap x
+run 5
+""")
+
+
+@pytest.mark.parametrize("deform, warns", [
+    ("x erate 1e3 y volume z volume", True),      # LAMMPS 2021 leaves h_rate = 0 for 'volume'
+    ("x erate 1e3 y erate -5e2 z erate -5e2", False),
+    ("x trate 1e3 y trate -5e2 z trate -5e2", False),
+])
+def test_box_change_without_rate_warns(deform, warns, tmp_path):
+    # the affine contact velocity comes from domain->h_rate: a box change it does not explain
+    # gets a warning naming the component and what to use instead
+    rc, out = run_deck(deforming_deck(deform), tmp_path)
+    assert rc == 0 and "ERROR" not in out, out[-2000:]
+    warned = "changed by" in out and "h_rate" in out
+    assert warned == warns, out[-3000:]
+    if warns:
+        assert "box component h_yy" in out and "fix cell/servo" in out

@@ -80,6 +80,10 @@ PairThorntonYin::PairThorntonYin(LAMMPS *lmp) : Pair(lmp)
   dt = 0.0;
   tally_cell = 0;
   generic_paths = 0;
+  for (double &h : box_h) h = 0.0;
+  box_step = -1;
+  box_from_setup = 1;
+  box_rate_warned = 0;
   for (double &t : cell_tallies) t = 0.0;
   contact_count = nullptr;
   nmax_count = 0;
@@ -403,10 +407,51 @@ double PairThorntonYin::affine_velocity_gradient(double L[3][3]) const
   return largest;
 }
 
+/* ----------------------------------------------------------------------
+   The affine contact velocity is built from domain->h_rate (affine_velocity_gradient).
+   A fix that changes the box without setting h_rate (in LAMMPS 2021: fix deform 'volume'
+   dimensions, barostats) silently removes part of it, so compare h_rate dt with the box
+   change since the previous step and warn once if they disagree.
+------------------------------------------------------------------------- */
+
+void PairThorntonYin::check_box_rate()
+{
+  const bigint step = update->ntimestep;
+  const double *h = domain->h;
+  // compare only step to step within a run: fix deform sets h_rate at init but changes the
+  // box at the end of each step, so the first step after setup has not moved yet
+  const bool comparable = step == box_step + 1 && !box_from_setup;
+  box_from_setup = update->setupflag;
+  if (!update->setupflag && !domain->deform_vremap && !box_rate_warned && comparable) {
+    static const char *const component[6] = {"xx", "yy", "zz", "yz", "xz", "xy"};
+    for (int k = 0; k < 6; ++k) {
+      const double change = h[k] - box_h[k];
+      const double from_rate = domain->h_rate[k] * update->dt;
+      const double scale = std::fabs(change) + std::fabs(from_rate);
+      if (std::fabs(change - from_rate) > 1e-3 * scale && scale > 1e-12 * std::fabs(h[k])) {
+        box_rate_warned = 1;
+        if (comm->me == 0)
+          error->warning(FLERR, "pair thornton/yin: box component h_{} changed by {:.4g} in the "
+                         "last step but its rate h_rate dt = {:.4g}: a fix changes the box "
+                         "without setting domain->h_rate (fix deform 'volume' in this LAMMPS "
+                         "version, a barostat), so the affine part of the contact velocity "
+                         "is missing for that direction. Use fix cell/servo, fix deform with "
+                         "erate/trate/final on every changing dimension, or fix deform remap v",
+                         component[k], change, from_rate);
+        break;
+      }
+    }
+  }
+  for (int k = 0; k < 6; ++k) box_h[k] = h[k];
+  box_step = step;
+}
+
 /* ---------------------------------------------------------------------- */
 
 void PairThorntonYin::compute(int eflag, int vflag)
 {
+  check_box_rate();
+
   // model only what the scene needs: specialised loops chosen once per call
   adhesive = damped = 0;
   for (int i = 1; i <= atom->ntypes; ++i)

@@ -72,6 +72,13 @@ class PairThorntonYin : public Pair {
   int neighprev;
   double dt;
 
+  // box of the last compute, to check that domain->h_rate explains the box change
+  double box_h[6];
+  bigint box_step;
+  int box_from_setup;
+  int box_rate_warned;
+  void check_box_rate();
+
   int tally_cell;
   double cell_tallies[N_TALLY];
   double *contact_count;    // per atom (local after reverse communication)
