@@ -466,3 +466,14 @@ def test_cli_isotropic_record_does_not_break(tmp_path):
     so = run_cli("pi-plane", f, "--out", out)
     png_ok(out)
     assert "prestrain_row" not in so
+
+
+def test_curve_spread_measures_horizontal_distance_of_curves():
+    # y = x and y = 1.1 x reach every level y0 at x = y0 and y0/1.1: spread (1 - 1/1.1)/mean
+    from tyanalysis import metrics
+    x = np.linspace(0.0, 10.0, 1001)
+    spread = metrics.curve_spread([(x, x), (x, 1.1 * x)], np.linspace(1.0, 7.0, 13))
+    assert spread == pytest.approx((1 - 1 / 1.1) / ((1 + 1 / 1.1) / 2), rel=1e-9)
+    # identical curves do not spread; a level one curve never reaches is skipped
+    assert metrics.curve_spread([(x, x), (x, x)], [1.0, 5.0]) == 0.0
+    assert metrics.curve_spread([(x, x), (x, 0.1 * x)], [5.0]) is None

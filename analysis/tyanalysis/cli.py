@@ -110,6 +110,16 @@ def cmd_radial(a):
             pairs += [("sinphi_LD", inv.sinphi_on_surface(inv.LADE_DUNCAN, sinphi_tc, pk["b"])),
                       ("sinphi_MN", inv.sinphi_on_surface(inv.MATSUOKA_NAKAI, sinphi_tc, pk["b"]))]
         _kv(lab, pairs)
+    if len(tables) > 1:
+        # Figs 5-6: do the eta-eps_d curves (eta < 7) and the dilation rates coincide across b?
+        ds = [metrics.derived(t) for t in tables]
+        eta_curves = [(d[a.strain], d["eta_LD"]) for d in ds]
+        max_dilation = [float(np.nanmax(metrics.dilation_rate(d[a.strain], d["eps_v"])[1]))
+                        for d in ds]
+        _kv("spread across records", [
+            ("eta_eps_d_spread_below_7", metrics.curve_spread(eta_curves, np.linspace(1.0, 7.0, 13))),
+            ("max_dilation_rate_min", min(max_dilation)),
+            ("max_dilation_rate_max", max(max_dilation))])
     _wrote(figures.radial(tables, labels, a.out, peaks, sinphi_tc, p_ref, strain=a.strain))
 
 

@@ -96,6 +96,20 @@ def dilation_rate(eps_d, eps_v, npoints=60):
     return mid, -np.diff(yv) / np.diff(grid)
 
 
+def curve_spread(curves, levels):
+    """Spread of several monotone-rising curves y(x) across records (paper Fig. 5: eta against
+    eps_d for eta < 7): for each level y0, the x at which each curve first reaches y0; returns
+    the largest (max - min)/mean over the levels reached by every curve (None if none is)."""
+    worst = None
+    for y0 in levels:
+        xs = [value_at(y, x, y0) for x, y in curves]
+        if any(v is None for v in xs) or np.mean(xs) <= 0:
+            continue
+        spread = (max(xs) - min(xs)) / float(np.mean(xs))
+        worst = spread if worst is None else max(worst, spread)
+    return worst
+
+
 def _f(x, scale=1.0):
     return None if x is None or not np.isfinite(x) else float(x) * scale
 
