@@ -244,6 +244,10 @@ def test_friction_sinphi_grows_with_mu(friction):
         sinphi_max.append(float(np.max(smooth(t["sinphi"], 5))))
         if mu > 0:      # the frictionless assembly has no stable force chains: p fluctuates
             assert p_held(t, t["eps_d13"] > 0.01) < 0.01
+        else:           # ... but stays bounded: no NaN, kinetic stress a small part of p
+            assert all(np.all(np.isfinite(t[k])) for k in ("p", "q", "eps_v", "p_kinetic"))
+            assert p_held(t, t["eps_d13"] > 0.01) < 0.5
+            assert np.max(t["p_kinetic"]) < 0.1 * P0
     assert sinphi_max[0] < sinphi_max[1] < sinphi_max[2], sinphi_max
     assert sinphi_max[2] - sinphi_max[0] > 0.1
 
