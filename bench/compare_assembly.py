@@ -385,7 +385,9 @@ def main(argv=None):
     fig.suptitle("Axisymmetric compression of the quick dense specimen (500 spheres), "
                  f"ε̇_a = {args.rate:g} 1/s", fontsize=11)
     fig.tight_layout()
-    fig.savefig(args.out, dpi=110)
+    root, ext = os.path.splitext(args.out)
+    fig.savefig(root + ".tmp" + ext, dpi=110)    # whole file, then renamed
+    os.replace(root + ".tmp" + ext, args.out)
     print(f"\nwrote {args.out}" + (f"; decks, logs and records in {work}" if args.keep else ""))
     if not args.keep:
         shutil.rmtree(work, ignore_errors=True)

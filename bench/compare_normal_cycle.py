@@ -64,7 +64,9 @@ def main(argv=None):
     ax.legend()
     ax.set_title(f"Γ = {GAMMA} J/m², R* = 0.05 mm, E = 70 GPa, ν = 0.3")
     fig.tight_layout()
-    fig.savefig(args.out, dpi=120)
+    root, ext = os.path.splitext(args.out)
+    fig.savefig(root + ".tmp" + ext, dpi=120)    # whole file, then renamed
+    os.replace(root + ".tmp" + ext, args.out)
     for name, d, err in (("thornton/yin", a, err_a), ("granular jkr", b, err_b)):
         s = summary(d)
         print(f"{name}: snap-on {s['snap_on_force_Pc']:.4f} Pc, minimum {s['min_force_Pc']:.4f} Pc, "

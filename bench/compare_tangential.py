@@ -324,7 +324,9 @@ def main(argv=None):
     fig.suptitle("Tangential loop at fixed overlap: R = 0.1 mm, E = 70 GPa, ν = 0.3, μ = 0.3",
                  fontsize=11)
     fig.tight_layout()
-    fig.savefig(args.out, dpi=120)
+    root, ext = os.path.splitext(args.out)
+    fig.savefig(root + ".tmp" + ext, dpi=120)    # whole file, then renamed
+    os.replace(root + ".tmp" + ext, args.out)
     print(f"\nwrote {args.out}" + (f"; decks and records in {work}" if args.keep else ""))
     if not args.keep:
         shutil.rmtree(work, ignore_errors=True)

@@ -236,11 +236,12 @@ def main(argv=None):
                 rows.append({"case": label, "repeat": rep, "ranks": args.ranks,
                              "loop_s": loop, "atom_steps_per_s": rate, "pair_s": pair})
                 print(f"  {label:44s} run {rep}: {rate:.4g} atom-steps/s", flush=True)
-    with open(args.out + ".csv", "w") as fh:
+    with open(args.out + ".csv.tmp", "w") as fh:    # written whole, then renamed: no torn file
         fh.write("case,repeat,ranks,loop_s,atom_steps_per_s,pair_s\n")
         for r in rows:
             fh.write(f"{r['case']},{r['repeat']},{r['ranks']},{r['loop_s']},"
                      f"{r['atom_steps_per_s']},{r['pair_s']}\n")
+    os.replace(args.out + ".csv.tmp", args.out + ".csv")
     medians = {label: statistics.median(r["atom_steps_per_s"] for r in rows if r["case"] == label)
                for label, _, _ in runs}
     base = medians.get("thornton/yin G=0.6") or medians.get(
@@ -262,8 +263,9 @@ def main(argv=None):
                "ranks": args.ranks, "median_atom_steps_per_s": medians,
                "ratio_to_thornton_yin_G0.6": {k: v / base for k, v in medians.items()} if base else {},
                "speedup_vs_first_variant": speedups}
-    with open(args.out + ".json", "w") as fh:
+    with open(args.out + ".json.tmp", "w") as fh:
         json.dump(summary, fh, indent=2)
+    os.replace(args.out + ".json.tmp", args.out + ".json")
     print(f"\n| case ({args.ranks} rank(s), {args.steps} steps, median of {args.repeats}) "
           f"| atom-steps/s | ratio to thornton/yin G=0.6 |\n|---|---|---|")
     for name, v in medians.items():
