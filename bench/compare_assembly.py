@@ -43,6 +43,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(REPO, "analysis"))
+from tyanalysis.figures import save_figure  # noqa: E402
 LOAD = ('python tylmp_load input 1 SELF format p here "from tylmp import load as tylmp_load"\n'
         "python tylmp_load invoke\n")
 E, NU, MU, GAMMA = 70e9, 0.3, 0.3, 0.6
@@ -384,10 +386,7 @@ def main(argv=None):
             row[2].legend(fontsize=6, loc="upper center", ncol=2, framealpha=0.7)
     fig.suptitle("Axisymmetric compression of the quick dense specimen (500 spheres), "
                  f"ε̇_a = {args.rate:g} 1/s", fontsize=11)
-    fig.tight_layout()
-    root, ext = os.path.splitext(args.out)
-    fig.savefig(root + ".tmp" + ext, dpi=110)    # whole file, then renamed
-    os.replace(root + ".tmp" + ext, args.out)
+    save_figure(fig, args.out, dpi=110)
     print(f"\nwrote {args.out}" + (f"; decks, logs and records in {work}" if args.keep else ""))
     if not args.keep:
         shutil.rmtree(work, ignore_errors=True)

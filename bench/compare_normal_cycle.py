@@ -9,6 +9,7 @@ import argparse
 import os
 import re
 import subprocess
+import sys
 import tempfile
 
 import matplotlib
@@ -17,6 +18,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(REPO, "analysis"))
+from tyanalysis.figures import save_figure  # noqa: E402
 GAMMA, R_STAR = 0.3, 0.5e-4
 PC = 3 * np.pi * GAMMA * R_STAR
 GRANULAR = ("pair_style granular\npair_coeff * * jkr 70e9 0.0 0.3 ${Gamma} "
@@ -63,10 +66,7 @@ def main(argv=None):
     ax.set_ylim(-1.2, 2)
     ax.legend()
     ax.set_title(f"Γ = {GAMMA} J/m², R* = 0.05 mm, E = 70 GPa, ν = 0.3")
-    fig.tight_layout()
-    root, ext = os.path.splitext(args.out)
-    fig.savefig(root + ".tmp" + ext, dpi=120)    # whole file, then renamed
-    os.replace(root + ".tmp" + ext, args.out)
+    save_figure(fig, args.out)
     for name, d, err in (("thornton/yin", a, err_a), ("granular jkr", b, err_b)):
         s = summary(d)
         print(f"{name}: snap-on {s['snap_on_force_Pc']:.4f} Pc, minimum {s['min_force_Pc']:.4f} Pc, "

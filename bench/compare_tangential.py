@@ -23,6 +23,7 @@ import math
 import os
 import shutil
 import subprocess
+import sys
 import tempfile
 
 import matplotlib
@@ -31,6 +32,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(REPO, "analysis"))
+from tyanalysis.figures import save_figure  # noqa: E402
 LOAD = ('python tylmp_load input 1 SELF format p here "from tylmp import load as tylmp_load"\n'
         "python tylmp_load invoke\n")
 
@@ -323,10 +326,7 @@ def main(argv=None):
         ax.legend(fontsize=7.5, loc="upper left", bbox_to_anchor=(0.0, -0.16), frameon=False)
     fig.suptitle("Tangential loop at fixed overlap: R = 0.1 mm, E = 70 GPa, ν = 0.3, μ = 0.3",
                  fontsize=11)
-    fig.tight_layout()
-    root, ext = os.path.splitext(args.out)
-    fig.savefig(root + ".tmp" + ext, dpi=120)    # whole file, then renamed
-    os.replace(root + ".tmp" + ext, args.out)
+    save_figure(fig, args.out)
     print(f"\nwrote {args.out}" + (f"; decks and records in {work}" if args.keep else ""))
     if not args.keep:
         shutil.rmtree(work, ignore_errors=True)

@@ -12,10 +12,16 @@ KPA = 1e-3
 PCT = 100.0
 
 
-def _save(fig, out):
+def save_figure(fig, out, dpi=120):
+    """Lay out, write the PNG whole under a temporary name and rename it onto `out`, so that an
+    interrupted run never leaves a torn figure; close the figure."""
+    import os
     fig.tight_layout()
-    fig.savefig(out, dpi=120)
+    root, ext = os.path.splitext(out)
+    tmp = root + ".tmp" + (ext or ".png")
+    fig.savefig(tmp, dpi=dpi)
     plt.close(fig)
+    os.replace(tmp, out)
     return out
 
 
@@ -60,7 +66,7 @@ def axisym(tables, labels, out, void_ratio=False):
     for a in (a1, a2):
         a.grid(alpha=0.3)
         a.legend(fontsize=8)
-    return _save(fig, out)
+    return save_figure(fig, out)
 
 
 def friction(mus, sinphi_max, sinphi_cv, out):
@@ -77,7 +83,7 @@ def friction(mus, sinphi_max, sinphi_cv, out):
     ax.set_ylim(bottom=0)
     ax.grid(alpha=0.3)
     ax.legend()
-    return _save(fig, out)
+    return save_figure(fig, out)
 
 
 def radial(tables, labels, out, peaks, sinphi_tc, p_ref, strain="eps_q"):
@@ -117,7 +123,7 @@ def radial(tables, labels, out, peaks, sinphi_tc, p_ref, strain="eps_q"):
         rmax = max(rmax, float(np.hypot(pk["pi_x"], pk["pi_y"])) * KPA)
     _axis_rays(a_pi, 1.1 * rmax if rmax else 1.0)
     a_pi.legend(fontsize=6, loc="lower right")
-    return _save(fig, out)
+    return save_figure(fig, out)
 
 
 def pi_plane(tables, labels, out, stress_surfaces, strain_guides):
@@ -147,7 +153,7 @@ def pi_plane(tables, labels, out, stress_surfaces, strain_guides):
     _axis_rays(a_s, 1.1 * rs if rs else 1.0)
     a_e.legend(fontsize=7, loc="lower right")
     a_s.legend(fontsize=7, loc="lower right")
-    return _save(fig, out)
+    return save_figure(fig, out)
 
 
 def two_spheres(overlap, force, out, curves=(), xlabel="overlap", ylabel="normal force"):
@@ -163,4 +169,4 @@ def two_spheres(overlap, force, out, curves=(), xlabel="overlap", ylabel="normal
     ax.set_title("Two spheres: normal force vs overlap")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
-    return _save(fig, out)
+    return save_figure(fig, out)
