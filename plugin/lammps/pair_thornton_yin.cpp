@@ -6,6 +6,7 @@
 
 #include "pair_thornton_yin.h"
 
+#include "contact_kernel.hpp"
 #include "thornton_yin.hpp"
 
 #include "atom.h"
@@ -75,6 +76,7 @@ PairThorntonYin::PairThorntonYin(LAMMPS *lmp) : Pair(lmp)
   damp_n = damp_t = nullptr;
   cut = nullptr;
   maxrad_type = nullptr;
+  pair_constants = nullptr;
   adhesive = damped = 0;
   neighprev = 0;
   dt = 0.0;
@@ -119,6 +121,7 @@ PairThorntonYin::~PairThorntonYin()
     delete[] poisson;
     delete[] material_set;
     delete[] maxrad_type;
+    delete[] pair_constants;
   }
 }
 
@@ -141,6 +144,7 @@ void PairThorntonYin::allocate()
   poisson = new double[n + 1];
   material_set = new int[n + 1];
   maxrad_type = new double[n + 1];
+  pair_constants = new tycore::PairConstants[(n + 1) * (n + 1)];
   for (int i = 0; i <= n; ++i) {
     youngs[i] = poisson[i] = maxrad_type[i] = 0.0;
     material_set[i] = 0;
@@ -367,6 +371,9 @@ double PairThorntonYin::init_one(int i, int j)
   surface_energy[j][i] = surface_energy[i][j];
   damp_n[j][i] = damp_n[i][j];
   damp_t[j][i] = damp_t[i][j];
+  const int ntp1 = atom->ntypes + 1;
+  pair_constants[i * ntp1 + j] = pair_constants[j * ntp1 + i] = tycore::pair_constants(
+      tycore::PairCoefficients{E_star[i][j], G_star[i][j], friction[i][j], surface_energy[i][j]});
 
   // cutoff: touching largest spheres plus the adhesive tensile range
   double rad_i = maxrad_type[i], rad_j = maxrad_type[j];
@@ -492,6 +499,7 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
   const int *type = atom->type;
   const int nlocal = atom->nlocal;
   const int newton_pair = force->newton_pair;
+  const int ntypes_plus_1 = atom->ntypes + 1;
 
   const int inum = list->inum;
   const int *ilist = list->ilist;
@@ -537,8 +545,8 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
 
       if (!touch[jj] && rsq > radsum * radsum) continue;    // apart, never touched (delta < 0)
 
-      const tycore::PairCoefficients c{E_star[itype][jtype], G_star[itype][jtype],
-                                       friction[itype][jtype], surface_energy[itype][jtype]};
+      const tycore::PairConstants &constants = pair_constants[itype * ntypes_plus_1 + jtype];
+      const tycore::PairCoefficients &c = constants.c;
       const double R = radi * radj / radsum;
       const double r = std::sqrt(rsq);
       const double delta = radsum - r;
@@ -603,21 +611,23 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
       const double vt2 = vr2 - vn * ny + (nz * wr1 - nx * wr3);
       const double vt3 = vr3 - vn * nz + (nx * wr2 - ny * wr1);
 
-      const Eigen::Vector3d normal(nx, ny, nz);
       double P, contact_radius, stored_energy = 0.0;
       if (history_update) {
         const double twist = 0.5 * dt *
             ((omega[i][0] + omega[j][0]) * nx + (omega[i][1] + omega[j][1]) * ny +
              (omega[i][2] + omega[j][2]) * nz);
-        tycore::rotate_history(h, normal, twist);
+        const double normal[3] = {nx, ny, nz};
         // tangential displacement of j relative to i at the contact this step
-        const Eigen::Vector3d ds(-vt1 * dt, -vt2 * dt, -vt3 * dt);
-        const tycore::ContactResult res = tycore::evaluate_contact<ADHESIVE>(
-            c, R, delta, ds, h, eflag_either ? tycore::RESULT_NORMAL_ENERGY : tycore::RESULT_FORCES);
+        const double ds[3] = {-vt1 * dt, -vt2 * dt, -vt3 * dt};
+        double dissipation = 0.0;
+        const tycore::KernelResult res = tycore::advance_contact<ADHESIVE>(
+            constants, R, delta, normal, twist, ds, h, dissipation);
         P = res.P;
         contact_radius = res.contact_radius;
-        stored_energy = res.normal_energy + res.tangential_energy;
-        dissipated_friction += share * res.dissipation;
+        if (eflag_either)
+          stored_energy = tycore::jkr::stored_energy(contact_radius, R, c.E_star, c.Gamma) +
+              tycore::tangential_energy(c, R, P, h);
+        dissipated_friction += share * dissipation;
       } else {
         contact_radius = ADHESIVE
             ? tycore::jkr::contact_radius_warm(delta, R, c.E_star, c.Gamma, h.radius)

@@ -10,6 +10,10 @@
 
 #include "pair.h"
 
+namespace tycore {
+struct PairConstants;
+}
+
 namespace LAMMPS_NS {
 
 class PairThorntonYin : public Pair {
@@ -61,6 +65,7 @@ class PairThorntonYin : public Pair {
   // per type pair (mixed for I != J unless given explicitly)
   double **E_star, **G_star, **friction, **surface_energy;
   double **cut;
+  tycore::PairConstants *pair_constants;    // [i * (ntypes + 1) + j], set by init_one
 
   double **damp_n, **damp_t;                     // damping ratios beta_n, beta_t; 0 = off
   int adhesive, damped;                          // chosen once per compute()
