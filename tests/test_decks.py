@@ -188,8 +188,9 @@ def test_axisym_csv_columns(axisym_dense):
     assert names == CSV_COLUMNS
     assert len(t["step"]) > 100 and np.all(np.diff(t["step"]) > 0)
     assert np.all(np.isfinite(t["p"])) and np.all(np.isfinite(t["eps_d13"]))
-    # the deck stops at its default end, 30 % deviator strain
-    assert 0.30 <= t["eps_d13"][-1] < 0.31
+    # the deck stops at its default end, 30 % deviator strain (halt checked every 500 steps:
+    # the last CSV row may precede the halting step by a few hundred steps)
+    assert 0.295 <= t["eps_d13"][-1] < 0.31
 
 
 def test_axisym_dense_dilates_and_softens(axisym_dense):
@@ -246,7 +247,9 @@ def test_friction_sinphi_grows_with_mu(friction):
     sinphi_max = []
     for mu, f in files.items():
         t, _ = read_csv(f)
-        assert 0.15 <= t["eps_d13"][-1] < 0.16
+        # the run halts (checked every 500 steps) once eps_d13 >= 0.15; the last CSV row may
+        # precede the halting step by a few hundred steps
+        assert 0.145 <= t["eps_d13"][-1] < 0.16
         sinphi_max.append(float(np.max(smooth(t["sinphi"], 5))))
         if mu > 0:      # the frictionless assembly has no stable force chains: p fluctuates
             assert p_held(t, t["eps_d13"] > 0.01) < 0.01

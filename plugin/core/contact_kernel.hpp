@@ -1,14 +1,17 @@
-// The Thornton-Yin contact law fused into one scalar routine for the pair style's hot loop:
-// rotate_history + evaluate_contact (thornton_yin.hpp) in a single pass over one contact.
-// Same law, same history layout, same branch decisions; what differs is only the arithmetic:
-//  * plain doubles instead of Eigen 3-vectors (callgrind: Eigen's SSE2 packets, shuffles and
-//    cross products were 14 % of the pair's instructions on 3-vectors),
-//  * one |T| per step shared by the loading direction and the Coulomb cap, and on the loading
-//    branch (load_dir = T/|T|) one projection of T onto the new tangent plane for both vectors,
-//  * per-material-pair constants (PairConstants) computed once, the JKR force from u = sqrt(a)
-//    of the warm-started Newton without another square root, no libm cube root at theta = 0.
-// tests/core/test_contact_kernel.cpp runs both on long random contact paths (peeling,
-// micro-slip reversals, sliding, tension, separation) and asserts agreement to round-off.
+// The Thornton-Yin contact law as the pair style runs it: rotate_history + evaluate_contact
+// (thornton_yin.hpp, the reference) fused into scalar stages that a batch of contacts passes
+// through together. Same law, same history layout, same branch decisions; what differs is only
+// the arithmetic and its order:
+//  * plain doubles instead of Eigen 3-vectors, one |T| per step shared by the loading direction
+//    and the Coulomb cap, one projection of T for both vectors on the loading branch,
+//    per-material-pair constants (PairConstants) computed once, no libm cube root at theta = 0;
+//  * the step split where a cube root sits on its critical path (StepState): the processor then
+//    overlaps the divisions of the cube roots of independent contacts (bench/pair_speed.py:
+//    1.2x the unsplit kernel with adhesion; docs/performance.md).
+// advance_contact runs the stages for one contact. tests/core/test_contact_kernel.cpp takes
+// every step of long random contact paths (peeling, micro-slip reversals, sliding, tension,
+// twist, a turning normal) from the same state with this and with the reference and asserts
+// the same forces, memory and energies.
 #ifndef TYCORE_CONTACT_KERNEL_HPP
 #define TYCORE_CONTACT_KERNEL_HPP
 
@@ -79,22 +82,30 @@ inline void project_keep_magnitude(double* x, const double* n)
   x[2] *= scale;
 }
 
-// theta = cbrt(theta^3), without the libm call fast_cbrt makes at 0
-inline double theta_of(double theta_cubed) { return theta_cubed > 0.0 ? jkr::fast_cbrt(theta_cubed) : 0.0; }
-
 }    // namespace kernel_detail
 
-// One contact, one step, after a previous step or begin_contact: the stored vectors are carried
-// onto the tangent plane of n and twisted by `twist` (rotate_history), then the normal force at
-// overlap delta and the tangential law for the increment ds (evaluate_contact with
-// RESULT_FORCES). Adds the frictional dissipation of the step to `dissipation`.
-template <bool Adhesive>
-inline KernelResult advance_contact(const PairConstants& k, double R, double delta,
-                                    const double n[3], double twist, const double ds[3],
-                                    ContactHistory& h, double& dissipation)
+// What one contact carries from one stage of its step to the next. The step is split where a
+// cube root sits on its critical path (the stiffness radius a_T, the theta factor), so that the
+// pair can run each stage over a batch of contacts and the cube roots of independent contacts
+// overlap in the processor instead of waiting for each other (docs/performance.md).
+struct StepState {
+  double P, contact_radius, Pc, effective_load, dP, sliding_limit;
+  double T_old[3], ds[3];
+  double stiffness_cubed;    // (stiffness / 8G*)^3 when the radius needs a cube root
+  double stiffness;          // k_T = 8 G* a_T (or 8 G* a_peel while peeling)
+  double T_magnitude;        // |T| when known from the rotation, else < 0
+  double T2;                 // |T|^2 before the step (the rotation keeps it)
+  double s, ks, mu_dP, T_along, limit;
+  double theta_cubed, theta;
+  double lost;
+  int mode;
+  bool frictionless, was_sliding, needs_cbrt, peeled_step, active, slipping;
+};
+
+// Stage 1a: history onto the new tangent plane of n, twisted by `twist` (rotate_history)
+inline void carry_history(const double n[3], double twist, ContactHistory& h, StepState& st)
 {
   using namespace kernel_detail;
-  const PairCoefficients& c = k.c;
   double* T = h.T;
   double* dir = h.load_dir;
 
@@ -112,8 +123,8 @@ inline KernelResult advance_contact(const PairConstants& k, double R, double del
   }
   const double T2_before = dot(T, T);
   const bool dir_follows_T = h.mode == LOADING && T2_before > 0.0 && dot(dir, dir) > 0.0;
-  double T_magnitude = -1.0;    // |T| after the rotation when known, else < 0
-  if (dir_follows_T) {          // load_dir = T/|T| on the loading branch: project once
+  st.T_magnitude = -1.0;
+  if (dir_follows_T) {    // load_dir = T/|T| on the loading branch: project once
     const double along = dot(T, n);
     double p[3] = {T[0] - along * n[0], T[1] - along * n[1], T[2] - along * n[2]};
     const double in_plane2 = dot(p, p);
@@ -123,10 +134,10 @@ inline KernelResult advance_contact(const PairConstants& k, double R, double del
       dir[1] = p[1] * inv;
       dir[2] = p[2] * inv;
       if (twist != 0.0) twist_vector(dir, n, tw_c, tw_s);
-      T_magnitude = std::sqrt(T2_before);
-      T[0] = T_magnitude * dir[0];
-      T[1] = T_magnitude * dir[1];
-      T[2] = T_magnitude * dir[2];
+      st.T_magnitude = std::sqrt(T2_before);
+      T[0] = st.T_magnitude * dir[0];
+      T[1] = st.T_magnitude * dir[1];
+      T[2] = st.T_magnitude * dir[2];
     } else {
       T[0] = T[1] = T[2] = 0.0;
       dir[0] = dir[1] = dir[2] = 0.0;
@@ -138,12 +149,19 @@ inline KernelResult advance_contact(const PairConstants& k, double R, double del
     }
   }
 
-  // ---- normal force (evaluate_contact; jkr::contact_radius_warm, jkr::normal_force) ----
-  KernelResult out;
+  st.T2 = T2_before;
+}
+
+// Stage 1b: normal force at overlap delta (jkr::contact_radius_warm, jkr::normal_force)
+template <bool Adhesive>
+inline void normal_force_step(const PairConstants& k, double R, double delta, ContactHistory& h,
+                              StepState& st)
+{
+  const PairCoefficients& c = k.c;
   const double Rinv = 1.0 / R;
   if (Adhesive) {
     double a = -1.0, u = 0.0;
-    if (h.radius > 0.0) {    // Newton on u^4/R - c u - delta from the previous radius
+    if (h.radius > 0.0) {    // Newton on u^4/R - c u - delta from the previous radius (§1.4b)
       u = std::sqrt(h.radius);
       for (int it = 0; it < 8; ++it) {
         const double u2 = u * u;
@@ -161,27 +179,42 @@ inline KernelResult advance_contact(const PairConstants& k, double R, double del
       a = jkr::contact_radius(delta, R, c.E_star, c.Gamma);
       u = std::sqrt(a);
     }
-    out.contact_radius = a;
-    out.P = 4.0 * c.E_star * (a * a * a) * Rinv * (1.0 / 3.0) - k.adhesive_force * (a * u);
+    st.contact_radius = a;
+    st.P = 4.0 * c.E_star * (a * a * a) * Rinv * (1.0 / 3.0) - k.adhesive_force * (a * u);
   } else {
     const double a = std::sqrt(R * std::max(delta, 0.0));
-    out.contact_radius = a;
-    out.P = 4.0 * c.E_star * (a * a * a) / (3.0 * R);
+    st.contact_radius = a;
+    st.P = 4.0 * c.E_star * (a * a * a) / (3.0 * R);
   }
-  h.radius = out.contact_radius;
-  const double P = out.P;
+  h.radius = st.contact_radius;
+}
 
-  // ---- tangential law (tangential_step) ----
-  const double T_old[3] = {T[0], T[1], T[2]};
-  const double Pc = Adhesive ? jkr::pull_off_force(c.Gamma, R) : 0.0;
-  const double effective_load = P + 2.0 * Pc;
-  const double dP = P - h.P_prev;
-  const double sliding_limit = c.mu * std::max(effective_load, 0.0);
-  const bool was_sliding = h.sliding != 0.0;
+// Stage 1c: start of the tangential law (tangential_step): the frictionless case completely,
+// otherwise what the stiffness radius needs
+template <bool Adhesive>
+inline void begin_tangential(const PairConstants& k, double R, const double ds[3],
+                             ContactHistory& h, StepState& st)
+{
+  const PairCoefficients& c = k.c;
+  double* T = h.T;
+  double* dir = h.load_dir;
+  const double P = st.P;
+  const double T2_before = st.T2;
+  for (int d = 0; d < 3; ++d) {
+    st.T_old[d] = T[d];
+    st.ds[d] = ds[d];
+  }
+  st.Pc = Adhesive ? jkr::pull_off_force(c.Gamma, R) : 0.0;
+  st.effective_load = P + 2.0 * st.Pc;
+  st.dP = P - h.P_prev;
+  st.sliding_limit = c.mu * std::max(st.effective_load, 0.0);
+  st.was_sliding = h.sliding != 0.0;
   h.sliding = 0.0;
-  double lost = 0.0;
-
-  if (sliding_limit <= 0.0) {    // frictionless, or a Hertz contact at zero load
+  st.lost = st.theta_cubed = st.theta = 0.0;
+  st.needs_cbrt = st.peeled_step = st.slipping = false;
+  st.active = true;
+  st.frictionless = st.sliding_limit <= 0.0;
+  if (st.frictionless) {    // frictionless, or a Hertz contact at zero load
     T[0] = T[1] = T[2] = 0.0;
     dir[0] = dir[1] = dir[2] = 0.0;
     h.mode = LOADING;
@@ -189,130 +222,164 @@ inline KernelResult advance_contact(const PairConstants& k, double R, double del
     h.sliding = 1.0;
     h.peeling = 0.0;
     h.P_prev = P;
-    const double released = h.stored_energy + 0.5 * dot(T_old, ds);
+    return;
+  }
+  if (Adhesive && h.peeling != 0.0) {    // stage A: Savkoor-Briggs peeling      (physics.md §2.2)
+    const double before = 4.0 * P * st.Pc + 4.0 * st.Pc * st.Pc - k.peel_shear * T2_before;
+    if (before > 0.0) {    // 4E*a^3/(3R*) = P + 2Pc + sqrt(discriminant)
+      st.stiffness_cubed = k.cube_radius_per_load * R * (P + 2.0 * st.Pc + std::sqrt(before));
+      st.needs_cbrt = st.peeled_step = true;
+      return;
+    }
+    h.peeling = 0.0;
+  }
+  if (Adhesive) {    // stage B radius: a_T^3 = 3R*(P + 2Pc)/(4E*)
+    st.stiffness_cubed = k.cube_radius_per_load * R * std::max(st.effective_load, 0.0);
+    st.needs_cbrt = true;
+  } else {
+    st.stiffness = 8.0 * c.G_star * st.contact_radius;
+  }
+}
+
+// Stage 2: the stiffness radius's cube root (adhesive contacts)
+inline void stiffness_of(const PairConstants& k, StepState& st)
+{
+  if (st.needs_cbrt) st.stiffness = 8.0 * k.c.G_star * jkr::fast_cbrt(st.stiffness_cubed);
+}
+
+// Stage 3: the peeled step, or the micro-slip branch decision up to theta^3 (micro_slip_step)
+inline void slip_decision(const PairConstants& k, ContactHistory& h, StepState& st)
+{
+  using namespace kernel_detail;
+  if (st.frictionless) return;
+  const PairCoefficients& c = k.c;
+  double* T = h.T;
+  double* dir = h.load_dir;
+  const double* ds = st.ds;
+  if (st.peeled_step) {
+    T[0] += st.stiffness * ds[0];
+    T[1] += st.stiffness * ds[1];
+    T[2] += st.stiffness * ds[2];
+    st.T_magnitude = -1.0;
+    if (4.0 * st.P * st.Pc + 4.0 * st.Pc * st.Pc - k.peel_shear * dot(T, T) <= 0.0) h.peeling = 0.0;
+    return;
+  }
+  bool at_limit = st.was_sliding && h.mode == LOADING;
+  if (dot(dir, dir) == 0.0) {
+    const double T2 = dot(T, T);
+    if (T2 > 0.0) {
+      const double inv = 1.0 / std::sqrt(T2);
+      dir[0] = T[0] * inv, dir[1] = T[1] * inv, dir[2] = T[2] * inv;
+    } else {
+      const double s2 = dot(ds, ds);
+      if (s2 > 0.0) {
+        const double inv = 1.0 / std::sqrt(s2);
+        dir[0] = ds[0] * inv, dir[1] = ds[1] * inv, dir[2] = ds[2] * inv;
+      } else {
+        st.active = false;
+        return;
+      }
+    }
+    h.mode = LOADING;
+    at_limit = false;
+  }
+  st.limit = c.mu * st.effective_load;
+  st.s = dot(ds, dir);
+  st.ks = st.stiffness * st.s;
+  st.mu_dP = c.mu * st.dP;
+  st.T_along = st.T_magnitude >= 0.0 ? st.T_magnitude : dot(T, dir);
+  const double ks = st.ks, mu_dP = st.mu_dP;
+  int mode = static_cast<int>(h.mode);
+  bool slipping = false;
+  if (mode != UNLOADING) {
+    if (ks > mu_dP) slipping = true;
+    else if (ks < -mu_dP) {
+      mode = UNLOADING;
+      h.T_star = st.T_along;
+      slipping = true;
+    }
+  } else {
+    if (ks < -mu_dP) slipping = true;
+    else if (ks > mu_dP) {
+      mode = RELOADING;
+      h.T_star2 = st.T_along;
+      slipping = true;
+    }
+  }
+  h.T_star += mu_dP;    // reversal points follow the normal load              (physics.md §2.1)
+  h.T_star2 -= mu_dP;
+  st.mode = mode;
+  st.slipping = slipping;
+  st.theta_cubed = 0.0;    // theta^3 of Thornton & Randall (1988), P -> P + 2Pc  (physics.md §2.1)
+  if (slipping && !(mode == LOADING && at_limit)) {
+    double t3;
+    switch (mode) {
+      case UNLOADING: t3 = 1.0 - (h.T_star - st.T_along + 2.0 * mu_dP) / (2.0 * st.limit); break;
+      case RELOADING: t3 = 1.0 - (st.T_along - h.T_star2 + 2.0 * mu_dP) / (2.0 * st.limit); break;
+      default: t3 = 1.0 - (st.T_along + mu_dP) / st.limit;
+    }
+    st.theta_cubed = std::clamp(t3, 0.0, 1.0);
+  }
+}
+
+// Stage 4: theta = cbrt(theta^3), without the libm call fast_cbrt makes at 0
+inline void theta_of(StepState& st)
+{
+  st.theta = (st.slipping && st.theta_cubed > 0.0) ? jkr::fast_cbrt(st.theta_cubed) : 0.0;
+}
+
+// Stage 5: the micro-slip increment, branch changes, Coulomb cap and energy balance
+inline void finish_step(const PairConstants& /*k*/, ContactHistory& h, StepState& st,
+                        double& dissipation)
+{
+  using namespace kernel_detail;
+  double* T = h.T;
+  double* dir = h.load_dir;
+  const double* ds = st.ds;
+  if (st.frictionless) {
+    const double released = h.stored_energy + 0.5 * dot(st.T_old, ds);
     h.stored_energy = 0.0;
     dissipation += std::max(released, 0.0);
-    return out;
+    return;
   }
-
-  double stiffness = 0.0;
-  bool peeled_step = false;
-  if (Adhesive && h.peeling != 0.0) {    // stage A: Savkoor-Briggs peeling      (physics.md §2.2)
-    const double base = 4.0 * P * Pc + 4.0 * Pc * Pc;
-    const double before = base - k.peel_shear * dot(T, T);
-    if (before > 0.0) {
-      stiffness = 8.0 * c.G_star *
-          jkr::fast_cbrt(k.cube_radius_per_load * R * (P + 2.0 * Pc + std::sqrt(before)));
-      T[0] += stiffness * ds[0];
-      T[1] += stiffness * ds[1];
-      T[2] += stiffness * ds[2];
-      peeled_step = true;
-      T_magnitude = -1.0;
-      if (base - k.peel_shear * dot(T, T) <= 0.0) h.peeling = 0.0;
-    } else {
-      h.peeling = 0.0;
+  if (!st.peeled_step && st.active) {
+    double dT_par = st.ks;
+    if (st.slipping) {
+      const double theta = st.theta;
+      const double sign = (st.mode == UNLOADING) ? -1.0 : 1.0;
+      dT_par = theta * st.ks + sign * st.mu_dP * (1.0 - theta);
+      st.lost += detail::annulus_dissipation_rate(st.limit, theta) * std::abs(st.s);
     }
-  }
-
-  if (!peeled_step) {    // stage B: micro-slip (micro_slip_step)
-    stiffness = 8.0 * c.G_star *
-        (Adhesive ? jkr::fast_cbrt(k.cube_radius_per_load * R * std::max(effective_load, 0.0))
-                  : out.contact_radius);
-    bool at_limit = was_sliding && h.mode == LOADING;
-    bool active = true;
-    if (dot(dir, dir) == 0.0) {
-      const double T2 = dot(T, T);
-      if (T2 > 0.0) {
-        const double inv = 1.0 / std::sqrt(T2);
-        dir[0] = T[0] * inv, dir[1] = T[1] * inv, dir[2] = T[2] * inv;
-      } else {
-        const double s2 = dot(ds, ds);
-        if (s2 > 0.0) {
-          const double inv = 1.0 / std::sqrt(s2);
-          dir[0] = ds[0] * inv, dir[1] = ds[1] * inv, dir[2] = ds[2] * inv;
-        } else {
-          active = false;
-        }
-      }
-      if (active) {
-        h.mode = LOADING;
-        at_limit = false;
+    // T += dT_par dir + k (ds - s dir)
+    const double along = dT_par - st.stiffness * st.s;
+    T[0] += along * dir[0] + st.stiffness * ds[0];
+    T[1] += along * dir[1] + st.stiffness * ds[1];
+    T[2] += along * dir[2] + st.stiffness * ds[2];
+    int mode = st.mode;
+    if (mode == UNLOADING || mode == RELOADING) {
+      const double T_after = dot(T, dir);
+      if (mode == UNLOADING && T_after <= -h.T_star) {    // back on the virgin curve, reversed
+        mode = LOADING;
+        dir[0] = -dir[0], dir[1] = -dir[1], dir[2] = -dir[2];
+      } else if (mode == RELOADING && T_after >= h.T_star) {
+        mode = LOADING;
       }
     }
-    if (active) {
-      const double limit = c.mu * effective_load;
-      const double s = dot(ds, dir);
-      const double ks = stiffness * s, mu_dP = c.mu * dP;
-      const double T_along = T_magnitude >= 0.0 ? T_magnitude : dot(T, dir);
-      int mode = static_cast<int>(h.mode);
-      bool slipping = false;
-      if (mode != UNLOADING) {
-        if (ks > mu_dP) slipping = true;
-        else if (ks < -mu_dP) {
-          mode = UNLOADING;
-          h.T_star = T_along;
-          slipping = true;
-        }
-      } else {
-        if (ks < -mu_dP) slipping = true;
-        else if (ks > mu_dP) {
-          mode = RELOADING;
-          h.T_star2 = T_along;
-          slipping = true;
-        }
-      }
-      h.T_star += mu_dP;    // reversal points follow the normal load              (physics.md §2.1)
-      h.T_star2 -= mu_dP;
-
-      double dT_par = ks;
-      if (slipping) {
-        double t3 = 0.0;    // theta^3 of Thornton & Randall (1988), P -> P + 2Pc  (physics.md §2.1)
-        if (!(mode == LOADING && at_limit)) {
-          switch (mode) {
-            case UNLOADING: t3 = 1.0 - (h.T_star - T_along + 2.0 * mu_dP) / (2.0 * limit); break;
-            case RELOADING: t3 = 1.0 - (T_along - h.T_star2 + 2.0 * mu_dP) / (2.0 * limit); break;
-            default: t3 = 1.0 - (T_along + mu_dP) / limit;
-          }
-          t3 = std::clamp(t3, 0.0, 1.0);
-        }
-        const double theta = theta_of(t3);
-        const double sign = (mode == UNLOADING) ? -1.0 : 1.0;
-        dT_par = theta * ks + sign * mu_dP * (1.0 - theta);
-        lost += detail::annulus_dissipation_rate(limit, theta) * std::abs(s);
-      }
-      // T += dT_par dir + k (ds - s dir)
-      const double along = dT_par - stiffness * s;
-      T[0] += along * dir[0] + stiffness * ds[0];
-      T[1] += along * dir[1] + stiffness * ds[1];
-      T[2] += along * dir[2] + stiffness * ds[2];
-
-      if (mode == UNLOADING || mode == RELOADING) {
-        const double T_after = dot(T, dir);
-        if (mode == UNLOADING && T_after <= -h.T_star) {    // back on the virgin curve, reversed
-          mode = LOADING;
-          dir[0] = -dir[0], dir[1] = -dir[1], dir[2] = -dir[2];
-        } else if (mode == RELOADING && T_after >= h.T_star) {
-          mode = LOADING;
-        }
-      }
-      h.mode = mode;
-    }
+    h.mode = mode;
   }
 
   // one |T| for the loading direction and the Coulomb cap (stage C)
-  const double T2 = dot(T, T);
-  const double magnitude = std::sqrt(T2);
-  const bool loading_dir = !peeled_step && h.mode == LOADING && T2 > 0.0;
+  const double sliding_limit = st.sliding_limit;
+  const double magnitude = std::sqrt(dot(T, T));
+  const bool loading_dir = !st.peeled_step && h.mode == LOADING && magnitude > 0.0;
   const bool capped = magnitude >= sliding_limit * (1.0 - detail::limit_tolerance);
   if (loading_dir || capped) {
     const double inv = 1.0 / magnitude;
-    if (loading_dir || magnitude > 0.0) {
-      dir[0] = T[0] * inv, dir[1] = T[1] * inv, dir[2] = T[2] * inv;
-    }
+    dir[0] = T[0] * inv, dir[1] = T[1] * inv, dir[2] = T[2] * inv;
   }
   if (capped) {    // gross sliding at |T| = mu (P + 2Pc)
     if (magnitude > sliding_limit * (1.0 + detail::limit_tolerance)) {
-      lost += sliding_limit * (magnitude - sliding_limit) / stiffness;
+      st.lost += sliding_limit * (magnitude - sliding_limit) / st.stiffness;
       const double scale = sliding_limit / magnitude;
       T[0] *= scale, T[1] *= scale, T[2] *= scale;
     }
@@ -321,14 +388,33 @@ inline KernelResult advance_contact(const PairConstants& k, double R, double del
     h.sliding = 1.0;
     h.peeling = 0.0;
   }
-  h.P_prev = P;
+  h.P_prev = st.P;
   const double available =
-      h.stored_energy + 0.5 * ((T_old[0] + T[0]) * ds[0] + (T_old[1] + T[1]) * ds[1] +
-                               (T_old[2] + T[2]) * ds[2]);
-  lost = std::clamp(lost, 0.0, std::max(available, 0.0));
+      h.stored_energy + 0.5 * ((st.T_old[0] + T[0]) * ds[0] + (st.T_old[1] + T[1]) * ds[1] +
+                               (st.T_old[2] + T[2]) * ds[2]);
+  const double lost = std::clamp(st.lost, 0.0, std::max(available, 0.0));
   h.stored_energy = std::max(available - lost, 0.0);
   dissipation += lost;
-  return out;
+}
+
+// One contact, one step, after a previous step or begin_contact: the stored vectors are carried
+// onto the tangent plane of n and twisted by `twist` (rotate_history), then the normal force at
+// overlap delta and the tangential law for the increment ds (evaluate_contact with
+// RESULT_FORCES). Adds the frictional dissipation of the step to `dissipation`.
+template <bool Adhesive>
+inline KernelResult advance_contact(const PairConstants& k, double R, double delta,
+                                    const double n[3], double twist, const double ds[3],
+                                    ContactHistory& h, double& dissipation)
+{
+  StepState st;
+  carry_history(n, twist, h, st);
+  normal_force_step<Adhesive>(k, R, delta, h, st);
+  begin_tangential<Adhesive>(k, R, ds, h, st);
+  stiffness_of(k, st);
+  slip_decision(k, h, st);
+  theta_of(st);
+  finish_step(k, h, st, dissipation);
+  return KernelResult{st.P, st.contact_radius};
 }
 
 }    // namespace tycore

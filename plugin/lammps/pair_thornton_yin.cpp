@@ -522,6 +522,103 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
     for (int k = 0; k < nall; ++k) contact_count[k] = 0.0;
   }
 
+  // forces and torques of one contact on i and j (and the tallies)
+  const auto apply_contact = [&](const Contact &ct, double stored_energy) {
+    const int i = ct.i, j = ct.j;
+    const double nx = ct.n[0], ny = ct.n[1], nz = ct.n[2];
+    const tycore::PairCoefficients &c = ct.constants->c;
+    double Fn = ct.st.P;
+    double fs1 = ct.h.T[0], fs2 = ct.h.T[1], fs3 = ct.h.T[2];
+    if (DAMPED) {
+      // viscous damping outside the elastic history: eta = 2 beta sqrt(m* k)
+      const int itype = type[i], jtype = type[j];
+      const double m_star = rmass[i] * rmass[j] / (rmass[i] + rmass[j]);
+      const double eta_n = 2.0 * damp_n[itype][jtype] *
+          std::sqrt(m_star * 2.0 * c.E_star * ct.st.contact_radius);
+      const double eta_t = 2.0 * damp_t[itype][jtype] *
+          std::sqrt(m_star * 8.0 * c.G_star * ct.st.contact_radius);
+      Fn -= eta_n * ct.vn;
+      fs1 -= eta_t * ct.vt[0];
+      fs2 -= eta_t * ct.vt[1];
+      fs3 -= eta_t * ct.vt[2];
+      if (history_update)
+        dissipated_damping += ct.share * dt *
+            (eta_n * ct.vn * ct.vn +
+             eta_t * (ct.vt[0] * ct.vt[0] + ct.vt[1] * ct.vt[1] + ct.vt[2] * ct.vt[2]));
+    }
+    const double fx = nx * Fn + fs1;
+    const double fy = ny * Fn + fs2;
+    const double fz = nz * Fn + fs3;
+    f[i][0] += fx;
+    f[i][1] += fy;
+    f[i][2] += fz;
+    // torque of the tangential force applied at the contact point
+    const double tor1 = ny * fs3 - nz * fs2;
+    const double tor2 = nz * fs1 - nx * fs3;
+    const double tor3 = nx * fs2 - ny * fs1;
+    torque[i][0] -= ct.lever_i * tor1;
+    torque[i][1] -= ct.lever_i * tor2;
+    torque[i][2] -= ct.lever_i * tor3;
+    if (newton_pair || j < nlocal) {
+      f[j][0] -= fx;
+      f[j][1] -= fy;
+      f[j][2] -= fz;
+      torque[j][0] -= ct.lever_j * tor1;
+      torque[j][1] -= ct.lever_j * tor2;
+      torque[j][2] -= ct.lever_j * tor3;
+    }
+    if (evflag)
+      ev_tally_xyz(i, j, nlocal, newton_pair, stored_energy, 0.0, fx, fy, fz, ct.del[0],
+                   ct.del[1], ct.del[2]);
+    if (tally) {
+      // affine stiffness of this contact (physics.md §5.2), k_T = 8 G* a_T(P + 2Pc); without
+      // adhesion a_T is the Hertz radius itself, as in evaluate_contact
+      const double R = ct.R, P = ct.st.P, contact_radius = ct.st.contact_radius;
+      const double k_N = tycore::jkr::normal_stiffness(contact_radius, R, c.E_star, c.Gamma);
+      const double tangential_radius = ADHESIVE
+          ? tycore::micro_slip_radius(R, c.E_star,
+                                      P + 2.0 * tycore::jkr::pull_off_force(c.Gamma, R))
+          : contact_radius;
+      const double k_T = 8.0 * c.G_star * tangential_radius;
+      const double n2[3] = {nx * nx, ny * ny, nz * nz};
+      const int a_of[6] = {0, 1, 2, 0, 0, 1}, b_of[6] = {0, 1, 2, 1, 2, 2};
+      for (int k = 0; k < 6; ++k) {
+        const double nn = n2[a_of[k]] * n2[b_of[k]];
+        cell_tallies[TALLY_STIFFNESS + k] +=
+            ct.share * ct.rsq * (k_N * nn + k_T * ((k < 3 ? n2[a_of[k]] : 0.0) - nn));
+      }
+      cell_tallies[TALLY_CONTACTS] += ct.share;
+      cell_tallies[TALLY_SLIDING] += ct.share * ct.h.sliding;
+      cell_tallies[TALLY_FORCE] += ct.share * std::sqrt(fx * fx + fy * fy + fz * fz);
+      contact_count[i] += 1.0;
+      if (newton_pair || j < nlocal) contact_count[j] += 1.0;
+    }
+  };
+
+  // the rest of the step of every contact in the batch, stage by stage: the cube roots of
+  // independent contacts overlap (tycore::StepState)
+  Contact batch[BATCH], single_contact;
+  int nbatch = 0;
+  const auto flush_batch = [&]() {
+    if (ADHESIVE)
+      for (int b = 0; b < nbatch; ++b) tycore::stiffness_of(*batch[b].constants, batch[b].st);
+    for (int b = 0; b < nbatch; ++b) tycore::slip_decision(*batch[b].constants, batch[b].h, batch[b].st);
+    for (int b = 0; b < nbatch; ++b) tycore::theta_of(batch[b].st);
+    for (int b = 0; b < nbatch; ++b) {
+      Contact &ct = batch[b];
+      double dissipation = 0.0;
+      tycore::finish_step(*ct.constants, ct.h, ct.st, dissipation);
+      dissipated_friction += ct.share * dissipation;
+      store_history(ct.slot, ct.h);
+      const tycore::PairCoefficients &c = ct.constants->c;
+      apply_contact(ct, eflag_either ? tycore::jkr::stored_energy(ct.st.contact_radius, ct.R,
+                                                                   c.E_star, c.Gamma) +
+                                           tycore::tangential_energy(c, ct.R, ct.st.P, ct.h)
+                                     : 0.0);
+    }
+    nbatch = 0;
+  };
+
   for (int ii = 0; ii < inum; ++ii) {
     const int i = ilist[ii];
     const int itype = type[i];
@@ -579,7 +676,8 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
         }
       }
 
-      tycore::ContactHistory h;
+      Contact &ct = history_update ? batch[nbatch] : single_contact;
+      tycore::ContactHistory &h = ct.h;
       if (!touch[jj]) {    // first touch at delta >= 0: JKR snap-on, no work done
         touch[jj] = 1;
         const double a = ADHESIVE ? tycore::jkr::contact_radius(delta, R, c.E_star, c.Gamma)
@@ -611,100 +709,43 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
       const double vt2 = vr2 - vn * ny + (nz * wr1 - nx * wr3);
       const double vt3 = vr3 - vn * nz + (nx * wr2 - ny * wr1);
 
-      double P, contact_radius, stored_energy = 0.0;
+      ct.i = i;
+      ct.j = j;
+      ct.slot = slot;
+      ct.constants = &constants;
+      ct.n[0] = nx, ct.n[1] = ny, ct.n[2] = nz;
+      ct.del[0] = delx, ct.del[1] = dely, ct.del[2] = delz;
+      ct.rsq = rsq;
+      ct.R = R;
+      ct.lever_i = lever_i, ct.lever_j = lever_j;
+      ct.vn = vn;
+      ct.vt[0] = vt1, ct.vt[1] = vt2, ct.vt[2] = vt3;
+      ct.share = share;
+
       if (history_update) {
         const double twist = 0.5 * dt *
             ((omega[i][0] + omega[j][0]) * nx + (omega[i][1] + omega[j][1]) * ny +
              (omega[i][2] + omega[j][2]) * nz);
-        const double normal[3] = {nx, ny, nz};
         // tangential displacement of j relative to i at the contact this step
         const double ds[3] = {-vt1 * dt, -vt2 * dt, -vt3 * dt};
-        double dissipation = 0.0;
-        const tycore::KernelResult res = tycore::advance_contact<ADHESIVE>(
-            constants, R, delta, normal, twist, ds, h, dissipation);
-        P = res.P;
-        contact_radius = res.contact_radius;
-        if (eflag_either)
-          stored_energy = tycore::jkr::stored_energy(contact_radius, R, c.E_star, c.Gamma) +
-              tycore::tangential_energy(c, R, P, h);
-        dissipated_friction += share * dissipation;
-      } else {
-        contact_radius = ADHESIVE
+        tycore::carry_history(ct.n, twist, h, ct.st);
+        tycore::normal_force_step<ADHESIVE>(constants, R, delta, h, ct.st);
+        tycore::begin_tangential<ADHESIVE>(constants, R, ds, h, ct.st);
+        if (++nbatch == BATCH) flush_batch();
+      } else {    // setup: forces at unchanged positions, history kept
+        ct.st.contact_radius = ADHESIVE
             ? tycore::jkr::contact_radius_warm(delta, R, c.E_star, c.Gamma, h.radius)
             : std::sqrt(R * delta);
-        P = tycore::jkr::normal_force(contact_radius, R, c.E_star, c.Gamma);
-        if (eflag)
-          stored_energy = tycore::jkr::stored_energy(contact_radius, R, c.E_star, c.Gamma) +
-              tycore::tangential_energy(c, R, P, h);
-      }
-      store_history(slot, h);
-
-      double Fn = P;
-      double fs1 = h.T[0], fs2 = h.T[1], fs3 = h.T[2];
-      if (DAMPED) {
-        // viscous damping outside the elastic history: eta = 2 beta sqrt(m* k)
-        const double m_star = rmass[i] * rmass[j] / (rmass[i] + rmass[j]);
-        const double eta_n =
-            2.0 * damp_n[itype][jtype] * std::sqrt(m_star * 2.0 * c.E_star * contact_radius);
-        const double eta_t =
-            2.0 * damp_t[itype][jtype] * std::sqrt(m_star * 8.0 * c.G_star * contact_radius);
-        Fn -= eta_n * vn;
-        fs1 -= eta_t * vt1;
-        fs2 -= eta_t * vt2;
-        fs3 -= eta_t * vt3;
-        if (history_update)
-          dissipated_damping += share * dt *
-              (eta_n * vn * vn + eta_t * (vt1 * vt1 + vt2 * vt2 + vt3 * vt3));
-      }
-
-      const double fx = nx * Fn + fs1;
-      const double fy = ny * Fn + fs2;
-      const double fz = nz * Fn + fs3;
-      f[i][0] += fx;
-      f[i][1] += fy;
-      f[i][2] += fz;
-      // torque of the tangential force applied at the contact point
-      const double tor1 = ny * fs3 - nz * fs2;
-      const double tor2 = nz * fs1 - nx * fs3;
-      const double tor3 = nx * fs2 - ny * fs1;
-      torque[i][0] -= lever_i * tor1;
-      torque[i][1] -= lever_i * tor2;
-      torque[i][2] -= lever_i * tor3;
-      if (newton_pair || j < nlocal) {
-        f[j][0] -= fx;
-        f[j][1] -= fy;
-        f[j][2] -= fz;
-        torque[j][0] -= lever_j * tor1;
-        torque[j][1] -= lever_j * tor2;
-        torque[j][2] -= lever_j * tor3;
-      }
-      if (evflag)
-        ev_tally_xyz(i, j, nlocal, newton_pair, stored_energy, 0.0, fx, fy, fz, delx, dely,
-                     delz);
-      if (tally) {
-        // affine stiffness of this contact (physics.md §5.2), k_T = 8 G* a_T(P + 2Pc); without
-        // adhesion a_T is the Hertz radius itself, as in evaluate_contact
-        const double k_N = tycore::jkr::normal_stiffness(contact_radius, R, c.E_star, c.Gamma);
-        const double tangential_radius = ADHESIVE
-            ? tycore::micro_slip_radius(R, c.E_star,
-                                        P + 2.0 * tycore::jkr::pull_off_force(c.Gamma, R))
-            : contact_radius;
-        const double k_T = 8.0 * c.G_star * tangential_radius;
-        const double n2[3] = {nx * nx, ny * ny, nz * nz};
-        const int a_of[6] = {0, 1, 2, 0, 0, 1}, b_of[6] = {0, 1, 2, 1, 2, 2};
-        for (int k = 0; k < 6; ++k) {
-          const double nn = n2[a_of[k]] * n2[b_of[k]];
-          cell_tallies[TALLY_STIFFNESS + k] +=
-              share * rsq * (k_N * nn + k_T * ((k < 3 ? n2[a_of[k]] : 0.0) - nn));
-        }
-        cell_tallies[TALLY_CONTACTS] += share;
-        cell_tallies[TALLY_SLIDING] += share * h.sliding;
-        cell_tallies[TALLY_FORCE] += share * std::sqrt(fx * fx + fy * fy + fz * fz);
-        contact_count[i] += 1.0;
-        if (newton_pair || j < nlocal) contact_count[j] += 1.0;
+        ct.st.P = tycore::jkr::normal_force(ct.st.contact_radius, R, c.E_star, c.Gamma);
+        store_history(slot, h);
+        apply_contact(ct, eflag ? tycore::jkr::stored_energy(ct.st.contact_radius, R, c.E_star,
+                                                             c.Gamma) +
+                                      tycore::tangential_energy(c, R, ct.st.P, h)
+                                : 0.0);
       }
     }
   }
+  flush_batch();
   if (tally && newton_pair) comm->reverse_comm_pair(this);
 
   pvector[DISSIPATION_FRICTION] += dissipated_friction;

@@ -10,9 +10,7 @@
 
 #include "pair.h"
 
-namespace tycore {
-struct PairConstants;
-}
+#include "contact_kernel.hpp"
 
 namespace LAMMPS_NS {
 
@@ -94,6 +92,17 @@ class PairThorntonYin : public Pair {
   void check_break_against_skin();
   void check_timestep_against_rayleigh();
   double affine_velocity_gradient(double L[3][3]) const;
+
+  // one contact in flight through the staged kernel (tycore::StepState)
+  struct Contact {
+    int i, j;
+    double *slot;
+    const tycore::PairConstants *constants;
+    double n[3], del[3], rsq, R, lever_i, lever_j, vn, vt[3], share;
+    tycore::ContactHistory h;
+    tycore::StepState st;
+  };
+  static constexpr int BATCH = 16;    // contacts per batch (8 to 64 measured alike)
 
   template <bool ADHESIVE, bool DAMPED> void eval(int eflag, int vflag);
 };
