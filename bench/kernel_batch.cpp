@@ -106,7 +106,7 @@ void run_scene(const Scene& scene)
         for (int b = 0; b < B; ++b) {
           const int i = i0 + b;
           carry_history(&n[3 * i], twist[i], h[i], st[b]);
-          normal_force_step<Adhesive>(k, kR, delta[i], h[i], st[b]);
+          normal_force_step<Adhesive>(k, kR, 1.0 / kR, delta[i], h[i], st[b]);
           begin_tangential<Adhesive>(k, kR, &ds[3 * i], h[i], st[b]);
         }
         if (Adhesive)

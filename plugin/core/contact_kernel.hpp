@@ -4,7 +4,9 @@
 // the arithmetic and its order:
 //  * plain doubles instead of Eigen 3-vectors, one |T| per step shared by the loading direction
 //    and the Coulomb cap, one projection of T for both vectors on the loading branch,
-//    per-material-pair constants (PairConstants) computed once, no libm cube root at theta = 0;
+//    per-material-pair constants (PairConstants) computed once, no libm cube root at theta = 0,
+//    the warm-started JKR radius by Halley's method (cubic: one iteration per quasi-static step
+//    where jkr::contact_radius_warm's Newton takes two; 1.05x with adhesion);
 //  * the step split where a cube root sits on its critical path (StepState): the processor then
 //    overlaps the divisions of the cube roots of independent contacts (bench/pair_speed.py:
 //    1.2x the unsplit kernel with adhesion; docs/performance.md).
@@ -152,24 +154,28 @@ inline void carry_history(const double n[3], double twist, ContactHistory& h, St
   st.T2 = T2_before;
 }
 
-// Stage 1b: normal force at overlap delta (jkr::contact_radius_warm, jkr::normal_force)
+// Stage 1b: normal force at overlap delta (jkr::contact_radius_warm, jkr::normal_force);
+// Rinv = 1/R, which the caller may have from the division that gave R
 template <bool Adhesive>
-inline void normal_force_step(const PairConstants& k, double R, double delta, ContactHistory& h,
+inline void normal_force_step(const PairConstants& k, double R, double Rinv, double delta, ContactHistory& h,
                               StepState& st)
 {
   const PairCoefficients& c = k.c;
-  const double Rinv = 1.0 / R;
   if (Adhesive) {
     double a = -1.0, u = 0.0;
-    if (h.radius > 0.0) {    // Newton on u^4/R - c u - delta from the previous radius (§1.4b)
+    if (h.radius > 0.0) {    // Halley on f(u) = u^4/R - c u - delta from the previous radius (§1.4b)
       u = std::sqrt(h.radius);
-      for (int it = 0; it < 8; ++it) {
+      for (int it = 0; it < 6; ++it) {
         const double u2 = u * u;
-        const double slope = 4.0 * u2 * u * Rinv - k.newton_c;
-        if (!(slope > 0.0)) break;
-        const double step = (u2 * u2 * Rinv - k.newton_c * u - delta) / slope;
+        const double f = u2 * u2 * Rinv - k.newton_c * u - delta;
+        const double f1 = 4.0 * u2 * u * Rinv - k.newton_c;
+        if (!(f1 > 0.0)) break;
+        const double f2 = 12.0 * u2 * Rinv;
+        const double step = 2.0 * f * f1 / (2.0 * f1 * f1 - f * f2);
         u -= step;
-        if (24.0 * u2 * step * step <= 1e-14 * u * R * slope) {
+        // error of the new iterate ~ |f2^2/(4 f1^2) - f3/(6 f1)| step^3, f3 = 24 u/R; 4x margin
+        const double step3 = std::abs(step * step * step);
+        if (4.0 * std::abs(0.25 * f2 * f2 - 4.0 * u * Rinv * f1) * step3 <= 1e-14 * u * f1 * f1) {
           a = u * u;
           break;
         }
@@ -184,7 +190,7 @@ inline void normal_force_step(const PairConstants& k, double R, double delta, Co
   } else {
     const double a = std::sqrt(R * std::max(delta, 0.0));
     st.contact_radius = a;
-    st.P = 4.0 * c.E_star * (a * a * a) / (3.0 * R);
+    st.P = (4.0 / 3.0) * c.E_star * a * std::max(delta, 0.0);    // 4E*a^3/(3R*), a^2 = R* delta
   }
   h.radius = st.contact_radius;
 }
@@ -408,7 +414,7 @@ inline KernelResult advance_contact(const PairConstants& k, double R, double del
 {
   StepState st;
   carry_history(n, twist, h, st);
-  normal_force_step<Adhesive>(k, R, delta, h, st);
+  normal_force_step<Adhesive>(k, R, 1.0 / R, delta, h, st);
   begin_tangential<Adhesive>(k, R, ds, h, st);
   stiffness_of(k, st);
   slip_decision(k, h, st);

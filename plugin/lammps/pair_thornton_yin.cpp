@@ -644,7 +644,10 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
 
       const tycore::PairConstants &constants = pair_constants[itype * ntypes_plus_1 + jtype];
       const tycore::PairCoefficients &c = constants.c;
-      const double R = radi * radj / radsum;
+      // R* = ri rj/(ri + rj) and 1/R* from one division
+      const double product = radi * radj;
+      const double inv = 1.0 / (product * radsum);
+      const double R = product * product * inv, Rinv = radsum * radsum * inv;
       const double r = std::sqrt(rsq);
       const double delta = radsum - r;
       const double share = (newton_pair || j < nlocal) ? 1.0 : 0.5;
@@ -729,7 +732,7 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
         // tangential displacement of j relative to i at the contact this step
         const double ds[3] = {-vt1 * dt, -vt2 * dt, -vt3 * dt};
         tycore::carry_history(ct.n, twist, h, ct.st);
-        tycore::normal_force_step<ADHESIVE>(constants, R, delta, h, ct.st);
+        tycore::normal_force_step<ADHESIVE>(constants, R, Rinv, delta, h, ct.st);
         tycore::begin_tangential<ADHESIVE>(constants, R, ds, h, ct.st);
         if (++nbatch == BATCH) flush_batch();
       } else {    // setup: forces at unchanged positions, history kept
