@@ -44,11 +44,6 @@ inline tycore::ContactHistory load_history(const double *slot)
   return h;
 }
 
-inline void store_history(double *slot, const tycore::ContactHistory &h)
-{
-  std::memcpy(slot, &h, sizeof(h));
-}
-
 }    // namespace
 
 /* ---------------------------------------------------------------------- */
@@ -528,7 +523,7 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
     const double nx = ct.n[0], ny = ct.n[1], nz = ct.n[2];
     const tycore::PairCoefficients &c = ct.constants->c;
     double Fn = ct.st.P;
-    double fs1 = ct.h.T[0], fs2 = ct.h.T[1], fs3 = ct.h.T[2];
+    double fs1 = ct.h->T[0], fs2 = ct.h->T[1], fs3 = ct.h->T[2];
     if (DAMPED) {
       // viscous damping outside the elastic history: eta = 2 beta sqrt(m* k)
       const int itype = type[i], jtype = type[j];
@@ -588,7 +583,7 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
             ct.share * ct.rsq * (k_N * nn + k_T * ((k < 3 ? n2[a_of[k]] : 0.0) - nn));
       }
       cell_tallies[TALLY_CONTACTS] += ct.share;
-      cell_tallies[TALLY_SLIDING] += ct.share * ct.h.sliding;
+      cell_tallies[TALLY_SLIDING] += ct.share * ct.h->sliding;
       cell_tallies[TALLY_FORCE] += ct.share * std::sqrt(fx * fx + fy * fy + fz * fz);
       contact_count[i] += 1.0;
       if (newton_pair || j < nlocal) contact_count[j] += 1.0;
@@ -602,18 +597,17 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
   const auto flush_batch = [&]() {
     if (ADHESIVE)
       for (int b = 0; b < nbatch; ++b) tycore::stiffness_of(*batch[b].constants, batch[b].st);
-    for (int b = 0; b < nbatch; ++b) tycore::slip_decision(*batch[b].constants, batch[b].h, batch[b].st);
+    for (int b = 0; b < nbatch; ++b) tycore::slip_decision(*batch[b].constants, *batch[b].h, batch[b].st);
     for (int b = 0; b < nbatch; ++b) tycore::theta_of(batch[b].st);
     for (int b = 0; b < nbatch; ++b) {
       Contact &ct = batch[b];
       double dissipation = 0.0;
-      tycore::finish_step(*ct.constants, ct.h, ct.st, dissipation);
+      tycore::finish_step(*ct.constants, *ct.h, ct.st, dissipation);
       dissipated_friction += ct.share * dissipation;
-      store_history(ct.slot, ct.h);
       const tycore::PairCoefficients &c = ct.constants->c;
       apply_contact(ct, eflag_either ? tycore::jkr::stored_energy(ct.st.contact_radius, ct.R,
                                                                    c.E_star, c.Gamma) +
-                                           tycore::tangential_energy(c, ct.R, ct.st.P, ct.h)
+                                           tycore::tangential_energy(c, ct.R, ct.st.P, *ct.h)
                                      : 0.0);
     }
     nbatch = 0;
@@ -680,15 +674,15 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
       }
 
       Contact &ct = history_update ? batch[nbatch] : single_contact;
-      tycore::ContactHistory &h = ct.h;
+      // the history is advanced in place, in the neighbor list's page
+      ct.h = reinterpret_cast<tycore::ContactHistory *>(slot);
+      tycore::ContactHistory &h = *ct.h;
       if (!touch[jj]) {    // first touch at delta >= 0: JKR snap-on, no work done
         touch[jj] = 1;
         const double a = ADHESIVE ? tycore::jkr::contact_radius(delta, R, c.E_star, c.Gamma)
                                   : std::sqrt(R * delta);
         tycore::begin_contact(h, tycore::jkr::normal_force(a, R, c.E_star, c.Gamma), ADHESIVE);
         h.radius = a;    // warm start of this step's radius
-      } else {
-        h = load_history(slot);
       }
 
       const double rinv = 1.0 / r;
@@ -714,7 +708,6 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
 
       ct.i = i;
       ct.j = j;
-      ct.slot = slot;
       ct.constants = &constants;
       ct.n[0] = nx, ct.n[1] = ny, ct.n[2] = nz;
       ct.del[0] = delx, ct.del[1] = dely, ct.del[2] = delz;
@@ -740,7 +733,6 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
             ? tycore::jkr::contact_radius_warm(delta, R, c.E_star, c.Gamma, h.radius)
             : std::sqrt(R * delta);
         ct.st.P = tycore::jkr::normal_force(ct.st.contact_radius, R, c.E_star, c.Gamma);
-        store_history(slot, h);
         apply_contact(ct, eflag ? tycore::jkr::stored_energy(ct.st.contact_radius, R, c.E_star,
                                                              c.Gamma) +
                                       tycore::tangential_energy(c, R, ct.st.P, h)

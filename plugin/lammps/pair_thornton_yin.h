@@ -96,10 +96,9 @@ class PairThorntonYin : public Pair {
   // one contact in flight through the staged kernel (tycore::StepState)
   struct Contact {
     int i, j;
-    double *slot;
     const tycore::PairConstants *constants;
     double n[3], del[3], rsq, R, lever_i, lever_j, vn, vt[3], share;
-    tycore::ContactHistory h;
+    tycore::ContactHistory *h;    // the contact's slot in the history page
     tycore::StepState st;
   };
   static constexpr int BATCH = 16;    // contacts per batch (8 to 64 measured alike)
