@@ -13,7 +13,6 @@ compute and what it calls are counted (not neighbor builds, communication or int
 Writes OUT.json and prints instructions per atom-step and the ratio to thornton/yin G=0.6.
 """
 import argparse
-import json
 import os
 import re
 import subprocess
@@ -83,10 +82,8 @@ def main(argv=None):
     for r in rows.values():
         r["ratio_to_thornton_yin_G0.6"] = r["per_atom_step"] / base if base else None
     os.makedirs(os.path.dirname(args.out), exist_ok=True)
-    with open(args.out + ".json.tmp", "w") as fh:
-        json.dump({"data": os.path.relpath(data, pair_speed.REPO), "steps": args.steps,
-                   "cases": rows}, fh, indent=1)
-    os.replace(args.out + ".json.tmp", args.out + ".json")
+    pair_speed.write_json(args.out + ".json", {"data": os.path.relpath(data, pair_speed.REPO),
+                                               "steps": args.steps, "cases": rows})
 
 
 if __name__ == "__main__":

@@ -53,7 +53,6 @@ variant to the first one.
 Writes OUT.csv (every run), OUT.json (medians and ratios) and prints a table.
 """
 import argparse
-import json
 import math
 import os
 import re
@@ -64,6 +63,8 @@ import sys
 import tempfile
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(REPO, "analysis"))
+from tyanalysis.io import write_json  # noqa: E402
 DATA = os.path.join(REPO, "bench", "data", "dense_paper_100kPa.data")
 LOAD = ('python tylmp_load input 1 SELF format p here "from tylmp import load as tylmp_load"\n'
         "python tylmp_load invoke\n")
@@ -263,9 +264,7 @@ def main(argv=None):
                "ranks": args.ranks, "median_atom_steps_per_s": medians,
                "ratio_to_thornton_yin_G0.6": {k: v / base for k, v in medians.items()} if base else {},
                "speedup_vs_first_variant": speedups}
-    with open(args.out + ".json.tmp", "w") as fh:
-        json.dump(summary, fh, indent=2)
-    os.replace(args.out + ".json.tmp", args.out + ".json")
+    write_json(args.out + ".json", summary, indent=2)
     print(f"\n| case ({args.ranks} rank(s), {args.steps} steps, median of {args.repeats}) "
           f"| atom-steps/s | ratio to thornton/yin G=0.6 |\n|---|---|---|")
     for name, v in medians.items():

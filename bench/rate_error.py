@@ -17,7 +17,6 @@ Writes OUT.csv (one row per run, appended as runs finish), OUT.json (with errors
 """
 import argparse
 import csv
-import json
 import os
 import subprocess
 import sys
@@ -214,11 +213,10 @@ def main(argv=None):
     rows = [r for r in rows if r["scale"] == args.scale and abs(r["strain"] / args.strain - 1) < 1e-9]
     ref, table = with_errors(rows, tuple(float(x) for x in args.reference.split(":")))
     floors = scatter_floor(table, ref)
-    with open(args.out + ".json.tmp", "w") as fh:
-        json.dump({"reference": ref, "runs": table,
-                   "scatter_relative": {"sinphi_max": floors[0], "eps_v_end": floors[1]}},
-                  fh, indent=1)
-    os.replace(args.out + ".json.tmp", args.out + ".json")
+    from tyanalysis.io import write_json
+    write_json(args.out + ".json", {"reference": ref, "runs": table,
+                                    "scatter_relative": {"sinphi_max": floors[0],
+                                                         "eps_v_end": floors[1]}})
     plot(table, ref, args.plot)
     print(f"run-to-run scatter (same rate, dt changed by <= 0.02 t_R): sinphi_max "
           f"{floors[0]:.2e}, eps_v {floors[1]:.2e} (relative)")

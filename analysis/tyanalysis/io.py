@@ -1,9 +1,11 @@
-"""Readers for the files written by `fix cell/servo` (CSV) and by `fix print` (two-sphere tables).
+"""Readers for the files written by `fix cell/servo` (CSV) and by `fix print` (two-sphere tables),
+and the atomic writer of JSON summaries.
 
 Both files are append-only and may be read while a run is going or after a crash, so a final
 line without its newline (a partially written row) is dropped, as is a final row with the wrong
 number of fields or an unparsable number. A damaged row anywhere else is an error.
 """
+import json
 import math
 import os
 
@@ -168,3 +170,12 @@ def _fmt(v):
     if math.isnan(v):
         return "nan"
     return repr(v)
+
+
+def write_json(path, obj, indent=1):
+    """Write obj as JSON to path atomically: whole to path.tmp, then renamed (a crash leaves the
+    previous file or the new one, never a torn one)."""
+    tmp = f"{path}.tmp"
+    with open(tmp, "w") as fh:
+        json.dump(obj, fh, indent=indent)
+    os.replace(tmp, path)
