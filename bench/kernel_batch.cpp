@@ -114,7 +114,7 @@ void run_scene(const Scene& scene)
         for (int b = 0; b < B; ++b) slip_decision(k, h[i0 + b], st[b]);
         for (int b = 0; b < B; ++b) theta_of(st[b]);
         for (int b = 0; b < B; ++b) {
-          finish_step(k, h[i0 + b], st[b], lost);
+          finish_step(h[i0 + b], st[b], lost);
           sink += st[b].P;
         }
       }

@@ -51,40 +51,12 @@ struct KernelResult {
   double contact_radius;    // JKR radius a(delta)
 };
 
-namespace kernel_detail {
-
-inline double dot(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-// x -> cos(t) x + sin(t) n x x (rotate_history's twist; the same Taylor polynomials)
-inline void twist_vector(double* x, const double* n, double c, double s)
+// Savkoor-Briggs discriminant 4 P Pc + 4 Pc^2 - T^2 E*/(4G*) (peeling_discriminant, physics.md
+// §2.2) with the shear factor of the pair computed once
+inline double peeling_discriminant(const PairConstants& k, double P, double Pc, double T2)
 {
-  const double x0 = x[0], x1 = x[1], x2 = x[2];
-  x[0] = c * x0 + s * (n[1] * x2 - n[2] * x1);
-  x[1] = c * x1 + s * (n[2] * x0 - n[0] * x2);
-  x[2] = c * x2 + s * (n[0] * x1 - n[1] * x0);
+  return 4.0 * P * Pc + 4.0 * Pc * Pc - k.peel_shear * T2;
 }
-
-// onto the tangent plane with its magnitude kept (rotate_history for one vector)
-inline void project_keep_magnitude(double* x, const double* n)
-{
-  const double magnitude2 = dot(x, x);
-  if (magnitude2 == 0.0) return;
-  const double along = dot(x, n);
-  x[0] -= along * n[0];
-  x[1] -= along * n[1];
-  x[2] -= along * n[2];
-  const double in_plane2 = dot(x, x);
-  if (in_plane2 == 0.0) {
-    x[0] = x[1] = x[2] = 0.0;
-    return;
-  }
-  const double scale = std::sqrt(magnitude2 / in_plane2);
-  x[0] *= scale;
-  x[1] *= scale;
-  x[2] *= scale;
-}
-
-}    // namespace kernel_detail
 
 // What one contact carries from one stage of its step to the next. The step is split where a
 // cube root sits on its critical path (the stiffness radius a_T, the theta factor), so that the
@@ -96,7 +68,6 @@ struct StepState {
   double stiffness_cubed;    // (stiffness / 8G*)^3 when the radius needs a cube root
   double stiffness;          // k_T = 8 G* a_T (or 8 G* a_peel while peeling)
   double T_magnitude;        // |T| when known from the rotation, else < 0
-  double T2;                 // |T|^2 before the step (the rotation keeps it)
   double s, ks, mu_dP, T_along, limit;
   double theta_cubed, theta;
   double lost;
@@ -107,22 +78,13 @@ struct StepState {
 // Stage 1a: history onto the new tangent plane of n, twisted by `twist` (rotate_history)
 inline void carry_history(const double n[3], double twist, ContactHistory& h, StepState& st)
 {
-  using namespace kernel_detail;
+  using namespace detail;
   double* T = h.T;
   double* dir = h.load_dir;
 
   // ---- history onto the new tangent plane (rotate_history) ----
   double tw_c = 1.0, tw_s = 0.0;
-  if (twist != 0.0) {
-    if (std::abs(twist) < 1e-3) {
-      const double t2 = twist * twist;
-      tw_c = 1.0 - t2 * (0.5 - t2 * (1.0 / 24.0));
-      tw_s = twist * (1.0 - t2 * (1.0 / 6.0 - t2 * (1.0 / 120.0)));
-    } else {
-      tw_c = std::cos(twist);
-      tw_s = std::sin(twist);
-    }
-  }
+  if (twist != 0.0) twist_cos_sin(twist, tw_c, tw_s);
   const double T2_before = dot(T, T);
   const bool dir_follows_T = h.mode == LOADING && T2_before > 0.0 && dot(dir, dir) > 0.0;
   st.T_magnitude = -1.0;
@@ -151,7 +113,6 @@ inline void carry_history(const double n[3], double twist, ContactHistory& h, St
     }
   }
 
-  st.T2 = T2_before;
 }
 
 // Stage 1b: normal force at overlap delta (jkr::contact_radius_warm, jkr::normal_force);
@@ -205,7 +166,6 @@ inline void begin_tangential(const PairConstants& k, double R, const double ds[3
   double* T = h.T;
   double* dir = h.load_dir;
   const double P = st.P;
-  const double T2_before = st.T2;
   for (int d = 0; d < 3; ++d) {
     st.T_old[d] = T[d];
     st.ds[d] = ds[d];
@@ -231,7 +191,7 @@ inline void begin_tangential(const PairConstants& k, double R, const double ds[3
     return;
   }
   if (Adhesive && h.peeling != 0.0) {    // stage A: Savkoor-Briggs peeling      (physics.md §2.2)
-    const double before = 4.0 * P * st.Pc + 4.0 * st.Pc * st.Pc - k.peel_shear * T2_before;
+    const double before = peeling_discriminant(k, P, st.Pc, detail::dot(T, T));
     if (before > 0.0) {    // 4E*a^3/(3R*) = P + 2Pc + sqrt(discriminant)
       st.stiffness_cubed = k.cube_radius_per_load * R * (P + 2.0 * st.Pc + std::sqrt(before));
       st.needs_cbrt = st.peeled_step = true;
@@ -256,7 +216,7 @@ inline void stiffness_of(const PairConstants& k, StepState& st)
 // Stage 3: the peeled step, or the micro-slip branch decision up to theta^3 (micro_slip_step)
 inline void slip_decision(const PairConstants& k, ContactHistory& h, StepState& st)
 {
-  using namespace kernel_detail;
+  using namespace detail;
   if (st.frictionless) return;
   const PairCoefficients& c = k.c;
   double* T = h.T;
@@ -267,7 +227,7 @@ inline void slip_decision(const PairConstants& k, ContactHistory& h, StepState& 
     T[1] += st.stiffness * ds[1];
     T[2] += st.stiffness * ds[2];
     st.T_magnitude = -1.0;
-    if (4.0 * st.P * st.Pc + 4.0 * st.Pc * st.Pc - k.peel_shear * dot(T, T) <= 0.0) h.peeling = 0.0;
+    if (peeling_discriminant(k, st.P, st.Pc, dot(T, T)) <= 0.0) h.peeling = 0.0;
     return;
   }
   bool at_limit = st.was_sliding && h.mode == LOADING;
@@ -335,10 +295,9 @@ inline void theta_of(StepState& st)
 }
 
 // Stage 5: the micro-slip increment, branch changes, Coulomb cap and energy balance
-inline void finish_step(const PairConstants& /*k*/, ContactHistory& h, StepState& st,
-                        double& dissipation)
+inline void finish_step(ContactHistory& h, StepState& st, double& dissipation)
 {
-  using namespace kernel_detail;
+  using namespace detail;
   double* T = h.T;
   double* dir = h.load_dir;
   const double* ds = st.ds;
@@ -419,7 +378,7 @@ inline KernelResult advance_contact(const PairConstants& k, double R, double del
   stiffness_of(k, st);
   slip_decision(k, h, st);
   theta_of(st);
-  finish_step(k, h, st, dissipation);
+  finish_step(h, st, dissipation);
   return KernelResult{st.P, st.contact_radius};
 }
 

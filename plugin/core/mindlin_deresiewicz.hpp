@@ -77,13 +77,14 @@ inline void begin_contact(ContactHistory& h, double P_now, bool adhesive)
   h.peeling = adhesive ? 1.0 : 0.0;
 }
 
-// carry the stored vectors with the contact: onto the new tangent plane (magnitude kept), then
-// about the normal by the mean spin of the two spheres, twist = (w_i + w_j).n dt / 2
-// (per-step twists are tiny: below 1e-3 rad the Taylor polynomials of cos and sin, whose
-// remainders t^6/720 and t^7/5040 are < 1.5e-21, replace the libm calls exactly to round-off)
-inline void rotate_history(ContactHistory& h, const Eigen::Vector3d& n, double twist)
+namespace detail {
+
+inline double dot(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+// cos and sin of a per-step twist: below 1e-3 rad the Taylor polynomials, whose remainders
+// t^6/720 and t^7/5040 are < 1.5e-21, replace the libm calls exactly to round-off
+inline void twist_cos_sin(double twist, double& c, double& s)
 {
-  double c, s;
   if (std::abs(twist) < 1e-3) {
     const double t2 = twist * twist;
     c = 1.0 - t2 * (0.5 - t2 * (1.0 / 24.0));
@@ -92,18 +93,49 @@ inline void rotate_history(ContactHistory& h, const Eigen::Vector3d& n, double t
     c = std::cos(twist);
     s = std::sin(twist);
   }
+}
+
+// x -> cos(t) x + sin(t) n x x: rotation about the contact normal
+inline void twist_vector(double* x, const double* n, double c, double s)
+{
+  const double x0 = x[0], x1 = x[1], x2 = x[2];
+  x[0] = c * x0 + s * (n[1] * x2 - n[2] * x1);
+  x[1] = c * x1 + s * (n[2] * x0 - n[0] * x2);
+  x[2] = c * x2 + s * (n[0] * x1 - n[1] * x0);
+}
+
+// x onto the tangent plane of the unit normal n, its magnitude kept (zero stays zero, a vector
+// along n becomes zero)
+inline void project_keep_magnitude(double* x, const double* n)
+{
+  const double magnitude2 = dot(x, x);
+  if (magnitude2 == 0.0) return;
+  const double along = dot(x, n);
+  x[0] -= along * n[0];
+  x[1] -= along * n[1];
+  x[2] -= along * n[2];
+  const double in_plane2 = dot(x, x);
+  if (in_plane2 == 0.0) {
+    x[0] = x[1] = x[2] = 0.0;
+    return;
+  }
+  const double scale = std::sqrt(magnitude2 / in_plane2);
+  x[0] *= scale;
+  x[1] *= scale;
+  x[2] *= scale;
+}
+
+}    // namespace detail
+
+// carry the stored vectors with the contact: onto the new tangent plane (magnitude kept), then
+// about the normal by the mean spin of the two spheres, twist = (w_i + w_j).n dt / 2
+inline void rotate_history(ContactHistory& h, const Eigen::Vector3d& n, double twist)
+{
+  double c = 1.0, s = 0.0;
+  if (twist != 0.0) detail::twist_cos_sin(twist, c, s);
   for (double* v : {h.T, h.load_dir}) {
-    Eigen::Map<Eigen::Vector3d> x(v);
-    const double magnitude2 = x.squaredNorm();
-    if (magnitude2 == 0.0) continue;
-    x -= x.dot(n) * n;
-    const double in_plane2 = x.squaredNorm();
-    if (in_plane2 == 0.0) {
-      x.setZero();
-      continue;
-    }
-    x *= std::sqrt(magnitude2 / in_plane2);
-    if (twist != 0.0) x = (c * x + s * n.cross(x)).eval();
+    detail::project_keep_magnitude(v, n.data());
+    if (twist != 0.0) detail::twist_vector(v, n.data(), c, s);
   }
 }
 

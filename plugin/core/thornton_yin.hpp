@@ -70,6 +70,14 @@ inline ContactResult evaluate_contact(const PairCoefficients& c, double R, doubl
   return r;
 }
 
+// elastic energy stored in a contact of radius a at normal force P: the JKR normal part (zero at
+// first touch) plus the tangential part carried in the history
+inline double contact_stored_energy(const PairCoefficients& c, double R, double a, double P,
+                                    const ContactHistory& h)
+{
+  return jkr::stored_energy(a, R, c.E_star, c.Gamma) + tangential_energy(c, R, P, h);
+}
+
 }    // namespace tycore
 
 #endif

@@ -517,8 +517,8 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
     for (int k = 0; k < nall; ++k) contact_count[k] = 0.0;
   }
 
-  // forces and torques of one contact on i and j (and the tallies)
-  const auto apply_contact = [&](const Contact &ct, double stored_energy) {
+  // forces and torques of one contact on i and j (and the energy and cell tallies)
+  const auto apply_contact = [&](const Contact &ct, bool with_energy) {
     const int i = ct.i, j = ct.j;
     const double nx = ct.n[0], ny = ct.n[1], nz = ct.n[2];
     const tycore::PairCoefficients &c = ct.constants->c;
@@ -563,8 +563,11 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
       torque[j][2] -= ct.lever_j * tor3;
     }
     if (evflag)
-      ev_tally_xyz(i, j, nlocal, newton_pair, stored_energy, 0.0, fx, fy, fz, ct.del[0],
-                   ct.del[1], ct.del[2]);
+      ev_tally_xyz(i, j, nlocal, newton_pair,
+                   with_energy ? tycore::contact_stored_energy(c, ct.R, ct.st.contact_radius,
+                                                               ct.st.P, *ct.h)
+                               : 0.0,
+                   0.0, fx, fy, fz, ct.del[0], ct.del[1], ct.del[2]);
     if (tally) {
       // affine stiffness of this contact (physics.md §5.2), k_T = 8 G* a_T(P + 2Pc); without
       // adhesion a_T is the Hertz radius itself, as in evaluate_contact
@@ -602,13 +605,9 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
     for (int b = 0; b < nbatch; ++b) {
       Contact &ct = batch[b];
       double dissipation = 0.0;
-      tycore::finish_step(*ct.constants, *ct.h, ct.st, dissipation);
+      tycore::finish_step(*ct.h, ct.st, dissipation);
       dissipated_friction += ct.share * dissipation;
-      const tycore::PairCoefficients &c = ct.constants->c;
-      apply_contact(ct, eflag_either ? tycore::jkr::stored_energy(ct.st.contact_radius, ct.R,
-                                                                   c.E_star, c.Gamma) +
-                                           tycore::tangential_energy(c, ct.R, ct.st.P, *ct.h)
-                                     : 0.0);
+      apply_contact(ct, eflag_either);
     }
     nbatch = 0;
   };
@@ -733,10 +732,7 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
             ? tycore::jkr::contact_radius_warm(delta, R, c.E_star, c.Gamma, h.radius)
             : std::sqrt(R * delta);
         ct.st.P = tycore::jkr::normal_force(ct.st.contact_radius, R, c.E_star, c.Gamma);
-        apply_contact(ct, eflag ? tycore::jkr::stored_energy(ct.st.contact_radius, R, c.E_star,
-                                                             c.Gamma) +
-                                      tycore::tangential_energy(c, R, ct.st.P, h)
-                                : 0.0);
+        apply_contact(ct, eflag);
       }
     }
   }
@@ -808,8 +804,7 @@ double PairThorntonYin::single(int i, int j, int itype, int jtype, double rsq,
   svector[S_OVERLAP] = delta;
   svector[S_SLIDING] = h.sliding;
   svector[S_PEELING] = h.peeling;
-  return tycore::jkr::stored_energy(a, R, c.E_star, c.Gamma) +
-      tycore::tangential_energy(c, R, P, h);
+  return tycore::contact_stored_energy(c, R, a, P, h);
 }
 
 /* ---------------------------------------------------------------------- */
