@@ -45,8 +45,8 @@ import numpy as np  # noqa: E402
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO, "analysis"))
 from tyanalysis.figures import save_figure  # noqa: E402
-LOAD = ('python tylmp_load input 1 SELF format p here "from tylmp import load as tylmp_load"\n'
-        "python tylmp_load invoke\n")
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from pair_speed import LOAD  # noqa: E402  (the two lines that load the plugin's styles)
 E, NU, MU, GAMMA = 70e9, 0.3, 0.3, 0.6
 
 PAIRS = {

@@ -1,4 +1,6 @@
 """Figures in the style of the paper (Agg backend, PNG). Stresses in kPa, strains in %."""
+import os
+
 import matplotlib
 
 matplotlib.use("Agg")
@@ -15,7 +17,6 @@ PCT = 100.0
 def save_figure(fig, out, dpi=120):
     """Lay out, write the PNG whole under a temporary name and rename it onto `out`, so that an
     interrupted run never leaves a torn figure; close the figure."""
-    import os
     fig.tight_layout()
     root, ext = os.path.splitext(out)
     tmp = root + ".tmp" + (ext or ".png")
