@@ -570,14 +570,18 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
                    0.0, fx, fy, fz, ct.del[0], ct.del[1], ct.del[2]);
     if (tally) {
       // affine stiffness of this contact (physics.md §5.2), k_T = 8 G* a_T(P + 2Pc); without
-      // adhesion a_T is the Hertz radius itself, as in evaluate_contact
+      // adhesion a_T is the Hertz radius itself, as in evaluate_contact. A micro-slip step of
+      // the kernel has just computed this k_T (stage B); peeled, frictionless and setup steps
+      // have not
       const double R = ct.R, P = ct.st.P, contact_radius = ct.st.contact_radius;
       const double k_N = tycore::jkr::normal_stiffness(contact_radius, R, c.E_star, c.Gamma);
-      const double tangential_radius = ADHESIVE
-          ? tycore::micro_slip_radius(R, c.E_star,
-                                      P + 2.0 * tycore::jkr::pull_off_force(c.Gamma, R))
-          : contact_radius;
-      const double k_T = 8.0 * c.G_star * tangential_radius;
+      const bool kernel_has_k_T = history_update && !ct.st.frictionless && !ct.st.peeled_step;
+      const double k_T = kernel_has_k_T
+          ? ct.st.stiffness
+          : 8.0 * c.G_star *
+              (ADHESIVE ? tycore::micro_slip_radius(
+                              R, c.E_star, P + 2.0 * tycore::jkr::pull_off_force(c.Gamma, R))
+                        : contact_radius);
       const double n2[3] = {nx * nx, ny * ny, nz * nz};
       const int a_of[6] = {0, 1, 2, 0, 0, 1}, b_of[6] = {0, 1, 2, 1, 2, 2};
       for (int k = 0; k < 6; ++k) {
