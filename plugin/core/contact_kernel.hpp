@@ -1,12 +1,14 @@
 // The Thornton-Yin contact law as the pair style runs it: rotate_history + evaluate_contact
 // (thornton_yin.hpp, the reference) fused into scalar stages that a batch of contacts passes
-// through together. Same law, same history layout, same branch decisions; what differs is only
-// the arithmetic and its order:
+// through together. Same law, same history layout, same decisions; what differs is only the
+// arithmetic and its order:
 //  * plain doubles instead of Eigen 3-vectors, one |T| per step shared by the loading direction
 //    and the Coulomb cap, one projection of T for both vectors on the loading branch,
 //    per-material-pair constants (PairConstants) computed once, no libm cube root at theta = 0,
-//    the warm-started JKR radius by Halley's method (cubic: one iteration per quasi-static step
-//    where jkr::contact_radius_warm's Newton takes two; 1.05x with adhesion);
+//    the warm-started JKR radius by Halley's method (cubic: two steps, taken without a test
+//    between them, where jkr::contact_radius_warm's Newton takes two or three);
+//  * the Masing branch decisions as selects (detail::select), not branches: which branch a
+//    contact of a vibrating packing takes is close to random from one step to the next;
 //  * the step split where a cube root sits on its critical path (StepState): the processor then
 //    overlaps the divisions of the cube roots of independent contacts (bench/pair_speed.py:
 //    1.2x the unsplit kernel with adhesion; docs/performance.md).
@@ -23,8 +25,27 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace tycore {
+
+namespace detail {
+// c ? a : b by bit masks. The compiler turns a plain ?: of doubles into a branch, and the
+// branches of the Masing law (which branch a contact of a vibrating packing takes this step)
+// are close to random: mispredicted they cost more than these few integer operations
+inline double select(bool c, double a, double b)
+{
+  std::uint64_t ua, ub;
+  std::memcpy(&ua, &a, sizeof ua);
+  std::memcpy(&ub, &b, sizeof ub);
+  const std::uint64_t mask = -static_cast<std::uint64_t>(c);
+  const std::uint64_t r = (ua & mask) | (ub & ~mask);
+  double out;
+  std::memcpy(&out, &r, sizeof out);
+  return out;
+}
+}    // namespace detail
 
 // per material pair, derived once from PairCoefficients
 struct PairConstants {
@@ -126,20 +147,31 @@ inline void normal_force_step(const PairConstants& k, double R, double Rinv, dou
     double a = -1.0, u = 0.0;
     if (h.radius > 0.0) {    // Halley on f(u) = u^4/R - c u - delta from the previous radius (§1.4b)
       u = std::sqrt(h.radius);
-      for (int it = 0; it < 6; ++it) {
+      // the first two steps without a convergence test between them: one step suffices on
+      // some steps and not on others, and that branch mispredicts more often than not in a
+      // vibrating packing (cachegrind --branch-sim), costing more than the second step
+      bool slope_positive = true;
+      double f1 = 0.0, f2 = 0.0, step = 0.0;
+      const auto halley_step = [&]() {
         const double u2 = u * u;
         const double f = u2 * u2 * Rinv - k.newton_c * u - delta;
-        const double f1 = 4.0 * u2 * u * Rinv - k.newton_c;
-        if (!(f1 > 0.0)) break;
-        const double f2 = 12.0 * u2 * Rinv;
-        const double step = 2.0 * f * f1 / (2.0 * f1 * f1 - f * f2);
+        f1 = 4.0 * u2 * u * Rinv - k.newton_c;
+        slope_positive = slope_positive && f1 > 0.0;
+        f2 = 12.0 * u2 * Rinv;
+        step = 2.0 * f * f1 / (2.0 * f1 * f1 - f * f2);
         u -= step;
+      };
+      halley_step();
+      halley_step();
+      for (int it = 2; slope_positive; ++it) {
         // error of the new iterate ~ |f2^2/(4 f1^2) - f3/(6 f1)| step^3, f3 = 24 u/R; 4x margin
         const double step3 = std::abs(step * step * step);
         if (4.0 * std::abs(0.25 * f2 * f2 - 4.0 * u * Rinv * f1) * step3 <= 1e-14 * u * f1 * f1) {
           a = u * u;
           break;
         }
+        if (it == 6) break;
+        halley_step();
       }
     }
     if (a < 0.0) {
@@ -253,45 +285,37 @@ inline void slip_decision(const PairConstants& k, ContactHistory& h, StepState& 
   st.s = dot(ds, dir);
   st.ks = st.stiffness * st.s;
   st.mu_dP = c.mu * st.dP;
-  st.T_along = st.T_magnitude >= 0.0 ? st.T_magnitude : dot(T, dir);
+  const double T_projected = dot(T, dir);
+  st.T_along = select(st.T_magnitude >= 0.0, st.T_magnitude, T_projected);
   const double ks = st.ks, mu_dP = st.mu_dP;
-  int mode = static_cast<int>(h.mode);
-  bool slipping = false;
-  if (mode != UNLOADING) {
-    if (ks > mu_dP) slipping = true;
-    else if (ks < -mu_dP) {
-      mode = UNLOADING;
-      h.T_star = st.T_along;
-      slipping = true;
-    }
-  } else {
-    if (ks < -mu_dP) slipping = true;
-    else if (ks > mu_dP) {
-      mode = RELOADING;
-      h.T_star2 = st.T_along;
-      slipping = true;
-    }
-  }
-  h.T_star += mu_dP;    // reversal points follow the normal load              (physics.md §2.1)
-  h.T_star2 -= mu_dP;
+  // the Masing branch of this increment, without branches (detail::select)
+  const int mode_before = static_cast<int>(h.mode);
+  const bool unloading = mode_before == UNLOADING;
+  const bool forward = ks > mu_dP, backward = ks < -mu_dP;
+  const bool to_unloading = !unloading & !forward & backward;
+  const bool to_reloading = unloading & !backward & forward;
+  const int mode = to_unloading ? UNLOADING : (to_reloading ? RELOADING : mode_before);
+  // reversal points follow the normal load                                  (physics.md §2.1)
+  h.T_star = select(to_unloading, st.T_along, h.T_star) + mu_dP;
+  h.T_star2 = select(to_reloading, st.T_along, h.T_star2) - mu_dP;
   st.mode = mode;
-  st.slipping = slipping;
-  st.theta_cubed = 0.0;    // theta^3 of Thornton & Randall (1988), P -> P + 2Pc  (physics.md §2.1)
-  if (slipping && !(mode == LOADING && at_limit)) {
-    double t3;
-    switch (mode) {
-      case UNLOADING: t3 = 1.0 - (h.T_star - st.T_along + 2.0 * mu_dP) / (2.0 * st.limit); break;
-      case RELOADING: t3 = 1.0 - (st.T_along - h.T_star2 + 2.0 * mu_dP) / (2.0 * st.limit); break;
-      default: t3 = 1.0 - (st.T_along + mu_dP) / st.limit;
-    }
-    st.theta_cubed = std::clamp(t3, 0.0, 1.0);
-  }
+  st.slipping = forward | backward;
+  // theta^3 of Thornton & Randall (1988), P -> P + 2Pc                        (physics.md §2.1)
+  // loading 1 - (T + mu dP)/L, unloading 1 - (T* - T + 2 mu dP)/2L,
+  // reloading 1 - (T - T** + 2 mu dP)/2L
+  const double branch_term =
+      select(mode == UNLOADING, h.T_star - st.T_along,
+             select(mode == RELOADING, st.T_along - h.T_star2, 2.0 * st.T_along));
+  const double t3 = 1.0 - (branch_term + 2.0 * mu_dP) / (2.0 * st.limit);
+  const bool on_slip_branch = st.slipping & !((mode == LOADING) & at_limit);
+  st.theta_cubed = select(on_slip_branch, std::clamp(t3, 0.0, 1.0), 0.0);
 }
 
-// Stage 4: theta = cbrt(theta^3), without the libm call fast_cbrt makes at 0
+// Stage 4: theta = cbrt(theta^3), without the libm call fast_cbrt makes at 0; theta = 1 off
+// the slip branches, where finish_step's increment reduces to the elastic k s
 inline void theta_of(StepState& st)
 {
-  st.theta = (st.slipping && st.theta_cubed > 0.0) ? jkr::fast_cbrt(st.theta_cubed) : 0.0;
+  st.theta = !st.slipping ? 1.0 : (st.theta_cubed > 0.0 ? jkr::fast_cbrt(st.theta_cubed) : 0.0);
 }
 
 // Stage 5: the micro-slip increment, branch changes, Coulomb cap and energy balance
@@ -308,29 +332,24 @@ inline void finish_step(ContactHistory& h, StepState& st, double& dissipation)
     return;
   }
   if (!st.peeled_step && st.active) {
-    double dT_par = st.ks;
-    if (st.slipping) {
-      const double theta = st.theta;
-      const double sign = (st.mode == UNLOADING) ? -1.0 : 1.0;
-      dT_par = theta * st.ks + sign * st.mu_dP * (1.0 - theta);
-      st.lost += detail::annulus_dissipation_rate(st.limit, theta) * std::abs(st.s);
-    }
+    // dT_par = theta k s + (-1)^k mu dP (1 - theta); = k s, no annulus loss, at theta = 1
+    const double theta = st.theta;
+    const double sign = select(st.mode == UNLOADING, -1.0, 1.0);
+    const double dT_par = theta * st.ks + sign * st.mu_dP * (1.0 - theta);
+    st.lost += detail::annulus_dissipation_rate(st.limit, theta) * std::abs(st.s);
     // T += dT_par dir + k (ds - s dir)
     const double along = dT_par - st.stiffness * st.s;
     T[0] += along * dir[0] + st.stiffness * ds[0];
     T[1] += along * dir[1] + st.stiffness * ds[1];
     T[2] += along * dir[2] + st.stiffness * ds[2];
-    int mode = st.mode;
-    if (mode == UNLOADING || mode == RELOADING) {
-      const double T_after = dot(T, dir);
-      if (mode == UNLOADING && T_after <= -h.T_star) {    // back on the virgin curve, reversed
-        mode = LOADING;
-        dir[0] = -dir[0], dir[1] = -dir[1], dir[2] = -dir[2];
-      } else if (mode == RELOADING && T_after >= h.T_star) {
-        mode = LOADING;
-      }
-    }
-    h.mode = mode;
+    // back on the virgin curve: unloading past -T* (direction reversed), reloading past T*
+    const int mode = st.mode;
+    const double T_after = dot(T, dir);
+    const bool reversed = (mode == UNLOADING) & (T_after <= -h.T_star);
+    const bool rejoined = (mode == RELOADING) & (T_after >= h.T_star);
+    const double flip = select(reversed, -1.0, 1.0);
+    dir[0] *= flip, dir[1] *= flip, dir[2] *= flip;
+    h.mode = (reversed | rejoined) ? LOADING : mode;
   }
 
   // one |T| for the loading direction and the Coulomb cap (stage C)
