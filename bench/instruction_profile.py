@@ -6,11 +6,16 @@ machine; this one does not).
 
     /usr/bin/python3 bench/instruction_profile.py [--data bench/data/dense_paper_100kPa.data]
         [--steps 200] [--cases NAME ...] [--out bench/results/instruction_profile]
+        [--branch-sim]
 
 Each case runs the deck of pair_speed.py (same data file, neighbor settings, timestep) under
 `valgrind --tool=callgrind --toggle-collect=<the pair style's compute()>`, so only the pair
 compute and what it calls are counted (not neighbor builds, communication or integration).
 Writes OUT.json and prints instructions per atom-step and the ratio to thornton/yin G=0.6.
+With --branch-sim, callgrind also simulates a branch predictor (`--branch-sim=yes`, a simple
+table of 2-bit counters: a processor's predictor does better, so the figure ranks branches
+rather than predicting cycles) and the mispredicted conditional branches per atom-step are
+added. TYLMP_LIBRARY in the environment selects the build of the plugin, as for pair_speed.py.
 """
 import argparse
 import os
@@ -38,7 +43,7 @@ def toggle_for(case):
     raise KeyError(case)
 
 
-def count(case, data, steps, work):
+def count(case, data, steps, work, branch_sim=False):
     deck = pair_speed.case_deck(case, data, steps)
     path = os.path.join(work, "in.profile")
     with open(path, "w") as fh:
@@ -46,15 +51,19 @@ def count(case, data, steps, work):
     out = os.path.join(work, "callgrind.out")
     exe = "liggghts" if case in pair_speed.LIGGGHTS_CASES else "lmp"
     cmd = ["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}",
-           f"--toggle-collect={toggle_for(case)}", exe, "-in", path, "-log", "none", "-nocite"]
+           f"--toggle-collect={toggle_for(case)}"] + (["--branch-sim=yes"] if branch_sim else [])
+    cmd += [exe, "-in", path, "-log", "none", "-nocite"]
     proc = subprocess.run(cmd, cwd=work, capture_output=True, text=True)
     if proc.returncode != 0:
         raise RuntimeError(f"{case}: {proc.stderr[-2000:]}")
     summary = subprocess.run(["callgrind_annotate", out], capture_output=True, text=True).stdout
-    m = re.search(r"^\s*([\d,]+)\s.*PROGRAM TOTALS", summary, re.M)
-    total = int(m.group(1).replace(",", "")) if m else 0
+    events = re.search(r"^Events shown:\s+(.*)$", summary, re.M).group(1).split()
+    m = re.search(r"^(.*)PROGRAM TOTALS", summary, re.M)
+    numbers = re.findall(r"([\d,]+) \(", m.group(1)) if m else []
+    totals = {e: int(n.replace(",", "")) for e, n in zip(events, numbers)}
     natoms = int(re.search(r"^(\d+) atoms", open(data).read(4096), re.M).group(1))
-    return total, total / (natoms * (steps + 1))    # setup computes the forces once more
+    atom_steps = natoms * (steps + 1)    # setup computes the forces once more
+    return totals.get("Ir", 0), {e: n / atom_steps for e, n in totals.items()}
 
 
 def main(argv=None):
@@ -62,6 +71,8 @@ def main(argv=None):
     ap.add_argument("--data", default=pair_speed.DATA)
     ap.add_argument("--steps", type=int, default=200)
     ap.add_argument("--cases", nargs="*", default=list(pair_speed.CASES))
+    ap.add_argument("--branch-sim", action="store_true",
+                    help="also count mispredicted conditional branches (simulated)")
     ap.add_argument("--out", default=os.path.join(pair_speed.REPO, "bench", "results",
                                                   "instruction_profile"))
     args = ap.parse_args(argv)
@@ -72,18 +83,24 @@ def main(argv=None):
             if case in pair_speed.LIGGGHTS_CASES and not shutil.which("liggghts"):
                 print(f"  {case}: skipped (no liggghts binary)")
                 continue
-            total, per_atom_step = count(case, data, args.steps, work)
+            total, per = count(case, data, args.steps, work, args.branch_sim)
             if total == 0:
                 print(f"  {case}: no instructions counted (no symbol {toggle_for(case)})")
                 continue
-            rows[case] = {"instructions": total, "per_atom_step": per_atom_step}
-            print(f"  {case:36s} {per_atom_step:8.0f} instructions per atom-step", flush=True)
+            rows[case] = {"instructions": total, "per_atom_step": per["Ir"]}
+            line = f"  {case:36s} {per['Ir']:8.0f} instructions per atom-step"
+            if "Bcm" in per:
+                rows[case]["mispredicted_branches_per_atom_step"] = per["Bcm"]
+                line += f", {per['Bcm']:5.2f} mispredicted branches (simulated)"
+            print(line, flush=True)
     base = rows.get("thornton/yin G=0.6", {}).get("per_atom_step")
     for r in rows.values():
         r["ratio_to_thornton_yin_G0.6"] = r["per_atom_step"] / base if base else None
     os.makedirs(os.path.dirname(args.out), exist_ok=True)
     pair_speed.write_json(args.out + ".json", {"data": os.path.relpath(data, pair_speed.REPO),
-                                               "steps": args.steps, "cases": rows})
+                                               "steps": args.steps,
+                                               "library": os.environ.get("TYLMP_LIBRARY"),
+                                               "cases": rows})
 
 
 if __name__ == "__main__":
