@@ -50,7 +50,13 @@ With --variant (repeatable) every thornton/yin case runs once per build of the l
 (TYLMP_LIBRARY set per run), all in the same alternation, to compare code variants; the
 table then also gives, per case, the median over repeats of the per-repeat time ratio of each
 variant to the first one.
-Writes OUT.csv (every run), OUT.json (medians and ratios) and prints a table.
+Writes OUT.csv (every run), OUT.json (medians and ratios), OUT.png (atom-steps per second of
+every case: median and the range of the repeats) and prints a table.
+
+    /usr/bin/python3 bench/pair_speed.py --plot CSV [CSV ...] --png PNG
+
+redraws the figure from earlier runs' CSV files without running anything (one bar per case
+and file, e.g. the 1- and 2-rank runs side by side: docs/performance_throughput.png).
 """
 import argparse
 import math
@@ -188,6 +194,45 @@ def run_case(data, name, steps, ranks, workdir, library=None, liggghts="liggghts
     return loop, natoms * nsteps / loop, float(pair.group(1)) if pair else float("nan")
 
 
+def plot(csv_paths, png):
+    """Horizontal bars: median atom-steps/s of every case in each CSV (one colour per file,
+    labelled by its rank count), whiskers from the slowest to the fastest repeat."""
+    import csv
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from tyanalysis.figures import save_figure
+    tables = []
+    for path in csv_paths:
+        with open(path) as fh:
+            rows = list(csv.DictReader(fh))
+        by_case = {}
+        for r in rows:
+            by_case.setdefault(r["case"], []).append(float(r["atom_steps_per_s"]))
+        tables.append((f"{rows[0]['ranks']} rank(s)" if rows else path, by_case))
+    cases = list(dict.fromkeys(c for _, t in tables for c in t))
+    height = 0.8 / len(tables)
+    fig, ax = plt.subplots(figsize=(8, 0.45 * len(cases) * len(tables) + 1.2))
+    for k, (label, by_case) in enumerate(tables):
+        ys, med, lo, hi = [], [], [], []
+        for i, case in enumerate(cases):
+            if case in by_case:
+                v = by_case[case]
+                m = statistics.median(v)
+                ys.append(i + (k - (len(tables) - 1) / 2) * height)
+                med.append(m)
+                lo.append(m - min(v))
+                hi.append(max(v) - m)
+        ax.barh(ys, med, height=height, xerr=[lo, hi], capsize=2, label=label)
+    ax.set_yticks(range(len(cases)))
+    ax.set_yticklabels(cases)
+    ax.invert_yaxis()
+    ax.set_xlabel("atom-steps per second (median; whiskers: range of the repeats)")
+    ax.legend(loc="lower right")
+    ax.grid(axis="x", alpha=0.3)
+    return save_figure(fig, png)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     src = ap.add_mutually_exclusive_group()
@@ -205,7 +250,15 @@ def main(argv=None):
     ap.add_argument("--variant", action="append", default=[],
                     help="NAME=PATH of a tylmp.so build; thornton/yin cases run once per variant")
     ap.add_argument("--liggghts", default="liggghts", help="LIGGGHTS executable")
+    ap.add_argument("--plot", nargs="+", metavar="CSV",
+                    help="only redraw the figure from these CSV files (see --png)")
+    ap.add_argument("--png", help="the figure of --plot")
     args = ap.parse_args(argv)
+    if args.plot:
+        if not args.png:
+            ap.error("--plot needs --png")
+        print("wrote", plot(args.plot, args.png))
+        return
     variants = [tuple(v.split("=", 1)) for v in args.variant]
     skipped = []
     if any(name in LIGGGHTS_CASES for name in args.cases) and not shutil.which(args.liggghts):
@@ -265,6 +318,7 @@ def main(argv=None):
                "ratio_to_thornton_yin_G0.6": {k: v / base for k, v in medians.items()} if base else {},
                "speedup_vs_first_variant": speedups}
     write_json(args.out + ".json", summary, indent=2)
+    plot([args.out + ".csv"], args.out + ".png")
     print(f"\n| case ({args.ranks} rank(s), {args.steps} steps, median of {args.repeats}) "
           f"| atom-steps/s | ratio to thornton/yin G=0.6 |\n|---|---|---|")
     for name, v in medians.items():
