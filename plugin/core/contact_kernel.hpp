@@ -102,8 +102,6 @@ inline void carry_history(const double n[3], double twist, ContactHistory& h, St
   using namespace detail;
   double* T = h.T;
   double* dir = h.load_dir;
-
-  // ---- history onto the new tangent plane (rotate_history) ----
   double tw_c = 1.0, tw_s = 0.0;
   if (twist != 0.0) twist_cos_sin(twist, tw_c, tw_s);
   const double T2_before = dot(T, T);
@@ -133,7 +131,6 @@ inline void carry_history(const double n[3], double twist, ContactHistory& h, St
       if (twist != 0.0) twist_vector(x, n, tw_c, tw_s);
     }
   }
-
 }
 
 // Stage 1b: normal force at overlap delta (jkr::contact_radius_warm, jkr::normal_force);
