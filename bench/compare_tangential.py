@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Two spheres held at a fixed overlap and sheared through a tangential hysteresis loop with
 pair thornton/yin and with LAMMPS's `pair granular ... tangential mindlin`, against the closed
-forms of physics.md §2 (docs/comparison.md, "Tangential loop of two spheres").
+forms of docs/theory.md §2 (docs/comparison.md, "Tangential loop of two spheres").
 
     /usr/bin/python3 bench/compare_tangential.py [--out docs/comparison_tangential.png]
         [--steps-per-slide 4000] [--keep DIR]
@@ -51,9 +51,9 @@ CASES = [   # (key, title, Gamma, delta)
 ]
 
 
-# ---------------------------------------------------------------- closed forms (physics.md)
+# ---------------------------------------------------------------- closed forms (docs/theory.md)
 def jkr_radius(delta, Gamma):
-    """Stable-branch JKR contact radius for overlap delta (physics.md §1.1), by bisection."""
+    """Stable-branch JKR contact radius for overlap delta (docs/theory.md §1.1), by bisection."""
     if Gamma == 0:
         return math.sqrt(R_STAR * delta)
     f = lambda a: a * a / R_STAR - 2 * math.sqrt(math.pi * Gamma * a / E_STAR) - delta
@@ -70,7 +70,7 @@ def jkr_force(a, Gamma):
 
 
 class Contact:
-    """Closed-form quantities of one case (physics.md §1.1, §2.1, §2.2)."""
+    """Closed-form quantities of one case (docs/theory.md §1.1, §2.1, §2.2)."""
 
     def __init__(self, Gamma, delta):
         self.Gamma, self.delta = Gamma, delta
@@ -89,7 +89,7 @@ class Contact:
     def _virgin(self):
         """Virgin loading curve s(T) -> tabulated T(s): Savkoor-Briggs peeling with
         dT/ds = 8G* a_peel(T), 4E*a_peel^3/(3R*) = P + 2Pc + sqrt(4PPc + 4Pc^2 - T^2 E*/(4G*)),
-        until T_c (physics.md §2.2 stage A), then the Mindlin-Deresiewicz loading curve for
+        until T_c (docs/theory.md §2.2, peeling), then the Mindlin-Deresiewicz loading curve for
         P + 2Pc continued from T_c (stage B), then sliding at L (stage C)."""
         L = self.L
         T_end_peel = min(self.Tc, L)
@@ -114,13 +114,13 @@ class Contact:
         return np.where(s >= self.s_slide, self.L, np.interp(s, self.virgin_s, self.virgin_T))
 
     def md(self, x):
-        """Mindlin-Deresiewicz loading curve of P + 2Pc from zero (physics.md §2.1)."""
+        """Mindlin-Deresiewicz loading curve of P + 2Pc from zero (docs/theory.md §2.1)."""
         x = np.clip(x, 0, self.slip)
         return self.L * (1 - (1 - x / self.slip) ** 1.5)
 
     def reference(self, s, leg, A):
         """Thornton's law along the loop: virgin curve, then Masing's rule about each reversal
-        (loading curve doubled in both axes, physics.md §2.1); both reversals start from the
+        (loading curve doubled in both axes, docs/theory.md §2.1); both reversals start from the
         sliding limit, so T* = L and T** = -L."""
         return np.select([leg == 0, leg == 1],
                          [self.virgin(s), self.L - 2 * self.md((A - s) / 2)],

@@ -7,7 +7,7 @@
 //   ./build/bench_contact_level                   # writes bench/results/contact_level.{csv,json}
 //   ./build/bench_contact_level --repeats 9 --phases 32 --out /tmp/cl --no-write
 //
-// Part 1 - the JKR inversion delta -> a (physics.md §1.4), glass pair E = 70 GPa, nu = 0.3
+// Part 1 - the JKR inversion delta -> a (docs/theory.md §1.4), glass pair E = 70 GPa, nu = 0.3
 // (E* = E/(2(1-nu^2))), R* = 0.065 mm (two 0.26 mm spheres), Gamma = 0.6 J/m^2, variants
 //   closed       jkr::contact_radius          closed form of the quartic (§1.4a)
 //   warm         jkr::contact_radius_warm     Newton in sqrt(a) from the previous step's radius
@@ -34,7 +34,8 @@
 // the number of fallbacks to the closed form, iterations == 0), from an untimed pass in which
 // the warm variants are chained to their own previous result exactly as in the pair.
 //
-// Part 2 - time step as a fraction of the Rayleigh time (physics.md §4): head-on collision of
+// Part 2 - time step as a fraction of the Rayleigh time (docs/theory.md §4.1): head-on collision
+// of
 // two equal spheres, diameter 0.135 mm (the smallest of the specimen), rho = 2650e12 kg/m^3
 // (density scaled by 1e12), E, nu as above; t_R = pi R sqrt(rho/G)/(0.1631 nu + 0.8766).
 // Integration exactly as LAMMPS fix nve (v += dt/2 F/m; x += dt v; F(x); v += dt/2 F/m) of both
@@ -50,7 +51,7 @@
 //              quasi-static test with this density; below V_s: an adhesive pair would stick,
 //              so Hertz only)
 //   V(1e-3R), V(1e-2R), V(5e-2R)  Hertz impacts with delta_max = 1e-3, 1e-2, 5e-2 of the sphere
-//              radius (physics.md §3.1), both Gamma
+//              radius (docs/theory.md §3.1), both Gamma
 //   1.5 V_s, 3 V_s   adhesive only, V_s = jkr::sticking_velocity(R*, E*, Gamma, m*) (§3.2)
 // dt/t_R in {0.05, 0.1, 0.2, 0.3, 0.4, 0.5}. Reported, per case and dt: steps per contact
 // (force evaluations with the contact on, phase mean), dt/t_c with t_c the analytic Hertz contact
@@ -92,7 +93,7 @@ namespace {
 namespace jkr = tycore::jkr;
 constexpr double pi = jkr::pi;
 
-// glass (physics.md §1.7), density scaled by 1e12 as in the paper
+// glass (docs/theory.md §1.8), density scaled by 1e12 as in the paper
 constexpr double E_young = 70e9, nu = 0.3, rho = 2650e12, p_mean = 1e5;
 const double E_star = E_young / (2.0 * (1.0 - nu * nu));
 const double G_shear = E_young / (2.0 * (1.0 + nu));
@@ -405,7 +406,7 @@ struct CollisionRow {
   int separated, phases;
 };
 
-// Hertz: impact velocity giving the maximum overlap delta_max (physics.md §3.1)
+// Hertz: impact velocity giving the maximum overlap delta_max (docs/theory.md §3.1)
 double hertz_velocity(double delta_max, double R_star, double m_star)
 {
   return std::sqrt(16.0 * E_star * std::sqrt(R_star) * std::pow(delta_max, 2.5) / (15.0 * m_star));

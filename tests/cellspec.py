@@ -78,5 +78,5 @@ def bisect(fun, lo, hi, tol=1e-15, iters=300):
 
 
 def pi_coordinates(v1, v2, v3):
-    """Pi-plane (x, y) = ((v2 - v3)/sqrt2, (2 v1 - v2 - v3)/sqrt6) (physics.md section 6)."""
+    """Pi-plane (x, y) = ((v2 - v3)/sqrt2, (2 v1 - v2 - v3)/sqrt6) (docs/theory.md §7.2)."""
     return (np.asarray(v2) - v3) / np.sqrt(2.0), (2.0 * np.asarray(v1) - v2 - v3) / np.sqrt(6.0)

@@ -1,4 +1,4 @@
-"""Independent reference formulas (physics.md §0–§3) in numpy, for the LAMMPS-level tests.
+"""Independent reference formulas (docs/theory.md §0–§3) in numpy, for the LAMMPS-level tests.
 
 Written from the equations, not from plugin/core: the JKR contact radius is found by
 bisection on delta(a), not by the closed form the plugin uses.
@@ -63,7 +63,7 @@ def normal_force(delta, R, E, Gamma):
 
 
 def separation_work(R, E, Gamma, n=20001):
-    """W = integral of -P d(delta) from delta_f to 0 (physics.md §3.2), by quadrature."""
+    """W = integral of -P d(delta) from delta_f to 0 (docs/theory.md §3.2), by quadrature."""
     d = np.linspace(break_overlap(R, E, Gamma), 0.0, n)
     P = np.array([normal_force(x, R, E, Gamma) for x in d])
     return -np.trapz(P, d)
@@ -74,7 +74,7 @@ def sticking_velocity(R, E, Gamma, m_star):
 
 
 def hertz_impact(m_star, E, R, V):
-    """Elastic Hertz impact (physics.md §3.1): delta_max, P_max, contact time."""
+    """Elastic Hertz impact (docs/theory.md §3.1): delta_max, P_max, contact time."""
     delta_max = (15 * m_star * V**2 / (16 * E * math.sqrt(R))) ** 0.4
     P_max = 4 / 3 * E * math.sqrt(R) * delta_max**1.5
     return delta_max, P_max, 2.9432 * delta_max / V

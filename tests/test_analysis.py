@@ -232,7 +232,7 @@ def test_failure_surfaces_through_compression_strength(s_tc):
     K = max(r.real for r in roots if abs(r.imag) < 1e-9 and r.real > 1)
     assert inv.sinphi_on_surface(inv.LADE_DUNCAN, s_tc, 1.0) == pytest.approx((K - 1) / (K + 1), abs=1e-12)
     assert inv.sinphi_on_surface(inv.LADE_DUNCAN, s_tc, 1.0) > s_tc
-    # physics.md §6 table
+    # docs/theory.md §7.3 table
     table = {0.35: (0.4153, 0.3778), 0.45: (0.5346, 0.4946), 0.5: (0.5933, 0.5538)}
     assert inv.sinphi_on_surface(inv.LADE_DUNCAN, s_tc, [0.5, 1.0]) == pytest.approx(table[s_tc], abs=6e-5)
     # Pi-plane curve passes through the compression state at p, and is 120-deg periodic
@@ -344,7 +344,7 @@ def test_cli_radial(files):
     png_ok(out)
     s = kv(so, "surfaces")
     assert s["sinphi_tc"] == pytest.approx(0.45, rel=1e-5)
-    assert s["eta_LD"] == pytest.approx(10.803, abs=1e-3)           # physics.md §6 table
+    assert s["eta_LD"] == pytest.approx(10.803, abs=1e-3)           # docs/theory.md §7.3 table
     for lab, b, ld, mn in (("b0", 0, 0.45, 0.45), ("b05", 0.5, 0.5346, 0.5029), ("b1", 1, 0.4946, 0.45)):
         r = kv(so, lab)
         assert r["b"] == pytest.approx(b, abs=1e-9)

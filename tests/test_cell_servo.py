@@ -1,4 +1,4 @@
-"""fix cell/servo: stress-controlled periodic cell (physics.md sections 5-7).
+"""fix cell/servo: stress-controlled periodic cell (docs/theory.md §5–§7).
 
 Every expected number comes from theory or an independent calculation: the Hertz
 closed form of a simple-cubic lattice, the prescribed strain programme, the Pi-plane
@@ -174,7 +174,7 @@ def test_constant_b(specimen, tmp_path, b):
     assert np.max(np.abs((s2 - s3) / (s1 - s3) - b)) < 0.01
     assert np.max(np.abs(late["b"][big] - b)) < 0.01
     assert np.all(s1 > s2) and np.all(s2 >= s3)
-    # the stress Lode angle: tan(theta) = sqrt3 b/(2 - b)   (physics.md section 6)
+    # the stress Lode angle: tan(theta) = sqrt3 b/(2 - b)   (docs/theory.md §7.2)
     theta = np.degrees(np.arctan2(np.sqrt(3.0) * b, 2.0 - b))
     assert np.max(np.abs(late["lode_deg"][big] - theta)) < 1.0
 
@@ -270,7 +270,7 @@ def test_circle_path(specimen, tmp_path, rotation):
 
 
 def deviator_from_pi(xy):
-    # inverse of the Pi coordinates for a traceless triple (physics.md §6)
+    # inverse of the Pi coordinates for a traceless triple (docs/theory.md §7.2)
     ex = np.array([0.0, 1.0, -1.0]) / np.sqrt(2.0)
     ey = np.array([2.0, -1.0, -1.0]) / np.sqrt(6.0)
     return xy[0] * ex + xy[1] * ey

@@ -1,5 +1,5 @@
 """fix damping/cundall: Cundall's local non-viscous damping F <- F (1 - lambda sign(F v))
-(physics.md §5.4), checked on free spheres where the motion is known in closed form."""
+(docs/theory.md §8), checked on free spheres where the motion is known in closed form."""
 import numpy as np
 import pytest
 

@@ -14,7 +14,7 @@ E, NU, RHO = 70e9, 0.3, 2650.0
 
 
 def rayleigh_time(R, E=E, nu=NU, rho=RHO):
-    # physics.md §4
+    # docs/theory.md §4.1
     G = E / (2 * (1 + nu))
     return math.pi * R * math.sqrt(rho / G) / (0.1631 * nu + 0.8766)
 

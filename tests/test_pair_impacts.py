@@ -1,5 +1,6 @@
 """Free two-body impacts integrated by LAMMPS (fix nve/sphere): adhesive sticking and
-restitution (physics.md §3.2), oblique gross sliding (§3.4), Chung & Ooi (2011) tests 1–2 (§3.3)."""
+restitution, oblique gross sliding, Chung & Ooi (2011) tests 1–2
+(docs/theory.md §3.2, §3.4, §3.3)."""
 import math
 
 import numpy as np
@@ -61,13 +62,13 @@ M_STAR = M / 2
 @pytest.fixture(scope="module")
 def sticking_velocity():
     Vs = ref.sticking_velocity(R_STAR, E_STAR, 0.3, M_STAR)
-    assert Vs == pytest.approx(0.01328, rel=2e-3)          # physics.md §1.7 table
+    assert Vs == pytest.approx(0.01328, rel=2e-3)          # docs/theory.md §1.8 table
     return Vs
 
 
 @pytest.mark.parametrize("ratio", [1.2, 2.0, 5.0])
 def test_head_on_adhesive_impact_rebounds_with_jkr_restitution(tmp_path, sticking_velocity, ratio):
-    # e = sqrt(1 - (Vs/V)^2) above the sticking velocity (physics.md §3.2)
+    # e = sqrt(1 - (Vs/V)^2) above the sticking velocity (docs/theory.md §3.2)
     V = ratio * sticking_velocity
     dt = 2e-9
     text = impact_deck(R, R, E, NU, E, NU, RHO, RHO, 0.3, 0.3, (V / 2, 0, 0), (-V / 2, 0, 0), dt,
@@ -102,7 +103,8 @@ def test_head_on_adhesive_impact_sticks_below_sticking_velocity(tmp_path, sticki
 
 
 def test_oblique_impact_in_gross_sliding_changes_tangential_velocity_by_mu_normal_impulse(tmp_path):
-    # Γ = 0, V_t >> 3.5 μ (1+e) V_n: Δv_t = μ Δv_n per sphere, R Δω = 2.5 Δv_t (physics.md §3.4)
+    # Γ = 0, V_t >> 3.5 μ (1+e) V_n: Δv_t = μ Δv_n per sphere, R Δω = 2.5 Δv_t
+    # (docs/theory.md §3.4)
     # slow enough that the contact normal turns by < 4e-4 rad during the impact, so x and y
     # stay the normal and tangential directions; Vt/Vn = 5 > 7 mu (1+e)/2 = 2.1: sliding
     mu, Vn, Vt = 0.3, 0.01, 0.05
@@ -121,7 +123,7 @@ def test_oblique_impact_in_gross_sliding_changes_tangential_velocity_by_mu_norma
 
 
 CHUNG_OOI_1 = [
-    # material, E, nu, rho, (delta_max, P_max, t_c) from physics.md §3.3
+    # material, E, nu, rho, (delta_max, P_max, t_c) from docs/theory.md §3.3
     ("glass", 48e9, 0.20, 2800.0, (274.1e-6, 10.70e3, 40.34e-6)),
     ("limestone", 20e9, 0.25, 2500.0, (368.3e-6, 7.108e3, 54.20e-6)),
 ]

@@ -61,7 +61,7 @@ def test_good_input_runs(tmp_path):
 
 
 def test_timestep_near_rayleigh_limit_warns(tmp_path):
-    # R = 0.1 mm, rho = 2650: Rayleigh time 1.065e-7 s (physics.md §4); dt = 1e-7 must warn
+    # R = 0.1 mm, rho = 2650: Rayleigh time 1.065e-7 s (docs/theory.md §4.1); dt = 1e-7 must warn
     text = deck().replace("timestep 1e-9", "timestep 1e-7")
     rc, out = run_deck(text, tmp_path)
     assert rc == 0

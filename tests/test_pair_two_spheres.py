@@ -10,7 +10,7 @@ import jkr_reference as ref
 from lmprun import LOAD_TYLMP, read_table, run_ok
 
 E, NU, RHO = 70e9, 0.3, 2650.0
-R = 1.0e-4                         # sphere radius: R* = 50 µm (physics.md §1.7)
+R = 1.0e-4                         # sphere radius: R* = 50 µm (docs/theory.md §1.8)
 R_STAR = R / 2
 E_STAR = ref.effective_modulus(E, NU)
 G_STAR = ref.effective_shear_modulus(E, NU)
@@ -82,7 +82,8 @@ def test_adhesive_normal_cycle_follows_jkr_and_breaks_at_delta_f(tmp_path, Gamma
     assert np.all(P[before_touch] == 0.0)                              # no long-range force
     first = np.argmax(approach & (d >= 0))
     assert P[first] == pytest.approx(ref.normal_force(d[first], R_STAR, E_STAR, Gamma), rel=1e-9)
-    assert P[first] / Pc == pytest.approx(-8 / 9, abs=2e-3)           # snap-on (physics.md §1.2)
+    # snap-on at first touch, P = -8/9 Pc (docs/theory.md §1.2)
+    assert P[first] / Pc == pytest.approx(-8 / 9, abs=2e-3)
     in_contact = np.arange(len(d)) >= first
     alive = in_contact & (P != 0.0)
     expected = np.array([ref.normal_force(x, R_STAR, E_STAR, Gamma) for x in d[alive]])
@@ -166,7 +167,8 @@ def test_tangential_loading_follows_mindlin_and_slides_at_mu_P(tmp_path):
     sliding = y > 1.01 * slide
     assert np.allclose(T[sliding], mu * data["P"][sliding], rtol=1e-9)     # Coulomb limit
     assert np.allclose(data["P"], 4 / 3 * E_STAR * math.sqrt(R_STAR) * data["delta"] ** 1.5, rtol=1e-9)
-    # torques: each sphere feels lever*T about z, same sign (physics.md; LAMMPS convention)
+    # torques: each sphere feels lever*T about z, same sign (docs/theory.md §2.3; LAMMPS
+    # convention)
     lever = R - data["delta"] / 2
     assert np.allclose(data["tz1"], data["tz2"], rtol=1e-9, atol=1e-20)
     assert np.allclose(np.abs(data["tz2"]), lever * np.abs(T), rtol=1e-9, atol=1e-20)
@@ -275,7 +277,7 @@ print "AFTER ${{fx}} ${{fy}} ${{fz}} ${{x2}} ${{y2}} ${{z2}}"
 
 def test_example_deck_two_spheres(tmp_path, repo):
     """inputs/two_spheres.in as a user runs it: snap-on at -8/9 Pc, minimum -Pc, break on
-    retraction just past delta_f at about -5/9 Pc (physics.md §1.2)."""
+    retraction just past delta_f at about -5/9 Pc (docs/theory.md §1.2)."""
     import os
     import subprocess
     deck = os.path.join(repo, "inputs", "two_spheres.in")

@@ -1,9 +1,9 @@
 """Paper values and the markdown comparison table (quantity | paper | ours | difference).
 
 Paper: Thornton & Sun, "DEM simulations of quasi-static shear deformation of granular media"
-(/work/shared/reference/seed-paper-thornton-periodic-cell.txt); sections and figures cited per
-entry. The paper gives most results only as curves; the numbers below are the ones stated in its
-text (plus e = 1/nu_s - 1 derived from the stated solid fractions).
+(the reference paper of docs/validation.md); sections and figures cited per entry. The paper
+gives most results only as curves; the numbers below are the ones stated in its text (plus
+e = 1/nu_s - 1 derived from the stated solid fractions).
 """
 import json
 import math

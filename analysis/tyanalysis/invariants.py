@@ -1,4 +1,4 @@
-"""Principal-space invariants, Pi-plane coordinates and failure surfaces (physics.md §5.3, §6).
+"""Principal-space invariants, Pi-plane coordinates and failure surfaces (docs/theory.md §7).
 
 Mirrors plugin/core/pi_plane.hpp so that Python and the C++ fix agree:
 
@@ -102,7 +102,7 @@ def criterion_value(criterion, sigma):
     raise ValueError(f"unknown failure criterion {criterion!r}; use one of {CRITERIA}")
 
 
-# ---- strain measures (physics.md §5.3) ------------------------------------------------------
+# ---- strain measures (docs/theory.md §7.1) --------------------------------------------------
 
 def volumetric_strain(eps):
     return _triples(eps).sum(axis=-1)
@@ -113,7 +113,7 @@ def deviatoric_strain(eps):
     return math.sqrt(2.0 / 3.0) * np.linalg.norm(deviator(eps), axis=-1)
 
 
-# ---- Pi plane (physics.md §6, plugin/core/pi_plane.hpp) ----------------------------------------
+# ---- Pi plane (docs/theory.md §7.2, plugin/core/pi_plane.hpp) ----------------------------------
 
 def pi_coordinates(v):
     """(x, y) = ((v2 - v3)/sqrt 2, (2 v1 - v2 - v3)/sqrt 6), keeping the axis labels."""
@@ -174,7 +174,7 @@ def fold_lode(theta_deg):
     return np.where(t > 60.0, 120.0 - t, t)
 
 
-# ---- failure surfaces through a compression (b = 0) strength (physics.md §6) ------------------
+# ---- failure surfaces through a compression (b = 0) strength (docs/theory.md §7.3) --------------
 
 def stress_ratio_from_sinphi(s):
     """K = sigma1/sigma3 = (1 + sin phi)/(1 - sin phi)."""

@@ -1,11 +1,11 @@
-// Stress servo of a deformable orthogonal periodic cell (physics.md §5.2, §7.3; paper sections
+// Stress servo of a deformable orthogonal periodic cell (docs/theory.md §6; paper sections
 // 2-5). Plain data in, principal strain rates out; every piece of memory is in ServoMemory.
 //
 // Conventions: principal axes = box axes (index 0, 1, 2 = x, y, z); stresses (Love-Weber,
 // pair virial only) and natural strains eps_i = -ln(L_i/L_i0) are compression positive, and so
 // are strain rates (a positive rate shortens the box edge).
 //
-// Mixed control. Each step the strain rate is
+// Mixed control (docs/theory.md §6.2). Each step the strain rate is
 //     deps/dt = r_p + W u / dt,
 // where r_p is the prescribed (strain-controlled) part and the columns w_k of W are the m
 // strain-rate patterns ("actuators") the servo may use, with amplitudes u (strain per step).
@@ -80,7 +80,7 @@ inline void require_every_axis_controlled(const std::array<std::optional<AxisCon
 }
 
 // ---------------------------------------------------------------------------------------------
-// Stiffness estimate (physics.md §5.2): affine stiffness C_ij = d sigma_i / d eps_j of a
+// Stiffness estimate (docs/theory.md §6.1): affine stiffness C_ij = d sigma_i / d eps_j of a
 // homogeneous principal strain, C_ij = (1/V) sum_c l^2 [k_N n_i^2 n_j^2
 // + k_T (delta_ij n_i^2 - n_i^2 n_j^2)], l = |branch|, n = branch/l. Its diagonal with k_T = 0
 // is K_i = (1/V) sum_c k_N (n_i l_i)^2. The normal part alone already gives the exact affine
@@ -109,7 +109,8 @@ inline Eigen::Matrix3d affine_stiffness(const double sums[6], double volume)
   return c / volume;
 }
 
-// strain rate at inertial number I: I = eps_dot d sqrt(rho/p)   (physics.md §4, GDR MiDi 2004)
+// strain rate at inertial number I: I = eps_dot d sqrt(rho/p)
+// (docs/theory.md §4.2, GDR MiDi 2004)
 inline double quasi_static_strain_rate(double inertial_number, double mean_stress,
                                        double mean_diameter, double density)
 {
@@ -181,7 +182,7 @@ struct ServoCommand {
 // ---------------------------------------------------------------------------------------------
 // Programmes
 
-// sigma3* = (3p - (1+b) sigma1)/(2 - b),  sigma2* = 3p - sigma1 - sigma3*   (physics.md §5.2)
+// sigma3* = (3p - (1+b) sigma1)/(2 - b),  sigma2* = 3p - sigma1 - sigma3*   (docs/theory.md §6.3)
 inline Eigen::Vector2d constant_b_targets(double major_stress, double mean_stress, double b)
 {
   require_b_in_range(b);
@@ -281,7 +282,7 @@ inline void require_valid(const ServoSettings& s)
 }
 
 // ---------------------------------------------------------------------------------------------
-// The control law (see the header comment)
+// The control law (see the header comment; docs/theory.md §6.2)
 
 inline ServoCommand servo_step(const MixedControl& control, const CellMeasurement& cell,
                                const ServoSettings& settings, double dt, ServoMemory& memory)
@@ -384,7 +385,7 @@ inline ServoCommand path_servo_step(const PiPath& path, double speed, double mea
 }
 
 // ---------------------------------------------------------------------------------------------
-// Quasi-equilibrium for specimen preparation (paper section 2; physics.md §4, §5.4)
+// Quasi-equilibrium for specimen preparation (paper section 2; docs/theory.md §6.4)
 
 struct EquilibriumCriteria {
   double stress_tolerance = 5e-3;             // max_i |sigma_i - sigma_i*| / p*

@@ -47,7 +47,7 @@ inline double select(bool c, double a, double b)
 }
 }    // namespace detail
 
-// per material pair, derived once from PairCoefficients
+// per material pair, derived once from PairCoefficients (§: sections of docs/theory.md)
 struct PairConstants {
   PairCoefficients c;
   double newton_c;          // 2 sqrt(pi Gamma/E*): delta = u^4/R* - newton_c u, u = sqrt(a)  (§1.4b)
@@ -72,8 +72,8 @@ struct KernelResult {
   double contact_radius;    // JKR radius a(delta)
 };
 
-// Savkoor-Briggs discriminant 4 P Pc + 4 Pc^2 - T^2 E*/(4G*) (peeling_discriminant, physics.md
-// §2.2) with the shear factor of the pair computed once
+// Savkoor-Briggs discriminant 4 P Pc + 4 Pc^2 - T^2 E*/(4G*) (peeling_discriminant,
+// docs/theory.md §2.2) with the shear factor of the pair computed once
 inline double peeling_discriminant(const PairConstants& k, double P, double Pc, double T2)
 {
   return 4.0 * P * Pc + 4.0 * Pc * Pc - k.peel_shear * T2;
@@ -219,7 +219,7 @@ inline void begin_tangential(const PairConstants& k, double R, const double ds[3
     h.P_prev = P;
     return;
   }
-  if (Adhesive && h.peeling != 0.0) {    // stage A: Savkoor-Briggs peeling      (physics.md §2.2)
+  if (Adhesive && h.peeling != 0.0) {    // stage A: Savkoor-Briggs peeling  (docs/theory.md §2.2)
     const double before = peeling_discriminant(k, P, st.Pc, detail::dot(T, T));
     if (before > 0.0) {    // 4E*a^3/(3R*) = P + 2Pc + sqrt(discriminant)
       st.stiffness_cubed = k.cube_radius_per_load * R * (P + 2.0 * st.Pc + std::sqrt(before));
@@ -292,12 +292,12 @@ inline void slip_decision(const PairConstants& k, ContactHistory& h, StepState& 
   const bool to_unloading = !unloading & !forward & backward;
   const bool to_reloading = unloading & !backward & forward;
   const int mode = to_unloading ? UNLOADING : (to_reloading ? RELOADING : mode_before);
-  // reversal points follow the normal load                                  (physics.md §2.1)
+  // reversal points follow the normal load                              (docs/theory.md §2.1)
   h.T_star = select(to_unloading, st.T_along, h.T_star) + mu_dP;
   h.T_star2 = select(to_reloading, st.T_along, h.T_star2) - mu_dP;
   st.mode = mode;
   st.slipping = forward | backward;
-  // theta^3 of Thornton & Randall (1988), P -> P + 2Pc                        (physics.md §2.1)
+  // theta^3 of Thornton & Randall (1988), P -> P + 2Pc                    (docs/theory.md §2.1)
   // loading 1 - (T + mu dP)/L, unloading 1 - (T* - T + 2 mu dP)/2L,
   // reloading 1 - (T - T** + 2 mu dP)/2L
   const double branch_term =

@@ -1,5 +1,5 @@
 // Plain data of one Thornton-Yin contact: material pair, per-contact history, one step's result.
-// Symbols as in physics.md §0: E*, G*, R*, Gamma (interface energy of each surface), mu.
+// Symbols as in docs/theory.md §0: E*, G*, R*, Gamma (interface energy of each surface), mu.
 #ifndef TYCORE_CONTACT_TYPES_HPP
 #define TYCORE_CONTACT_TYPES_HPP
 
@@ -8,8 +8,8 @@
 namespace tycore {
 
 struct PairCoefficients {
-  double E_star;    // contact modulus, 1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2          (physics.md §0)
-  double G_star;    // Mindlin shear modulus, 1/G* = (2-nu1)/G1 + (2-nu2)/G2        (physics.md §0)
+  double E_star;    // contact modulus, 1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2      (docs/theory.md §0)
+  double G_star;    // Mindlin shear modulus, 1/G* = (2-nu1)/G1 + (2-nu2)/G2    (docs/theory.md §0)
   double mu;        // interparticle friction coefficient
   double Gamma;     // interface energy per surface [J/m^2]; Pc = 3 pi Gamma R*
 };
@@ -27,7 +27,7 @@ inline double effective_shear_modulus(double E1, double nu1, double E2, double n
 
 inline double effective_radius(double R1, double R2) { return R1 * R2 / (R1 + R2); }
 
-// Mindlin-Deresiewicz branch of the tangential law (physics.md §2.1: k = 0, 1, 2)
+// Mindlin-Deresiewicz branch of the tangential law (docs/theory.md §2.1: k = 0, 1, 2)
 enum TangentialMode : int { LOADING = 0, UNLOADING = 1, RELOADING = 2 };
 
 // Per-contact memory, stored verbatim in LAMMPS' contact history (14 doubles).
@@ -39,7 +39,7 @@ struct ContactHistory {
   double T_star2;       // T**: T along load_dir at the last unloading->reloading reversal
   double P_prev;        // normal force of the previous step
   double mode;          // TangentialMode
-  double peeling;       // 1 while Savkoor-Briggs peeling lasts (physics.md §2.2 stage A)
+  double peeling;       // 1 while Savkoor-Briggs peeling lasts (docs/theory.md §2.2)
   double sliding;       // 1 if the contact is at the sliding limit this step
   double stored_energy; // tangential elastic energy = tangential work - frictional dissipation
                         // (a path quantity: the incremental law has no potential when P varies)

@@ -1,10 +1,11 @@
 // Closed form for a simple cubic lattice of equal Hertzian spheres (no adhesion, Gamma = 0)
-// under principal strains: the reference answer for the isotropic-compression servo test.
+// under principal strains: the reference answer for the isotropic-compression servo test
+// (docs/theory.md §9).
 //
 // Derivation. Spheres of radius R sit on a simple cubic lattice with spacing s_i along axis i;
 // they touch at s_i = 2R. The natural strain from the touching lattice, compression positive,
 // is eps_i = ln(2R/s_i), so s_i = 2R exp(-eps_i) and the overlap of the contacts along axis i
-// is delta_i = 2R - s_i = 2R x_i with x_i = 1 - exp(-eps_i). Hertz (physics.md §1.6) with
+// is delta_i = 2R - s_i = 2R x_i with x_i = 1 - exp(-eps_i). Hertz (docs/theory.md §1.6) with
 // R* = R/2 gives P_i = (4/3) E* sqrt(R/2) delta_i^(3/2) = (4/3) E* 2 R^2 x_i^(3/2).
 // A lattice cell (volume V = s1 s2 s3) holds one grain and one contact along each axis, with
 // branch vector s_i e_i, so the Love-Weber stress sigma_ij = (1/V) sum_c f_i l_j is diagonal:

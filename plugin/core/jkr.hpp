@@ -1,4 +1,4 @@
-// JKR adhesive elastic normal contact as used by Thornton & Yin (1991): physics.md §1.
+// JKR adhesive elastic normal contact as used by Thornton & Yin (1991): docs/theory.md §1.
 // R = R*, E = E*, Gamma = interface energy of each surface; delta > 0 compressive, P > 0 repulsive.
 // Every function is exact in the Hertz limit Gamma = 0.
 #ifndef TYCORE_JKR_HPP
@@ -34,23 +34,23 @@ inline double fast_cbrt(double x)
   return y + (x / (y * y) - y) * (1.0 / 3.0);
 }
 
-// Pc = 3 pi Gamma R*                                                     (physics.md §0)
+// Pc = 3 pi Gamma R*                                                 (docs/theory.md §0)
 inline double pull_off_force(double Gamma, double R) { return 3.0 * pi * Gamma * R; }
 
-// a0^3 = 9 pi Gamma R*^2 / E*                                            (physics.md §1.1)
+// a0^3 = 9 pi Gamma R*^2 / E*                                        (docs/theory.md §1.1)
 inline double zero_load_radius(double Gamma, double R, double E)
 {
   return std::cbrt(9.0 * pi * Gamma * R * R / E);
 }
 
-// P = 4E*a^3/(3R*) - 4 sqrt(pi Gamma E* a^3)                             (physics.md §1.1)
+// P = 4E*a^3/(3R*) - 4 sqrt(pi Gamma E* a^3)                         (docs/theory.md §1.1)
 inline double normal_force(double a, double R, double E, double Gamma)
 {
   const double a3 = a * a * a;
   return 4.0 * E * a3 / (3.0 * R) - 4.0 * std::sqrt(pi * Gamma * E * a3);
 }
 
-// delta = a^2/R* - 2 sqrt(pi Gamma a / E*)                               (physics.md §1.1)
+// delta = a^2/R* - 2 sqrt(pi Gamma a / E*)                           (docs/theory.md §1.1)
 inline double overlap(double a, double R, double E, double Gamma)
 {
   return a * a / R - 2.0 * std::sqrt(pi * Gamma * a / E);
@@ -62,13 +62,13 @@ inline double break_overlap(double R, double E, double Gamma)
   return -std::cbrt(27.0 * pi * pi * Gamma * Gamma * R / (16.0 * E * E));
 }
 
-// contact radius at separation, a_f = 6^(-2/3) a0                        (physics.md §1.2)
+// contact radius at separation, a_f = 6^(-2/3) a0                    (docs/theory.md §1.2)
 inline double break_radius(double R, double E, double Gamma)
 {
   return zero_load_radius(Gamma, R, E) / std::cbrt(36.0);
 }
 
-// stable-branch a(delta), closed form of the quartic in sqrt(a) (physics.md §1.4a; Parteli et
+// stable-branch a(delta), closed form of the quartic in sqrt(a) (docs/theory.md §1.4; Parteli et
 // al. 2014). Valid for delta >= delta_f; arguments of the roots clamped at 0 against round-off.
 inline double contact_radius(double delta, double R, double E, double Gamma)
 {
@@ -86,7 +86,7 @@ inline double contact_radius(double delta, double R, double E, double Gamma)
   return (t6 + std::sqrt(std::max(inner, 0.0))) / std::sqrt(6.0);
 }
 
-// safeguarded Newton on f(a) = delta(a) - delta, monotonic for a > a_f (physics.md §1.4b);
+// safeguarded Newton on f(a) = delta(a) - delta, monotonic for a > a_f (docs/theory.md §1.4);
 // `guess` warm-starts it (e.g. the previous step's radius)
 inline double contact_radius_newton(double delta, double R, double E, double Gamma, double guess,
                                     int* iterations = nullptr, double rel_tol = 1e-14)
@@ -120,7 +120,7 @@ inline double contact_radius_newton(double delta, double R, double E, double Gam
 
 // stable-branch a(delta) warm-started from `guess` (the previous step's radius; <= 0: none):
 // Newton on the quartic in u = sqrt(a), f(u) = u^4/R* - c u - delta, c = 2 sqrt(pi Gamma/E*)
-// (physics.md §1.4b), no root or cube root per iteration. f is convex for u > 0 and increasing
+// (docs/theory.md §1.4), no root or cube root per iteration. f is convex for u > 0 and increasing
 // on the stable branch, so from any start with f'(u) > 0 the iterates are >= the root after the
 // first step and decrease monotonically to it. Stop when the quadratic-convergence bound of the
 // error of the new iterate, 4 (f''/2f') step^2 = 24 u^2 step^2/(R* f'), is <= rel_tol u (a is
@@ -151,7 +151,7 @@ inline double contact_radius_warm(double delta, double R, double E, double Gamma
   return contact_radius(delta, R, E, Gamma);
 }
 
-// k_N = dP/d(delta) = 2E*a * 3(2 - s)/(6 - s), s = (a0/a)^(3/2)          (physics.md §1.5)
+// k_N = dP/d(delta) = 2E*a * 3(2 - s)/(6 - s), s = (a0/a)^(3/2)      (docs/theory.md §1.5)
 inline double normal_stiffness(double a, double R, double E, double Gamma)
 {
   if (Gamma == 0.0) return 2.0 * E * a;
@@ -160,7 +160,7 @@ inline double normal_stiffness(double a, double R, double E, double Gamma)
 }
 
 // U(a) = integral of P d(delta) from first touch (a_touch = (4/9)^(1/3) a0, delta = 0):
-// 8E*a^5/(15R*^2) - (8/(3R*)) sqrt(pi Gamma E*) a^(7/2) + 2 pi Gamma a^2 - U(a_touch)
+// 8E*a^5/(15R*^2) - (8/(3R*)) sqrt(pi Gamma E*) a^(7/2) + 2 pi Gamma a^2 - U(a_touch)   (§1.7)
 inline double stored_energy(double a, double R, double E, double Gamma)
 {
   const auto U = [&](double x) {
@@ -179,13 +179,13 @@ inline double separation_work(double R, double E, double Gamma)
   return stored_energy(break_radius(R, E, Gamma), R, E, Gamma);
 }
 
-// critical sticking velocity of a head-on impact, V_s = sqrt(2W/m*)     (physics.md §3.2)
+// critical sticking velocity of a head-on impact, V_s = sqrt(2W/m*) (docs/theory.md §3.2)
 inline double sticking_velocity(double R, double E, double Gamma, double m_star)
 {
   return std::sqrt(2.0 * separation_work(R, E, Gamma) / m_star);
 }
 
-// restitution of the purely elastic JKR impact, e = sqrt(1 - (V_s/V)^2)  (physics.md §3.2)
+// restitution of the purely elastic JKR impact, e = sqrt(1 - (V_s/V)^2) (docs/theory.md §3.2)
 inline double restitution(double V, double V_s)
 {
   return V <= V_s ? 0.0 : std::sqrt(1.0 - (V_s / V) * (V_s / V));

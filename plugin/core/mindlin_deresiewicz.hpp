@@ -1,11 +1,11 @@
-// Thornton's tangential law with adhesion, one contact, one step (physics.md §2):
+// Thornton's tangential law with adhesion, one contact, one step (docs/theory.md §2):
 //   stage A  Savkoor-Briggs peeling: k_T = 8G* a_peel, no micro-slip        (Thornton 1991)
 //   stage B  Mindlin-Deresiewicz micro-slip, theta factor for loading, unloading, reloading
 //            under varying normal force, with P replaced by P + 2Pc     (Thornton & Randall 1988)
 //   stage C  gross sliding at |T| = mu (P + 2Pc)
 // With Gamma = 0 (Pc = 0, no peeling) this is exactly Hertz-Mindlin-Deresiewicz.
 // The theta bookkeeping is scalar along the loading direction load_dir; the increment normal to it
-// meets the no-slip stiffness 8G*a and the Coulomb cap (physics.md §2.3 note i; Thornton & Yin 1991).
+// meets the no-slip stiffness 8G*a and the Coulomb cap (docs/theory.md §2.3; Thornton & Yin 1991).
 #ifndef TYCORE_MINDLIN_DERESIEWICZ_HPP
 #define TYCORE_MINDLIN_DERESIEWICZ_HPP
 
@@ -21,22 +21,23 @@
 
 namespace tycore {
 
-// coefficient of T^2 in the Savkoor-Briggs discriminant, E*/(4G*) [U in physics.md §2.2]
+// coefficient of T^2 in the Savkoor-Briggs discriminant, E*/(4G*), from Thornton (1991)
+// and not re-derived (docs/theory.md §2.2)
 inline constexpr double savkoor_briggs_shear_factor = 0.25;
 
-// a_T^3 = 3R*(P + 2Pc)/(4E*): Hertz radius of the effective load (physics.md §2.2 stage B)
+// a_T^3 = 3R*(P + 2Pc)/(4E*): Hertz radius of the effective load (docs/theory.md §2.2)
 inline double micro_slip_radius(double R, double E, double effective_load)
 {
   return jkr::fast_cbrt(3.0 * R * std::max(effective_load, 0.0) / (4.0 * E));
 }
 
-// 4 P Pc + 4 Pc^2 - T^2 E*/(4G*); peeling ends where it vanishes          (physics.md §2.2)
+// 4 P Pc + 4 Pc^2 - T^2 E*/(4G*); peeling ends where it vanishes      (docs/theory.md §2.2)
 inline double peeling_discriminant(const PairCoefficients& c, double P, double Pc, double T2)
 {
   return 4.0 * P * Pc + 4.0 * Pc * Pc - savkoor_briggs_shear_factor * T2 * c.E_star / c.G_star;
 }
 
-// 4E*a^3/(3R*) = P + 2Pc + sqrt(discriminant)                             (physics.md §2.2)
+// 4E*a^3/(3R*) = P + 2Pc + sqrt(discriminant)                         (docs/theory.md §2.2)
 inline double peeled_radius(const PairCoefficients& c, double R, double P, double Pc,
                             double discriminant)
 {
@@ -44,7 +45,7 @@ inline double peeled_radius(const PairCoefficients& c, double R, double P, doubl
                         (4.0 * c.E_star));
 }
 
-// T_c = 4 sqrt(Pc (P + Pc) G*/E*): tangential force at the end of peeling (physics.md §2.2)
+// T_c = 4 sqrt(Pc (P + Pc) G*/E*): tangential force where peeling ends (docs/theory.md §2.2)
 inline double peeling_end_force(const PairCoefficients& c, double P, double Pc)
 {
   return std::sqrt(std::max(4.0 * P * Pc + 4.0 * Pc * Pc, 0.0) * c.G_star /
@@ -57,11 +58,12 @@ template <bool Adhesive> inline double effective_pull_off(const PairCoefficients
   return Adhesive ? jkr::pull_off_force(c.Gamma, R) : 0.0;
 }
 
-// Stored tangential energy. Thornton's incremental law is hypo-elastic (k_T = 8G* a depends on
-// P, and on T while peeling), so |T|^2/(2 k_T) is not a potential: on a no-slip proportional path
-// it misses 1/6 of the work, and it ignores the stiffer peeled radius. The energy is therefore
-// carried in the history as (tangential work) - (frictional dissipation), with the dissipation
-// computed where slip happens (see tangential_step). Arguments other than h are kept for callers.
+// Stored tangential energy (docs/theory.md §2.4). Thornton's incremental law is hypo-elastic
+// (k_T = 8G* a depends on P, and on T while peeling), so |T|^2/(2 k_T) is not a potential: on a
+// no-slip proportional path it misses 1/6 of the work, and it ignores the stiffer peeled radius.
+// The energy is therefore carried in the history as (tangential work) - (frictional
+// dissipation), with the dissipation computed where slip happens (see tangential_step).
+// Arguments other than h are kept for callers.
 inline double tangential_energy(const PairCoefficients& /*c*/, double /*R*/, double /*P*/,
                                 const ContactHistory& h)
 {
@@ -144,7 +146,7 @@ namespace detail {
 // relative tolerance (a few ulps) for "|T| is at the sliding limit"
 inline constexpr double limit_tolerance = 4.0 * std::numeric_limits<double>::epsilon();
 
-// theta^3 of Thornton & Randall (1988) with P -> P + 2Pc, clamped to [0, 1]   (physics.md §2.1)
+// theta^3 of Thornton & Randall (1988) with P -> P + 2Pc, clamped to [0, 1] (docs/theory.md §2.1)
 inline double theta_cubed(int mode, double T_along, const ContactHistory& h, double mu,
                           double effective_load, double dP)
 {
@@ -163,14 +165,14 @@ inline double theta_cubed(int mode, double T_along, const ContactHistory& h, dou
 // Iwan-consistent rate (virgin curve f: f - x f'; Masing branch g = 2f(u/2): (g - u g')/2, both
 // equal to the expression above), zero without micro-slip, mu Peff at gross sliding, >= 0, and
 // it reproduces the Mindlin-Deresiewicz loop loss and the stored energy 1.2 (mu P)^2/(2 k_T) of
-// the fully mobilised (Hertzian-traction) contact.
+// the fully mobilised (Hertzian-traction) contact (docs/theory.md §2.4).
 inline double annulus_dissipation_rate(double limit, double theta)
 {
   return limit * (1.0 - theta) * (1.0 - theta) * (1.0 + 0.5 * theta);
 }
 
-// One micro-slip step (physics.md §2.1/§2.3 with P -> Peff = P + 2Pc); returns the annulus
-// dissipation. Vector form (Thornton & Yin 1991 generalised as in physics.md §2.3 note i):
+// One micro-slip step (docs/theory.md §2.1/§2.3 with P -> Peff = P + 2Pc); returns the annulus
+// dissipation. Vector form (Thornton & Yin 1991 generalised as in docs/theory.md §2.3):
 //  * component s = ds.t of the increment along the loading direction t: scalar MD law
 //      dT_par = 8G*a theta s + (-1)^k mu dP (1 - theta)
 //  * component ds_perp normal to t: 8G*a ds_perp. Annulus tractions sit on the friction circle
@@ -218,7 +220,7 @@ inline double micro_slip_step(const PairCoefficients& c, double stiffness, doubl
       slipping = true;
     }
   }
-  h.T_star += mu_dP;    // reversal points follow the normal load              (physics.md §2.1)
+  h.T_star += mu_dP;    // reversal points follow the normal load          (docs/theory.md §2.1)
   h.T_star2 -= mu_dP;
 
   double dT_par = ks, dissipation = 0.0;
@@ -245,7 +247,7 @@ inline double micro_slip_step(const PairCoefficients& c, double stiffness, doubl
   return dissipation;
 }
 
-// Coulomb cap |T| <= limit (physics.md §2.3 step 6): returns the dissipation limit x slip, the
+// Coulomb cap |T| <= limit (docs/theory.md §2.3): returns the dissipation limit x slip, the
 // slip being the removed force / k. Within a few ulps of the limit T is kept as is (no work).
 inline bool cap_at_limit(Eigen::Map<Eigen::Vector3d>& T, double limit, double stiffness,
                          double& dissipation)
@@ -269,8 +271,8 @@ inline bool cap_at_limit(Eigen::Map<Eigen::Vector3d>& T, double limit, double st
 //   stored energy += tangential work 0.5 (T_old + T_new).ds - dissipation.
 // Elastic steps (theta = 1, peeling below T_c) therefore dissipate exactly nothing.
 // hertz_radius: the contact radius a(delta), if the caller has it (< 0: not given). Without
-// adhesion (Pc = 0) it is the micro-slip radius (a_T^3 = 3R*P/(4E*) = a^3, physics.md §1.6), so
-// the cube root is skipped; the two differ by round-off only.
+// adhesion (Pc = 0) it is the micro-slip radius (a_T^3 = 3R*P/(4E*) = a^3, docs/theory.md
+// §1.6), so the cube root is skipped; the two differ by round-off only.
 template <bool Adhesive>
 inline void tangential_step(const PairCoefficients& c, double R, double P, const Eigen::Vector3d& ds,
                             ContactHistory& h, double& dissipation, double hertz_radius = -1.0)

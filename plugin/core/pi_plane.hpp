@@ -1,11 +1,11 @@
-// Principal-space invariants and the Pi-plane (physics.md §5.3, §6).
+// Principal-space invariants and the Pi-plane (docs/theory.md §7).
 //
 // Conventions: a principal triple v = (v1, v2, v3) holds values along the box axes x, y, z,
 // compression positive (stresses and natural strains alike). Functions that need the order
 // of magnitude (b, sin(phi)) sort internally; the Pi-plane coordinates keep the axis labels,
 // so that paths through all six sectors plot without folding.
 //
-// Pi-plane (plane normal to (1,1,1), axis 1 drawn upwards), physics.md §6:
+// Pi-plane (plane normal to (1,1,1), axis 1 drawn upwards), docs/theory.md §7.2:
 //   y = (2 v1 - v2 - v3)/sqrt(6),   x = (v2 - v3)/sqrt(2),
 // i.e. the deviator is s = x e_x + y e_y with orthonormal e_x = (0,1,-1)/sqrt(2),
 // e_y = (2,-1,-1)/sqrt(6), and the Pi radius sqrt(x^2 + y^2) = |s| (Frobenius norm).
@@ -89,7 +89,7 @@ inline double lade_duncan_eta(const Eigen::Vector3d& sigma)
   return inv.I1 * inv.I1 * inv.I1 / inv.I3 - 27.0;
 }
 
-// Matsuoka-Nakai I1 I2 / I3   (physics.md §6)
+// Matsuoka-Nakai I1 I2 / I3   (docs/theory.md §7.3)
 inline double matsuoka_nakai_ratio(const Eigen::Vector3d& sigma)
 {
   const PrincipalInvariants inv = principal_invariants(sigma);
@@ -97,7 +97,7 @@ inline double matsuoka_nakai_ratio(const Eigen::Vector3d& sigma)
 }
 
 // ---------------------------------------------------------------------------------------------
-// Pi-plane coordinates (physics.md §6); the same map serves stresses and strains
+// Pi-plane coordinates (docs/theory.md §7.2); the same map serves stresses and strains
 
 inline Eigen::Vector3d pi_unit_x() { return Eigen::Vector3d(0, 1, -1) / piplane::sqrt2; }
 inline Eigen::Vector3d pi_unit_y() { return Eigen::Vector3d(2, -1, -1) / piplane::sqrt6; }
@@ -120,8 +120,8 @@ inline Eigen::Vector3d principal_from_pi(const Eigen::Vector2d& xy, double mean)
   return Eigen::Vector3d::Constant(mean) + deviator_from_pi(xy);
 }
 
-// Lode angle from the axis-1 direction, tan(theta) = x/y, in [0, 360) degrees (physics.md §6);
-// NaN at the origin, where it is undefined
+// Lode angle from the axis-1 direction, tan(theta) = x/y, in [0, 360) degrees
+// (docs/theory.md §7.2); NaN at the origin, where it is undefined
 inline double lode_angle_deg(const Eigen::Vector2d& xy)
 {
   if (xy.x() == 0.0 && xy.y() == 0.0) return std::numeric_limits<double>::quiet_NaN();
@@ -137,7 +137,7 @@ inline Eigen::Vector2d pi_point(double radius, double lode_deg)
 }
 
 // ---------------------------------------------------------------------------------------------
-// Strain measures (physics.md §5.3), natural strains, compression positive
+// Strain measures (docs/theory.md §7.1), natural strains, compression positive
 
 // eps_v = eps1 + eps2 + eps3
 inline double volumetric_strain(const Eigen::Vector3d& eps) { return eps.sum(); }
@@ -152,7 +152,7 @@ inline double deviatoric_strain(const Eigen::Vector3d& eps)
 inline double strain_difference_13(const Eigen::Vector3d& eps) { return eps(0) - eps(2); }
 
 // ---------------------------------------------------------------------------------------------
-// Failure surfaces through a given compression (b = 0) friction angle (physics.md §6)
+// Failure surfaces through a given compression (b = 0) friction angle (docs/theory.md §7.3)
 
 enum class FailureCriterion { LADE_DUNCAN, MATSUOKA_NAKAI };
 
@@ -162,7 +162,7 @@ inline double criterion_value(FailureCriterion criterion, const Eigen::Vector3d&
                                                     : matsuoka_nakai_ratio(sigma);
 }
 
-// stress state (K, 1 + b(K - 1), 1) with K = sigma1/sigma3   (physics.md §6)
+// stress state (K, 1 + b(K - 1), 1) with K = sigma1/sigma3   (docs/theory.md §7.3)
 inline Eigen::Vector3d state_at_ratio(double stress_ratio, double b)
 {
   return {stress_ratio, 1.0 + b * (stress_ratio - 1.0), 1.0};
@@ -178,7 +178,7 @@ inline double criterion_constant(FailureCriterion criterion, double sinphi_tc)
 }
 
 // sin(phi) at intermediate-stress ratio b on the surface through sinphi_tc: bisection on
-// K > 1, along which the criterion grows monotonically (physics.md §6)
+// K > 1, along which the criterion grows monotonically (docs/theory.md §7.3)
 inline double sinphi_on_surface(FailureCriterion criterion, double sinphi_tc, double b)
 {
   if (!(sinphi_tc > 0.0 && sinphi_tc < 1.0))

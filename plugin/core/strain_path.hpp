@@ -1,4 +1,4 @@
-// Deviatoric strain programmes on the strain Pi-plane (physics.md §5.2, §6; paper sections 3-5).
+// Deviatoric strain programmes on the strain Pi-plane (docs/theory.md §7.4; paper sections 3-5).
 //
 // Two kinds of generator:
 //  * directions: unit traceless principal vectors (axisymmetric compression/extension, radial
@@ -30,7 +30,7 @@ namespace tycore {
 enum class Rotation { CLOCKWISE, ANTICLOCKWISE };
 
 // which number a "deviatoric strain" magnitude refers to; the paper's 0.285 % pre-strain is
-// most plausibly eps1 - eps3 (its Fig. 1 axis), physics.md §5.3 leaves this open
+// most plausibly eps1 - eps3 (its Fig. 1 axis), docs/theory.md §7.1
 enum class DeviatoricStrainMeasure { STRAIN_DIFFERENCE_13, EPS_Q };
 
 inline void require_axis_index(int axis)
@@ -42,7 +42,7 @@ inline void require_axis_index(int axis)
 // ---------------------------------------------------------------------------------------------
 // Directions (unit, traceless)
 
-// direction at Lode angle theta: e_i = sqrt(2/3) cos(theta - 2 pi (i-1)/3)   (physics.md §6)
+// direction at Lode angle theta: e_i = sqrt(2/3) cos(theta - 2 pi (i-1)/3)   (docs/theory.md §7.2)
 inline Eigen::Vector3d pi_direction(double lode_deg)
 {
   return deviator_from_pi(pi_point(1.0, lode_deg));

@@ -26,14 +26,15 @@ inline double normal_force_of_radius(const PairCoefficients& c, double R, double
 {
   if (Adhesive) return jkr::normal_force(a, R, c.E_star, c.Gamma);
   const double a3 = a * a * a;    // same operation order as jkr::normal_force: Gamma = 0 gives
-  return 4.0 * c.E_star * a3 / (3.0 * R);    // bit-identical Hertz forces (physics.md §1.6)
+  return 4.0 * c.E_star * a3 / (3.0 * R);    // bit-identical Hertz forces (docs/theory.md §1.6)
 }
 
 // Advance one contact by one step: overlap delta now, tangential displacement increment ds of j
 // relative to i at the contact (already rotated into the current tangent plane, see
 // rotate_history). h must have been started by begin_contact. The JKR radius is found by Newton
-// warm-started from the previous step's (h.radius; closed form on the first step, physics.md
-// §1.4). `parts` selects the optional outputs (ResultParts); the others are left at 0.
+// warm-started from the previous step's (h.radius; closed form on the first step,
+// docs/theory.md §1.4). `parts` selects the optional outputs (ResultParts); the others are
+// left at 0.
 template <bool Adhesive>
 inline ContactResult evaluate_contact(const PairCoefficients& c, double R, double delta,
                                       const Eigen::Vector3d& ds, ContactHistory& h,

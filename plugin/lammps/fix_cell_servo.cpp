@@ -1,7 +1,7 @@
 /* ----------------------------------------------------------------------
    fix ID all cell/servo MODE args [keyword value ...]      (docs/fix_cell_servo.md)
 
-   Bookkeeping (physics.md §7.1, option 1, as TRUBAL): the cell edges L_i follow the
+   Bookkeeping (docs/theory.md §5.1, as in TRUBAL): the cell edges L_i follow the
    principal strain rates, L_i <- L_i exp(-eps_dot_i dt) (compression positive); atoms are
    remapped affinely with the box and their velocities are fluctuations about the mean field.
    domain->h_rate carries L_ii = -eps_dot_i to pair thornton/yin, which adds L (x_i - x_j) to
@@ -512,7 +512,7 @@ double FixCellServo::prescribed_rate() const
   return rate;
 }
 
-// cap of the servo part: the strain rate at inertial number max_inertial (physics.md §4),
+// cap of the servo part: the strain rate at inertial number max_inertial (docs/theory.md §4.2),
 // and at least four times the prescribed rate (the minor axis of a constant-b path extends at
 // about the major rate, plus dilatancy)
 double FixCellServo::default_max_rate() const
@@ -637,7 +637,7 @@ void FixCellServo::end_of_step()
 
   const double rate[3] = {command.strain_rate(0), command.strain_rate(1), command.strain_rate(2)};
   const double volume = domain->xprd * domain->yprd * domain->zprd;
-  // boundary work V sigma : deps over this step (contact stress; physics.md §7.1)
+  // boundary work V sigma : deps over this step (contact stress; docs/theory.md §5.3)
   for (int k = 0; k < 3; ++k) boundary_work += volume * stress[k] * rate[k] * update->dt;
   // the cell deforms at the next step's post_integrate, before its forces: the positions
   // written at the end of a step are those its forces were computed at, so a restart (or a
@@ -705,7 +705,7 @@ void FixCellServo::compute_outputs()
   output[SLIDING_FRACTION] = contacts > 0.0 ? sliding / contacts : 0.0;
 
   const Eigen::Vector3d rate = memory.last_strain_rate;
-  // I = eps_dot_q d sqrt(rho/p), eps_dot_q = sqrt(2/3 e':e')   (physics.md §4)
+  // I = eps_dot_q d sqrt(rho/p), eps_dot_q = sqrt(2/3 e':e')   (docs/theory.md §4.2)
   const double shear_rate = std::sqrt(2.0 / 3.0) * tycore::deviator(rate).norm();
   output[INERTIAL_NUMBER] =
       output[P] > 0.0 ? shear_rate * mean_diameter * std::sqrt(mean_density / output[P]) : NaN;

@@ -1,7 +1,7 @@
 /* -*- c++ -*- ----------------------------------------------------------
    fix cell/servo: a stress-controlled, deformable, orthogonal periodic cell that follows
    principal strain-rate programmes and Pi-plane strain paths at a servo-controlled mean
-   stress (paper sections 2-5; physics.md §5, §7). See docs/fix_cell_servo.md.
+   stress (paper sections 2-5; docs/theory.md §5, §6). See docs/fix_cell_servo.md.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_FIX_CELL_SERVO_H

@@ -3,7 +3,7 @@
    F_k <- F_k (1 - lambda sign(F_k v_k)) per component (tycore::cundall_damped_component),
    torques likewise with the angular velocity. With fix cell/servo (and fix deform
    remap x) the particle velocities are fluctuations about the affine field, so the
-   damping acts on fluctuations only (physics.md §5.4, §7.1).
+   damping acts on fluctuations only (docs/theory.md §8, §5.1).
 ------------------------------------------------------------------------- */
 
 #include "fix_damping_cundall.h"

@@ -243,7 +243,7 @@ void PairThorntonYin::coeff(int narg, char **arg)
 }
 
 /* ----------------------------------------------------------------------
-   unlike types I != J without an explicit pair_coeff: physics.md §0
+   unlike types I != J without an explicit pair_coeff: docs/theory.md §0
 ------------------------------------------------------------------------- */
 
 void PairThorntonYin::mix_pair(int i, int j)
@@ -307,8 +307,8 @@ void PairThorntonYin::init_style()
 }
 
 /* ----------------------------------------------------------------------
-   A tensile JKR contact survives to delta_f < 0 (physics.md §1.2). The size neighbor
-   list keeps a pair only within radsum + skin at a rebuild, so skin > |delta_f| is
+   A tensile JKR contact survives to delta_f < 0 (docs/theory.md §1.2). The size
+   neighbor list keeps a pair only within radsum + skin at a rebuild, so skin > |delta_f| is
    required, otherwise adhesive contacts are silently lost.
 ------------------------------------------------------------------------- */
 
@@ -330,7 +330,7 @@ void PairThorntonYin::check_break_against_skin()
 }
 
 /* ----------------------------------------------------------------------
-   Rayleigh time of the smallest sphere (physics.md §4, Li, Xu & Thornton 2005):
+   Rayleigh time of the smallest sphere (docs/theory.md §4.1, Li, Xu & Thornton 2005):
    dt_R = pi R sqrt(rho/G) / (0.1631 nu + 0.8766)
 ------------------------------------------------------------------------- */
 
@@ -387,7 +387,7 @@ double PairThorntonYin::init_one(int i, int j)
 /* ----------------------------------------------------------------------
    Mean-field velocity gradient L = Hdot H^-1 of a deforming box (fix deform remap x,
    fix cell/servo). With remap x particle velocities are fluctuations, so the affine
-   relative velocity L (x_i - x_j) must be added to the contact velocity (physics.md §7).
+   relative velocity L (x_i - x_j) must be added to the contact velocity (docs/theory.md §5.1).
    Returns max |L_ab| (0 when the box does not deform or velocities already stream).
 ------------------------------------------------------------------------- */
 
@@ -569,7 +569,7 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
                                : 0.0,
                    0.0, fx, fy, fz, ct.del[0], ct.del[1], ct.del[2]);
     if (tally) {
-      // affine stiffness of this contact (physics.md §5.2), k_T = 8 G* a_T(P + 2Pc); without
+      // affine stiffness of this contact (docs/theory.md §6.1), k_T = 8 G* a_T(P + 2Pc); without
       // adhesion a_T is the Hertz radius itself, as in evaluate_contact. A micro-slip step of
       // the kernel has just computed this k_T (stage B); peeled, frictionless and setup steps
       // have not
@@ -691,7 +691,7 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
       const double rinv = 1.0 / r;
       const double nx = delx * rinv, ny = dely * rinv, nz = delz * rinv;
 
-      // relative velocity of i with respect to j at the contact point (physics.md §7.1)
+      // relative velocity of i with respect to j at the contact point (docs/theory.md §5.1)
       double vr1 = v[i][0] - v[j][0];
       double vr2 = v[i][1] - v[j][1];
       double vr3 = v[i][2] - v[j][2];

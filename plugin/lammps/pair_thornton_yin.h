@@ -53,7 +53,7 @@ class PairThorntonYin : public Pair {
     S_PULL_OFF_FORCE, S_BREAK_OVERLAP, N_SVECTOR
   };
 
-  // fraction of the Rayleigh time above which init() warns (physics.md §4)
+  // fraction of the Rayleigh time above which init() warns (docs/theory.md §4.1)
   static constexpr double RAYLEIGH_WARN_FRACTION = 0.3;
 
  protected:

@@ -1,4 +1,4 @@
-// The glass pair of physics.md §1.7 shared by the contact-law unit tests: two equal spheres
+// The glass pair of docs/theory.md §1.8 shared by the contact-law unit tests: two equal spheres
 // with R = 0.1 mm (R* = 0.05 mm), E = 70 GPa, nu = 0.3.
 #ifndef TYCORE_TESTS_GLASS_PAIR_HPP
 #define TYCORE_TESTS_GLASS_PAIR_HPP

@@ -162,7 +162,7 @@ TEST(CellServo, ConstantBPathReachesTheRequestedB)
     const Eigen::Vector3d& sig = plant.stress;
     EXPECT_NEAR((sig(1) - sig(2)) / (sig(0) - sig(2)), b, 1e-6) << "b = " << b;
     EXPECT_NEAR(sig.mean(), p_target, 1e-6 * p_target);
-    // the targets of physics.md §5.2 agree with the b-row form
+    // the targets of docs/theory.md §6.3 agree with the b-row form
     const Eigen::Vector2d t = constant_b_targets(sig(0), p_target, b);
     EXPECT_NEAR(t(0), sig(1), 1e-5 * p_target);
     EXPECT_NEAR(t(1), sig(2), 1e-5 * p_target);

@@ -1,6 +1,6 @@
 // The hot-loop numerics of the contact law (plugin/core/jkr.hpp): tycore::jkr::fast_cbrt
 // against std::cbrt, and the warm-started delta -> a inversion jkr::contact_radius_warm against
-// the closed form of physics.md §1.4a and an independent bisection.
+// the closed form of docs/theory.md §1.4 and an independent bisection.
 #include "contact_types.hpp"
 #include "jkr.hpp"
 
@@ -15,7 +15,7 @@
 namespace {
 
 namespace jkr = tycore::jkr;
-using namespace glass_pair;    // physics.md §1.7 glass pair
+using namespace glass_pair;    // docs/theory.md §1.8 glass pair
 
 // fast_cbrt: two Halley steps and one Newton step from a 3.3 % guess; stated tolerance 1e-15
 // relative (about 4.5 ulps; the measured worst case is ~3 ulps)

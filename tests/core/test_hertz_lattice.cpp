@@ -11,7 +11,7 @@ using Eigen::Vector3d;
 
 namespace {
 
-// glass spheres of physics.md §1.7: E = 70 GPa, nu = 0.3, like pair: E* = E/(2(1 - nu^2))
+// glass spheres of docs/theory.md §1.8: E = 70 GPa, nu = 0.3, like pair: E* = E/(2(1 - nu^2))
 const double kContactModulus = 70e9 / (2 * (1 - 0.09));
 const double kRadius = 1e-4;
 

@@ -1,5 +1,5 @@
 // JKR normal contact of Thornton & Yin (1991), tycore::jkr (plugin/core/jkr.hpp).
-// Every expected value is derived here from physics.md §1 and §3.2 (closed forms in the
+// Every expected value is derived here from docs/theory.md §1 and §3.2 (closed forms in the
 // dimensionless variables a^ = a/a0, delta_u = a0^2/R*, or independent quadrature/bisection),
 // never taken from a run of the code under test.
 #include "contact_types.hpp"
@@ -15,14 +15,14 @@ namespace {
 namespace jkr = tycore::jkr;
 constexpr double kPi = 3.14159265358979323846;
 
-// physics.md §1.7: two equal glass spheres R = 0.1 mm, E = 70 GPa, nu = 0.3, rho = 2650 kg/m^3
+// docs/theory.md §1.8: two equal glass spheres R = 0.1 mm, E = 70 GPa, nu = 0.3, rho = 2650 kg/m^3
 constexpr double kE = 70e9, kNu = 0.3, kR = 1e-4, kRho = 2650.0;
 const double kEstar = kE / (2.0 * (1.0 - kNu * kNu));                      // like pair
 const double kGstar = kE / (2.0 * (1.0 + kNu)) / (2.0 * (2.0 - kNu));     // G/(2(2-nu))
 const double kRstar = kR / 2.0;
 const double kMstar = 0.5 * kRho * 4.0 / 3.0 * kPi * kR * kR * kR;
 
-// independent JKR relations in the dimensionless form of physics.md §1.1
+// independent JKR relations in the dimensionless form of docs/theory.md §1.1
 struct Scales {
   double Gamma, Pc, a0, du;
   explicit Scales(double G)
@@ -184,7 +184,7 @@ TEST(JkrInversion, ClosedFormMatchesNewton)
   }
 }
 
-// §1.4b: "warm start from the previous step's a ... Typically 2-4 iterations". Newton is
+// §1.4b: Newton warm-started from the previous step's radius. Newton is
 // quadratically convergent here (f' > 0 away from the fold), so a warm start 1e-3 delta_u away
 // must converge in at most 6 iterations (counted as the header counts them).
 TEST(JkrInversion, NewtonWarmStartIterationCount)
@@ -270,7 +270,7 @@ TEST(JkrHertzLimit, GammaZeroIsHertz)
   EXPECT_LT(prev, 1e-5);
 }
 
-// §1.7 example numbers, to the digits quoted there
+// §1.8 table of the glass pair, to the digits quoted there
 TEST(JkrExampleNumbers, GlassSpheresPhysicsTable)
 {
   expect_quoted(tycore::effective_modulus(kE, kNu, kE, kNu) / 1e9, 38.46, 4, "E*");

@@ -1,5 +1,5 @@
 // Thornton's tangential law (plugin/core/mindlin_deresiewicz.hpp) against the exact
-// Mindlin-Deresiewicz results of physics.md §2.1 and the Savkoor-Briggs / Thornton (1991)
+// Mindlin-Deresiewicz results of docs/theory.md §2.1 and the Savkoor-Briggs / Thornton (1991)
 // relations of §2.2. Expected values are integrated or derived here, not taken from the code.
 #include "contact_types.hpp"
 #include "jkr.hpp"
@@ -17,7 +17,7 @@ using Eigen::Vector3d;
 
 namespace {
 
-using namespace glass_pair;    // physics.md §1.7 glass pair
+using namespace glass_pair;    // docs/theory.md §1.8 glass pair
 
 double hertz_radius(double P) { return std::cbrt(3.0 * kRstar * P / (4.0 * kEstar)); }
 

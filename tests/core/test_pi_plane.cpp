@@ -38,7 +38,7 @@ TEST(PiPlaneInvariants, OrderFreeMeasuresIgnoreAxisLabels)
   EXPECT_NEAR(tycore::lode_angle_deg(tycore::pi_coordinates(sigma)), 150.0, 1e-12);
 }
 
-// the six axisymmetric states land on the six multiples of 60 deg of physics.md §6
+// the six axisymmetric states land on the six multiples of 60 deg of docs/theory.md §7.2
 TEST(PiPlaneInvariants, LodeAngleOfAxisymmetricStatesInAllSectors)
 {
   struct Case { Vector3d sigma; double lode; };
@@ -49,7 +49,7 @@ TEST(PiPlaneInvariants, LodeAngleOfAxisymmetricStatesInAllSectors)
         << c.sigma.transpose();
 }
 
-// for sigma1 >= sigma2 >= sigma3, tan(theta) = sqrt(3) b/(2 - b)   (physics.md §6)
+// for sigma1 >= sigma2 >= sigma3, tan(theta) = sqrt(3) b/(2 - b)   (docs/theory.md §7.2)
 TEST(PiPlaneInvariants, LodeAngleFollowsBValue)
 {
   for (double b = 0.0; b <= 1.0; b += 0.05) {
@@ -99,7 +99,7 @@ TEST(PiPlaneInvariants, IsotropicStateHasNoBOrLode)
 }
 
 // axisymmetric compression strain e = a(2,-1,-1) + v: eps_q = 2a = (2/3)(eps1 - eps3),
-// eps1 - eps3 = 3a, eps_v = 3v   (physics.md §5.3)
+// eps1 - eps3 = 3a, eps_v = 3v   (docs/theory.md §7.1)
 TEST(PiPlaneStrains, AxisymmetricCompressionMeasures)
 {
   const double a = 1e-3, v = -2e-4;
@@ -114,7 +114,7 @@ TEST(PiPlaneStrains, AxisymmetricCompressionMeasures)
   EXPECT_NEAR(tycore::deviatoric_strain(g), std::sqrt(2.0) / 3.0 * std::sqrt(pairs), 1e-17);
 }
 
-// physics.md §6 table, and the closed forms eta = (K+2)^3/K - 27, MN = 9 + 8 tan^2(phi)
+// docs/theory.md §7.3 table, and the closed forms eta = (K+2)^3/K - 27, MN = 9 + 8 tan^2(phi)
 TEST(PiPlaneFailure, CriterionConstantsOfCompressionFrictionAngle)
 {
   const double sinphi[] = {0.30, 0.35, 0.40, 0.45, 0.50, 0.55, 0.60};
@@ -132,7 +132,7 @@ TEST(PiPlaneFailure, CriterionConstantsOfCompressionFrictionAngle)
   }
 }
 
-// physics.md §6: predicted sin(phi)(b) on LD and MN surfaces through sinphi_TC, to 4 decimals
+// docs/theory.md §7.3: predicted sin(phi)(b) on LD and MN surfaces through sinphi_TC, 4 decimals
 TEST(PiPlaneFailure, SinphiAlongBOnLadeDuncanAndMatsuokaNakai)
 {
   const double b[] = {0.0, 0.2, 0.4, 0.5, 0.6, 0.8, 1.0};

@@ -49,7 +49,7 @@ double signed_area(const std::vector<Vector2d>& p)
 
 }    // namespace
 
-// e_i = sqrt(2/3) cos(theta - 2 pi (i-1)/3) of physics.md §6 for a unit radius
+// e_i = sqrt(2/3) cos(theta - 2 pi (i-1)/3) of docs/theory.md §7.2 for a unit radius
 TEST(StrainPathDirections, LodeDirectionMatchesCosineFormula)
 {
   for (double theta = 0.0; theta < 360.0; theta += 7.5) {

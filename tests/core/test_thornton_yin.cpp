@@ -1,6 +1,6 @@
 // End-to-end tests of one Thornton-Yin contact, tycore::evaluate_contact (thornton_yin.hpp):
-// JKR normal force (physics.md §1) + Thornton's tangential law with adhesion (§2).
-// Expected values are derived here from physics.md, not read off a run of the code.
+// JKR normal force (docs/theory.md §1) + Thornton's tangential law with adhesion (§2).
+// Expected values are derived here from docs/theory.md, not read off a run of the code.
 #include "contact_types.hpp"
 #include "jkr.hpp"
 #include "mindlin_deresiewicz.hpp"
@@ -17,9 +17,9 @@ using Eigen::Vector3d;
 
 namespace {
 
-using namespace glass_pair;    // physics.md §1.7 glass pair
+using namespace glass_pair;    // docs/theory.md §1.8 glass pair
 
-// JKR scales of physics.md §1.1
+// JKR scales of docs/theory.md §1.1
 struct Jkr {
   double Pc, a0, du;
   explicit Jkr(double Gamma)
@@ -257,7 +257,7 @@ TEST(ThorntonYinNormalCycle, SnapOnCompressRetractBreak)
     return U0(ah) - U0(std::cbrt(4.0 / 9.0));
   };
   EXPECT_NEAR(r.normal_energy - U(s.radius(d_max)), work, 1e-6 * s.Pc * s.du);
-  // physics.md §1.7: delta_f for Gamma = 0.3 J/m^2
+  // docs/theory.md §1.8: delta_f for Gamma = 0.3 J/m^2
   EXPECT_NEAR(d_f, -3.7003e-9, 0.00005e-9);
 }
 

@@ -1,0 +1,194 @@
+"""Citations in code comments and docs point at text the repository ships (issues 13 and 14).
+
+* No file cites the reference notes that are not part of the repository (physics.md and its
+  companions) or their location on the developers' machine.
+* Every `docs/theory.md §N.M` (or `theory.md §N.M`) names a numbered heading of docs/theory.md.
+  So does every bare `§N.M` inside docs/theory.md and inside any file that cites docs/theory.md
+  (there a bare § continues those citations), except a `paper §N` (a section of the paper).
+* Every path to a markdown file (`docs/<file>.md`, `bench/data/README.md`, ...) and every
+  relative markdown link `[...](<file>.md)` points at an existing file.
+
+The repository scan covers every file git tracks or would track (untracked, not ignored), except
+this one, whose unit tests below hold deliberately bad citations; the parsers are unit-tested
+on synthetic text so that each check is shown to fail on what it must reject.
+"""
+import re
+import subprocess
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+THEORY = ROOT / "docs" / "theory.md"
+SELF = Path(__file__).resolve()
+
+# reference notes kept outside the repository; citing them leaves the reader with nothing
+NOT_SHIPPED = ("physics.md", "peers.md", "peer-runs.md", "aesthetics.md",
+               "seed-paper-thornton-periodic-cell", "shared/reference")
+
+SECTION = r"§\s?(\d+(?:\.\d+)*)"
+# "theory.md §1.2", "docs/theory.md §0–§3", "theory.md §2.1/§2.3", "theory.md §1 and §3.2"
+THEORY_CITATION = re.compile(
+    r"theory\.md\)?\s*(§\s?\d+(?:\.\d+)*(?:\s*(?:,|–|-|/|and|or|to)\s*§\s?\d+(?:\.\d+)*)*)")
+HEADING = re.compile(r"^#{1,6}\s+(\d+(?:\.\d+)*)\.?\s", re.MULTILINE)
+# a path ending in .md with at least one directory: docs/theory.md, bench/data/README.md
+MD_PATH = re.compile(r"(?<![\w./-])((?:[\w-]+/)+[\w.-]+\.md)\b")
+# a relative markdown link target: [text](performance.md#anchor), [x](docs/theory.md)
+MD_LINK = re.compile(r"\]\((?!https?:|mailto:|#)([^)\s#]+\.md)(?:#[^)\s]*)?\)")
+
+
+def theory_sections(text):
+    """Section numbers of the numbered headings ('## 1.', '### 1.2 ...') of a theory page."""
+    return set(HEADING.findall(text))
+
+
+def cited_theory_sections(text):
+    """(line number, section) for every docs/theory.md or theory.md § citation in text."""
+    cited = []
+    for m in THEORY_CITATION.finditer(text):
+        line = text.count("\n", 0, m.start()) + 1
+        cited += [(line, s) for s in re.findall(SECTION, m.group(1))]
+    return cited
+
+
+def bare_sections(text):
+    """(line number, section) for every § reference in text but those of the paper (paper §5)."""
+    return [(text.count("\n", 0, m.start()) + 1, m.group(1))
+            for m in re.finditer(r"(?<!paper )(?<!paper's )" + SECTION, text)]
+
+
+def unshipped_citations(text):
+    """(line number, name) of every mention of a reference note that is not shipped."""
+    found = []
+    for lineno, line in enumerate(text.splitlines(), 1):
+        found += [(lineno, name) for name in NOT_SHIPPED if name in line]
+    return found
+
+
+def missing_markdown_targets(text, source_dir, root=ROOT):
+    """(line number, target) of .md paths and relative .md links that name no existing file.
+
+    A path with a directory (docs/x.md) is read from the repository root or, in a markdown
+    page, also relative to the page; a link target relative to the page that holds it."""
+    missing = []
+    for m in MD_PATH.finditer(text):
+        target = m.group(1)
+        if not ((root / target).is_file() or (source_dir / target).is_file()):
+            missing.append((text.count("\n", 0, m.start()) + 1, target))
+    for m in MD_LINK.finditer(text):
+        target = m.group(1)
+        if not (source_dir / target).is_file():
+            missing.append((text.count("\n", 0, m.start()) + 1, target))
+    return sorted(set(missing))
+
+
+def repository_text_files():
+    listed = subprocess.run(
+        ["git", "ls-files", "--cached", "--others", "--exclude-standard", "-z"],
+        cwd=ROOT, check=True, capture_output=True).stdout.decode().split("\0")
+    for name in listed:
+        path = ROOT / name
+        if not name or not path.is_file() or path.resolve() == SELF:
+            continue
+        data = path.read_bytes()
+        if b"\0" in data[:8192]:
+            continue                                   # binary (figures, restart files)
+        try:
+            yield path, data.decode("utf-8")
+        except UnicodeDecodeError:
+            continue
+
+
+@pytest.fixture(scope="module")
+def files():
+    found = list(repository_text_files())
+    assert len(found) > 50                             # the scan sees the repository
+    assert any(p == THEORY for p, _ in found)
+    return found
+
+
+@pytest.fixture(scope="module")
+def sections():
+    return theory_sections(THEORY.read_text(encoding="utf-8"))
+
+
+# ---------------------------------------------------------------- the repository
+
+
+def test_no_file_cites_reference_notes_that_are_not_shipped(files):
+    bad = [f"{p.relative_to(ROOT)}:{line}: {name}"
+           for p, text in files for line, name in unshipped_citations(text)]
+    assert not bad, "cite docs/theory.md or the paper instead:\n" + "\n".join(bad)
+
+
+def test_every_theory_citation_names_an_existing_section(files, sections):
+    bad = [f"{p.relative_to(ROOT)}:{line}: §{s}"
+           for p, text in files for line, s in cited_theory_sections(text) if s not in sections]
+    assert not bad, "no such heading in docs/theory.md:\n" + "\n".join(bad)
+
+
+def test_bare_sections_in_citing_files_exist(files, sections):
+    # docs/theory.md itself, and files whose § references continue a docs/theory.md citation
+    bad = [f"{p.relative_to(ROOT)}:{line}: §{s}"
+           for p, text in files if p == THEORY or cited_theory_sections(text)
+           for line, s in bare_sections(text) if s not in sections]
+    assert not bad, "no such heading in docs/theory.md:\n" + "\n".join(bad)
+
+
+def test_theory_sections_are_numbered_in_order(sections):
+    # the sections the code cites: fixed numbers, 0 to 9, each with its subsections in order
+    text = THEORY.read_text(encoding="utf-8")
+    numbers = [tuple(int(x) for x in s.split(".")) for s in HEADING.findall(text)]
+    assert numbers == sorted(numbers) and len(numbers) == len(set(numbers))
+    assert {str(n) for n in range(10)} <= sections
+
+
+def test_every_markdown_path_and_link_exists(files):
+    bad = [f"{p.relative_to(ROOT)}:{line}: {target}"
+           for p, text in files for line, target in missing_markdown_targets(text, p.parent)]
+    assert not bad, "points at no file:\n" + "\n".join(bad)
+
+
+# ---------------------------------------------------------------- the checks can fail
+
+
+def test_parser_rejects_a_reference_note_citation():
+    text = "x = 1  // closed form (physics.md §1.4)\n# see peers.md\nok: docs/theory.md §1.4\n"
+    assert unshipped_citations(text) == [(1, "physics.md"), (2, "peers.md")]
+
+
+def test_parser_finds_every_section_of_a_citation():
+    text = ("// (docs/theory.md §1.4; Parteli 2014)\n"
+            "# theory.md §0–§3, then §9 of nothing\n"
+            "(docs/theory.md §2.1/§2.3 with P -> Peff), theory.md §1 and §3.2\n"
+            "docs/theory.md §4.1, Li, Xu & Thornton 2005; theory.md §2.3, step 5\n"
+            "see [theory.md](theory.md) for all\n")
+    assert cited_theory_sections(text) == [(1, "1.4"), (2, "0"), (2, "3"), (3, "2.1"),
+                                           (3, "2.3"), (3, "1"), (3, "3.2"), (4, "4.1"),
+                                           (4, "2.3")]
+
+
+def test_a_citation_of_a_missing_section_is_caught(sections):
+    assert "1.4" in sections and "7.3" in sections
+    text = "// the closed form (docs/theory.md §1.4)\n// the fabric tensor (docs/theory.md §12.7)\n"
+    assert [c for c in cited_theory_sections(text) if c[1] not in sections] == [(2, "12.7")]
+
+
+def test_bare_section_parser_skips_the_papers_sections():
+    text = "// §1.4b Newton (§2.2 stage A), prestrain of the paper §5, the paper's §3\n§1.2-1.3\n"
+    assert bare_sections(text) == [(1, "1.4"), (1, "2.2"), (2, "1.2")]
+
+
+def test_headings_parser_reads_numbered_headings_only():
+    page = "# Title\n\n## 0. Symbols\n### 1.2 Points\n#### 10.3.1 Deep\n## Notes\n§5 in text\n"
+    assert theory_sections(page) == {"0", "1.2", "10.3.1"}
+
+
+def test_missing_markdown_paths_and_links_are_caught(tmp_path):
+    (tmp_path / "docs").mkdir()
+    (tmp_path / "docs" / "theory.md").write_text("# t\n")
+    page = ("see docs/theory.md and docs/gone.md,\n"
+            "[ok](theory.md#1-normal), [bad](missing.md), [web](https://x.org/a.md)\n"
+            "self.md(x) is code, not a path\n")
+    assert missing_markdown_targets(page, tmp_path / "docs", root=tmp_path) == [
+        (1, "docs/gone.md"), (2, "missing.md")]
