@@ -3,7 +3,7 @@
 //
 // Build and run (a few seconds; the timings use the thread's CPU clock, so a busy machine slows
 // the run but distorts the ns/call figures less than wall time would):
-//   cmake -S . -B build && cmake --build build --target bench_contact_level
+//   cmake -S . -B build -DTYLMP_BENCH=ON && cmake --build build --target bench_contact_level
 //   ./build/bench_contact_level                   # writes bench/results/contact_level.{csv,json}
 //   ./build/bench_contact_level --repeats 9 --phases 32 --out /tmp/cl --no-write
 //

@@ -4,7 +4,8 @@
 // (rotate_history + evaluate_contact). Pure C++, no LAMMPS, no memory traffic beyond the
 // contacts' own state: it isolates the arithmetic, latency and overlap of the kernel.
 //
-//   cmake --build build --target bench_kernel_batch && ./build/bench_kernel_batch
+//   cmake -S . -B build -DTYLMP_BENCH=ON && cmake --build build --target bench_kernel_batch
+//   ./build/bench_kernel_batch
 //
 // 4096 independent contacts of the glass pair (E = 70 GPa, nu = 0.3, mu = 0.3, R* = 0.065 mm)
 // at overlaps around 2e-7 m (100 kPa in the paper's specimen), random normals and tangential

@@ -6,7 +6,9 @@
   So does every bare `§N.M` inside docs/theory.md and inside any file that cites docs/theory.md
   (there a bare § continues those citations), except a `paper §N` (a section of the paper).
 * Every path to a markdown file (`docs/<file>.md`, `bench/data/README.md`, ...) and every
-  relative markdown link `[...](<file>.md)` points at an existing file.
+  relative markdown link `[...](<file>.md)` points at an existing file, and every mention of a
+  results file `bench/results/<name>` (`name.{csv,json}`, `name.*`, an `--out` prefix) names
+  the start of an existing file there (results are renamed by what they measure, issue 13).
 
 The repository scan covers every file git tracks or would track (untracked, not ignored), except
 this one, whose unit tests below hold deliberately bad citations; the parsers are unit-tested
@@ -35,6 +37,7 @@ HEADING = re.compile(r"^#{1,6}\s+(\d+(?:\.\d+)*)\.?\s", re.MULTILINE)
 MD_PATH = re.compile(r"(?<![\w./-])((?:[\w-]+/)+[\w.-]+\.md)\b")
 # a relative markdown link target: [text](performance.md#anchor), [x](docs/theory.md)
 MD_LINK = re.compile(r"\]\((?!https?:|mailto:|#)([^)\s#]+\.md)(?:#[^)\s]*)?\)")
+RESULTS = re.compile(r"bench/results/([\w.-]+)")
 
 
 def theory_sections(text):
@@ -80,6 +83,17 @@ def missing_markdown_targets(text, source_dir, root=ROOT):
         if not (source_dir / target).is_file():
             missing.append((text.count("\n", 0, m.start()) + 1, target))
     return sorted(set(missing))
+
+
+def missing_results(text, results_dir=ROOT / "bench" / "results"):
+    """(line number, name) of bench/results/<name> mentions that start no file's name there."""
+    present = [p.name for p in results_dir.iterdir()] if results_dir.is_dir() else []
+    missing = []
+    for m in RESULTS.finditer(text):
+        name = m.group(1).rstrip(".")
+        if not any(f.startswith(name) for f in present):
+            missing.append((text.count("\n", 0, m.start()) + 1, name))
+    return missing
 
 
 def repository_text_files():
@@ -149,6 +163,12 @@ def test_every_markdown_path_and_link_exists(files):
     assert not bad, "points at no file:\n" + "\n".join(bad)
 
 
+def test_every_results_file_mentioned_exists(files):
+    bad = [f"{p.relative_to(ROOT)}:{line}: bench/results/{name}"
+           for p, text in files for line, name in missing_results(text)]
+    assert not bad, "no such results file:\n" + "\n".join(bad)
+
+
 # ---------------------------------------------------------------- the checks can fail
 
 
@@ -192,3 +212,11 @@ def test_missing_markdown_paths_and_links_are_caught(tmp_path):
             "self.md(x) is code, not a path\n")
     assert missing_markdown_targets(page, tmp_path / "docs", root=tmp_path) == [
         (1, "docs/gone.md"), (2, "missing.md")]
+
+
+def test_missing_results_files_are_caught(tmp_path):
+    for name in ("contact_level.csv", "contact_level.json", "kernel_rework_speedup.csv"):
+        (tmp_path / name).write_text("")
+    text = ("writes bench/results/contact_level.{csv,json}; see bench/results/kernel_rework_speedup.\n"
+            "old name bench/results/kernel_since_b6360e3.csv, and bench/results/ itself\n")
+    assert missing_results(text, tmp_path) == [(2, "kernel_since_b6360e3.csv")]
