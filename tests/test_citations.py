@@ -96,11 +96,21 @@ def missing_results(text, results_dir=ROOT / "bench" / "results"):
     return missing
 
 
+def repository_file_names():
+    """Files git tracks or would track; without git (an exported tree), every file but those of
+    hidden and build directories."""
+    try:
+        return subprocess.run(
+            ["git", "ls-files", "--cached", "--others", "--exclude-standard", "-z"],
+            cwd=ROOT, check=True, capture_output=True).stdout.decode().split("\0")
+    except (OSError, subprocess.CalledProcessError):
+        skip = lambda part: part.startswith(".") or part.startswith("build") or part == "__pycache__"
+        return [str(p.relative_to(ROOT)) for p in ROOT.rglob("*")
+                if not any(skip(part) for part in p.relative_to(ROOT).parts[:-1])]
+
+
 def repository_text_files():
-    listed = subprocess.run(
-        ["git", "ls-files", "--cached", "--others", "--exclude-standard", "-z"],
-        cwd=ROOT, check=True, capture_output=True).stdout.decode().split("\0")
-    for name in listed:
+    for name in repository_file_names():
         path = ROOT / name
         if not name or not path.is_file() or path.resolve() == SELF:
             continue
