@@ -45,6 +45,19 @@ CASES = {
                        "is not larger than the JKR break separation"),
 }
 
+# every numeric argument refuses inf, nan and a value that overflows to inf, naming itself
+# (utils::numeric alone turns 1e400 into inf and refuses 'inf' without naming the argument)
+COEFF_ARGUMENTS = [("Young's modulus E", "{} 0.3 0.3 0.3"), ("Poisson's ratio nu", "70e9 {} 0.3 0.3"),
+                   ("friction coefficient mu", "70e9 0.3 {} 0.3"),
+                   ("interface energy Gamma", "70e9 0.3 0.3 {}"),
+                   ("damping ratio beta_n", "70e9 0.3 0.3 0.3 damping {} 0.1"),
+                   ("damping ratio beta_t", "70e9 0.3 0.3 0.3 damping 0.1 {}")]
+for _name, _args in COEFF_ARGUMENTS:
+    for _value in ("inf", "nan", "1e400", "-inf"):
+        CASES[f"{_name.split()[-1]}_{_value}"] = (
+            dict(pair_coeff="pair_coeff * * " + _args.format(_value)),
+            f"pair_coeff thornton/yin: {_name} must be a finite number, got '{_value}'")
+
 
 @pytest.mark.parametrize("name", sorted(CASES))
 def test_bad_input_is_rejected_with_named_error(name, tmp_path):
@@ -90,3 +103,18 @@ def test_box_change_without_rate_warns(deform, warns, tmp_path):
     assert warned == warns, out[-3000:]
     if warns:
         assert "box component h_yy" in out and "fix cell/servo" in out
+
+
+@pytest.mark.parametrize("parameter, formula, name", [
+    ("mu", "(1e308*10)-(1e308*10)", "friction coefficient mu"),     # inf - inf = nan
+    ("Gamma", "1e308*10", "interface energy Gamma"),                # overflows to inf
+    ("mu", "-0.1", "friction coefficient mu"),
+])
+def test_fix_adapt_cannot_set_a_non_finite_or_negative_value(parameter, formula, name, tmp_path):
+    # fix adapt writes mu and Gamma through extract() at run time: the pair re-checks them
+    text = deck().replace("run 0", f"""variable value equal {formula}
+fix adapt all adapt 1 pair thornton/yin {parameter} * * v_value
+run 1
+""")
+    rc, out = run_deck(text, tmp_path)
+    assert f"pair thornton/yin: {name} of types 1 1 must be finite and >= 0" in out, out[-2000:]

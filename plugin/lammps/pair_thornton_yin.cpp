@@ -5,6 +5,7 @@
 ------------------------------------------------------------------------- */
 
 #include "pair_thornton_yin.h"
+#include "tylmp_numeric.h"
 
 #include "contact_kernel.hpp"
 #include "thornton_yin.hpp"
@@ -187,10 +188,14 @@ void PairThorntonYin::coeff(int narg, char **arg)
   utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
   utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
 
-  const double E = utils::numeric(FLERR, arg[2], false, lmp);
-  const double nu = utils::numeric(FLERR, arg[3], false, lmp);
-  const double mu = utils::numeric(FLERR, arg[4], false, lmp);
-  const double Gamma = utils::numeric(FLERR, arg[5], false, lmp);
+  const auto number = [&](int k, const char *name) {
+    return tylmp::finite_numeric(FLERR, arg[k], fmt::format("pair_coeff thornton/yin: {}", name),
+                                 lmp);
+  };
+  const double E = number(2, "Young's modulus E");
+  const double nu = number(3, "Poisson's ratio nu");
+  const double mu = number(4, "friction coefficient mu");
+  const double Gamma = number(5, "interface energy Gamma");
   if (!(E > 0.0))
     error->all(FLERR, "pair_coeff thornton/yin: Young's modulus E must be > 0 (got {})", E);
   if (!(nu > -1.0 && nu < 0.5))
@@ -208,8 +213,8 @@ void PairThorntonYin::coeff(int narg, char **arg)
     if (strcmp(arg[iarg], "damping") == 0) {
       if (iarg + 3 > narg)
         error->all(FLERR, "pair_coeff thornton/yin: 'damping' needs two values beta_n beta_t");
-      beta_n = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-      beta_t = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+      beta_n = number(iarg + 1, "damping ratio beta_n");
+      beta_t = number(iarg + 2, "damping ratio beta_t");
       if (!(beta_n >= 0.0) || !(beta_t >= 0.0))
         error->all(FLERR, "pair_coeff thornton/yin: damping ratios must be >= 0 (got {} {})",
                    beta_n, beta_t);
@@ -360,6 +365,14 @@ void PairThorntonYin::check_timestep_against_rayleigh()
 double PairThorntonYin::init_one(int i, int j)
 {
   if (setflag[i][j] == 0) mix_pair(i, j);
+  // fix adapt changes mu and Gamma through extract() and calls init_one again
+  if (!(std::isfinite(friction[i][j]) && friction[i][j] >= 0.0))
+    error->all(FLERR, "pair thornton/yin: friction coefficient mu of types {} {} must be finite "
+               "and >= 0 (got {}; set by pair_coeff or fix adapt)", i, j, friction[i][j]);
+  if (!(std::isfinite(surface_energy[i][j]) && surface_energy[i][j] >= 0.0))
+    error->all(FLERR, "pair thornton/yin: interface energy Gamma of types {} {} must be finite "
+               "and >= 0 J/m^2 (got {}; set by pair_coeff or fix adapt)", i, j,
+               surface_energy[i][j]);
   E_star[j][i] = E_star[i][j];
   G_star[j][i] = G_star[i][j];
   friction[j][i] = friction[i][j];
