@@ -118,3 +118,25 @@ run 1
 """)
     rc, out = run_deck(text, tmp_path)
     assert f"pair thornton/yin: {name} of types 1 1 must be finite and >= 0" in out, out[-2000:]
+
+
+NAN = "variable bad atom (1e308*10)-(1e308*10)\n"    # inf - inf: a NaN per-atom value
+
+
+@pytest.mark.parametrize("setting, bad, damping", [
+    ("set atom 1 vx v_bad", "velocity of atom 1", ""),
+    ("set atom 2 omega 0 0 v_bad", "angular velocity of atom 2", ""),
+    # damped: the NaN velocity reaches the force already at step 0 (setup)
+    ("set atom 1 vx v_bad", "velocity of atom 1", " damping 0.1 0.1"),
+])
+def test_nan_during_a_run_stops_it_naming_the_atoms(setting, bad, damping, tmp_path):
+    # a NaN position fails no 'delta > r' test and a NaN velocity or spin none at all: the run
+    # must stop at the step the NaN reaches the contact, not continue with NaN energies
+    text = deck(pair_coeff=f"pair_coeff * * 70e9 0.3 0.3 0.3{damping}").replace(
+        "run 0", NAN + setting + "\nfix integrate all nve/sphere\nthermo 1\nrun 5\n")
+    rc, out = run_deck(text, tmp_path)
+    step = 0 if damping else 1
+    assert (f"non-finite value at step {step} in the contact of atoms 1 and 2" in out
+            and bad in out), out[-2000:]
+    # nothing after it: no thermo line of a later step
+    assert "\n       2 " not in out

@@ -25,6 +25,7 @@
 #include "neighbor.h"
 #include "update.h"
 
+#include <cfloat>
 #include <cmath>
 #include <cstring>
 
@@ -461,6 +462,40 @@ void PairThorntonYin::check_box_rate()
   box_step = step;
 }
 
+/* ----------------------------------------------------------------------
+   a contact the law cannot take: name the atoms and what is wrong (error path only)
+------------------------------------------------------------------------- */
+
+void PairThorntonYin::contact_fault(int i, int j, double delta, bool force)
+{
+  const tagint ti = atom->tag[i], tj = atom->tag[j];
+  const auto vector_bad = [](const double *q) {
+    return !(std::isfinite(q[0]) && std::isfinite(q[1]) && std::isfinite(q[2]));
+  };
+  std::string bad;
+  for (const int k : {i, j}) {
+    const std::string of = fmt::format(" of atom {}", atom->tag[k]);
+    if (vector_bad(atom->x[k])) bad += ", position" + of;
+    if (vector_bad(atom->v[k])) bad += ", velocity" + of;
+    if (vector_bad(atom->omega[k])) bad += ", angular velocity" + of;
+    if (!std::isfinite(atom->radius[k])) bad += ", radius" + of;
+    if (!std::isfinite(atom->rmass[k])) bad += ", mass" + of;
+  }
+  if (!bad.empty())
+    error->one(FLERR, "pair thornton/yin: non-finite value at step {} in the contact of atoms "
+               "{} and {} ({}); the run stops here instead of spreading NaN: look for what set "
+               "it (set, velocity, a fix or a variable)", update->ntimestep, ti, tj,
+               bad.substr(2));
+  if (force || !std::isfinite(delta))
+    error->one(FLERR, "pair thornton/yin: the contact force of atoms {} and {} is not finite at "
+               "step {} although their positions, velocities and radii are: its history or the "
+               "pair coefficients hold a non-finite value", ti, tj, update->ntimestep);
+  error->one(FLERR, "pair thornton/yin: overlap {:.4g} of atoms {} and {} exceeds the radius of "
+             "the smaller sphere {:.4g}: the contact law is no longer valid; reduce the timestep "
+             "(see the Rayleigh-time warning) or the impact velocity", delta, ti, tj,
+             MIN(atom->radius[i], atom->radius[j]));
+}
+
 /* ---------------------------------------------------------------------- */
 
 void PairThorntonYin::compute(int eflag, int vflag)
@@ -557,6 +592,9 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
     const double fx = nx * Fn + fs1;
     const double fy = ny * Fn + fs2;
     const double fz = nz * Fn + fs3;
+    // a NaN or inf anywhere upstream (velocity, spin, history, ...) reaches the force: stop
+    // here rather than propagate it (one comparison; NaN fails it)
+    if (!(std::fabs(fx + fy + fz) <= DBL_MAX)) contact_fault(i, j, 0.0, true);
     f[i][0] += fx;
     f[i][1] += fy;
     f[i][2] += fz;
@@ -662,12 +700,9 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
       const double delta = radsum - r;
       const double share = (newton_pair || j < nlocal) ? 1.0 : 0.5;
       // Hertz/JKR contact mechanics assume delta << R; once the overlap exceeds the smaller
-      // radius the law and the explicit step have long failed
-      if (delta > MIN(radi, radj))
-        error->one(FLERR, "pair thornton/yin: overlap {:.4g} of atoms {} and {} exceeds the "
-                   "radius of the smaller sphere {:.4g}: the contact law is no longer valid; "
-                   "reduce the timestep (see the Rayleigh-time warning) or the impact velocity",
-                   delta, atom->tag[i], atom->tag[j], MIN(radi, radj));
+      // radius the law and the explicit step have long failed. Written so that a NaN overlap
+      // (a NaN position or radius) fails it too
+      if (!(delta <= MIN(radi, radj))) contact_fault(i, j, delta, false);
 
       if (touch[jj] && delta < 0.0) {    // delta_f <= 0: only tensile contacts can break
         const double delta_break = ADHESIVE ? tycore::jkr::break_overlap(R, c.E_star, c.Gamma)

@@ -81,6 +81,9 @@ class PairThorntonYin : public Pair {
   int box_from_setup;
   int box_rate_warned;
   void check_box_rate();
+  // error path of the contact loop, out of line: an overlap beyond the law's validity or a
+  // non-finite quantity (NaN/inf position, velocity, ... of atom i or j, or the contact force)
+  __attribute__((noinline, cold)) void contact_fault(int i, int j, double delta, bool force);
 
   int tally_cell;
   double cell_tallies[N_TALLY];
