@@ -1,4 +1,5 @@
 """Bad input to pair thornton/yin stops LAMMPS with an error that names the problem."""
+import numpy as np
 import pytest
 
 from lmprun import LOAD_TYLMP, run_deck
@@ -140,3 +141,62 @@ def test_nan_during_a_run_stops_it_naming_the_atoms(setting, bad, damping, tmp_p
             and bad in out), out[-2000:]
     # nothing after it: no thermo line of a later step
     assert "\n       2 " not in out
+
+
+# ---- coefficients finite but outside what the law means (bounds derived from the law) --------
+R_STAR = R / 2.0                                  # two equal spheres of radius R
+E_STAR = 70e9 / (2.0 * (1.0 - 0.3 ** 2))
+
+
+@pytest.mark.parametrize("pair_coeff, extra, message", [
+    # the closed-form JKR root overflows (Gamma^2 R*^4 E*^4 delta^3): ran with -nan at step 0
+    ("pair_coeff * * 1e100 0.3 0.3 0.3", "", "the contact radius a of the contact law is not finite"),
+    # E*^2 underflows in delta_f: NaN cutoff, segmentation fault in the neighbor binning
+    ("pair_coeff * * 1e-300 0.3 0.3 0", "", "the break overlap delta_f of the contact law is not finite"),
+    # the sliding limit's stored energy overflows
+    ("pair_coeff * * 70e9 0.3 1e300 0.3", "", "the tangential energy at sliding of the contact law is not finite"),
+    # rho/G underflows: 'reduce the timestep to at most 0' before
+    ("pair_coeff * * 1e200 0.3 0 0", "set atom * density 1e-200\n",
+     "the Rayleigh time pi R sqrt(rho/G)/(0.1631 nu + 0.8766) of the smallest sphere is 0"),
+])
+def test_coefficients_the_law_cannot_represent_are_refused(pair_coeff, extra, message, tmp_path):
+    text = deck(pair_coeff=pair_coeff).replace("timestep", extra + "timestep")
+    rc, out = run_deck(text, tmp_path)
+    assert "ERROR" in out and message in out, out[-2000:]
+
+
+def test_gamma_whose_zero_load_contact_exceeds_the_sphere_is_refused(tmp_path):
+    # JKR is a small-contact theory: a0 = (9 pi Gamma R*^2/E*)^(1/3) < R*, i.e.
+    # Gamma < E* R*/(9 pi); before, Gamma = 1e10 J/m^2 only got a skin suggestion
+    rc, out = run_deck(deck(pair_coeff="pair_coeff * * 70e9 0.3 0.3 1e10",
+                            neighbor="neighbor 0.1 bin"), tmp_path)
+    bound = E_STAR * R_STAR / (9.0 * np.pi)
+    a0 = (9.0 * np.pi * 1e10 * R_STAR ** 2 / E_STAR) ** (1.0 / 3.0)
+    assert "is not smaller than R* = 5e-05" in out, out[-2000:]
+    assert f"= {a0:.4g} is not smaller" in out and f"below E* R*/(9 pi) = {bound:.4g}" in out
+
+
+def test_large_but_legal_gamma_warns_with_the_contact_size(tmp_path):
+    # Gamma = 1000 J/m^2: a0/R* = 0.245 > 0.1, legal but the contact is large before any load
+    rc, out = run_deck(deck(pair_coeff="pair_coeff * * 70e9 0.3 0.3 1000",
+                            neighbor="neighbor 1e-5 bin"), tmp_path)
+    ratio = (9.0 * np.pi * 1000 * R_STAR ** 2 / E_STAR) ** (1.0 / 3.0) / R_STAR
+    assert rc == 0 and "ERROR" not in out, out[-2000:]
+    assert f"zero-load contact radius a0 = {ratio:.4g} R*" in out, out[-2000:]
+
+
+@pytest.mark.parametrize("beta, message", [
+    ("2", "is above 1: contacts are overdamped"),
+    # dt_R/(2 pi dt) = 1.065e-7 s/(2 pi 1e-9 s) = 16.9 (theory.md §4)
+    ("50", "too large for the explicit step"),
+])
+def test_large_damping_ratio_warns(beta, message, tmp_path):
+    rc, out = run_deck(deck(pair_coeff=f"pair_coeff * * 70e9 0.3 0.3 0.3 damping {beta} 0"),
+                       tmp_path)
+    assert rc == 0 and f"damping ratio {beta} " in out and message in out, out[-2000:]
+
+
+def test_moderate_damping_ratio_does_not_warn(tmp_path):
+    rc, out = run_deck(deck(pair_coeff="pair_coeff * * 70e9 0.3 0.3 0.3 damping 0.9 0.5"),
+                       tmp_path)
+    assert rc == 0 and "WARNING" not in out, out[-2000:]

@@ -8,6 +8,7 @@
 #include "tylmp_numeric.h"
 
 #include "contact_kernel.hpp"
+#include "law_domain.hpp"
 #include "thornton_yin.hpp"
 
 #include "atom.h"
@@ -308,6 +309,16 @@ void PairThorntonYin::init_style()
   MPI_Allreduce(local_max, maxrad_type, ntypes + 1, MPI_DOUBLE, MPI_MAX, world);
   delete[] local_max;
 
+  // the checks below see the mixed coefficients of unlike types (init_one mixes them later)
+  double rad_any = 0.0;
+  for (int t = 1; t <= ntypes; ++t) rad_any = MAX(rad_any, maxrad_type[t]);
+  for (int i = 1; i <= ntypes; ++i)
+    for (int j = i; j <= ntypes; ++j) {
+      if (!setflag[i][j]) mix_pair(i, j);
+      const double rad_i = maxrad_type[i] > 0.0 ? maxrad_type[i] : rad_any;
+      const double rad_j = maxrad_type[j] > 0.0 ? maxrad_type[j] : rad_any;
+      if (rad_i > 0.0 && rad_j > 0.0) check_law_domain(i, j, rad_i, rad_j, true);
+    }
   check_break_against_skin();
   check_timestep_against_rayleigh();
 }
@@ -354,6 +365,28 @@ void PairThorntonYin::check_timestep_against_rayleigh()
   }
   double t_rayleigh;
   MPI_Allreduce(&local_min, &t_rayleigh, 1, MPI_DOUBLE, MPI_MIN, world);
+  // no time step resolves a Rayleigh time that is zero, subnormal or NaN (E or the density
+  // far out of range)
+  if (!(t_rayleigh >= DBL_MIN))
+    error->all(FLERR, "pair thornton/yin: the Rayleigh time pi R sqrt(rho/G)/(0.1631 nu + "
+               "0.8766) of the smallest sphere is {:.4g}: no time step can resolve it; check E "
+               "(pair_coeff) and the density or mass of the spheres", t_rayleigh);
+  // viscous damping, -eta v with eta = 2 beta sqrt(m* k): beta > 1 is overdamped, and the
+  // explicit step of the damping force is stable for every contact (angular frequency below
+  // 2 pi/dt_R, theory.md §4) only while beta < dt_R/(2 pi dt)
+  double beta_max = 0.0;
+  for (int i = 1; i <= atom->ntypes; ++i)
+    for (int j = i; j <= atom->ntypes; ++j)
+      beta_max = MAX(beta_max, MAX(damp_n[i][j], damp_t[i][j]));
+  const double beta_stable = t_rayleigh / (2.0 * MY_PI * update->dt);
+  if (beta_max > 0.0 && t_rayleigh < BIG && (beta_max > 1.0 || beta_max > beta_stable) &&
+      comm->me == 0)
+    error->warning(FLERR, "pair thornton/yin: damping ratio {:.4g} is {}; use a damping ratio "
+                   "below {:.4g}", beta_max,
+                   beta_max > beta_stable ? "too large for the explicit step: a contact's "
+                   "damping force may grow without bound (it is stable for every contact only "
+                   "below dt_R/(2 pi dt))" : "above 1: contacts are overdamped and cannot "
+                   "rebound", MIN(1.0, beta_stable));
   if (t_rayleigh < BIG && update->dt > RAYLEIGH_WARN_FRACTION * t_rayleigh && comm->me == 0)
     error->warning(FLERR, "pair thornton/yin: timestep {:.4g} exceeds {} x the Rayleigh time "
                    "{:.4g} of the smallest sphere; reduce the timestep to at most {:.4g} "
@@ -390,12 +423,47 @@ double PairThorntonYin::init_one(int i, int j)
   for (int t = 1; t <= atom->ntypes; ++t) rad_any = MAX(rad_any, maxrad_type[t]);
   if (rad_i <= 0.0) rad_i = rad_any;
   if (rad_j <= 0.0) rad_j = rad_any;
+  // again here: fix adapt changes mu and Gamma and calls init_one (warnings come from init_style)
+  if (rad_i > 0.0 && rad_j > 0.0) check_law_domain(i, j, rad_i, rad_j, false);
   double cutoff = rad_i + rad_j;
   if (cutoff > 0.0)
     cutoff -= tycore::jkr::break_overlap(tycore::effective_radius(rad_i, rad_j), E_star[i][j],
                                          surface_energy[i][j]);
   cut[i][j] = cut[j][i] = cutoff;
   return cutoff;
+}
+
+/* ----------------------------------------------------------------------
+   Coefficients that make the law meaningless for the spheres of types i j (largest radii
+   rad_i, rad_j): bounds derived from the law, plugin/core/law_domain.hpp
+------------------------------------------------------------------------- */
+
+void PairThorntonYin::check_law_domain(int i, int j, double rad_i, double rad_j, bool warn)
+{
+  const tycore::PairCoefficients c{E_star[i][j], G_star[i][j], friction[i][j],
+                                   surface_energy[i][j]};
+  const double R = tycore::effective_radius(rad_i, rad_j);
+  const double a0_ratio = tycore::zero_load_radius_ratio(c, R);
+  if (!(a0_ratio < 1.0))
+    error->all(FLERR, "pair thornton/yin: types {} {}: the JKR zero-load contact radius a0 = "
+               "(9 pi Gamma R*^2/E*)^(1/3) = {:.4g} is not smaller than R* = {:.4g}, so the "
+               "contact law (small contacts, a << R*) does not apply; Gamma = {:.4g} must be "
+               "below E* R*/(9 pi) = {:.4g} (or E larger)", i, j, a0_ratio * R, R, c.Gamma,
+               c.E_star * R / (9.0 * MY_PI));
+  if (warn && a0_ratio > A0_WARN_FRACTION && comm->me == 0)
+    error->warning(FLERR, "pair thornton/yin: types {} {}: the JKR zero-load contact radius a0 "
+                   "= {:.4g} R*: the contact is large before any load and the small-contact "
+                   "law is strained; lower Gamma or raise E if this is not intended", i, j,
+                   a0_ratio);
+  const double delta_max = MIN(rad_i, rad_j);
+  const tycore::LawDomainFault fault = tycore::law_domain_fault(c, R, delta_max);
+  if (fault.quantity)
+    error->all(FLERR, "pair thornton/yin: types {} {}: the {} of the contact law is not finite "
+               "at overlap {:.4g} (the law's range is delta_f to the smaller radius {:.4g}) with "
+               "E* = {:.4g}, G* = {:.4g}, mu = {:.4g}, Gamma = {:.4g}, R* = {:.4g}: these "
+               "coefficients are far outside what the law can represent in 'units {}'", i, j,
+               fault.quantity, fault.delta, delta_max, c.E_star, c.G_star, c.mu, c.Gamma, R,
+               update->unit_style);
 }
 
 /* ----------------------------------------------------------------------

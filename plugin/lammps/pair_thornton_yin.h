@@ -55,6 +55,8 @@ class PairThorntonYin : public Pair {
 
   // fraction of the Rayleigh time above which init() warns (physics.md §4)
   static constexpr double RAYLEIGH_WARN_FRACTION = 0.3;
+  // a0/R* above which init() warns that the contact is large before any load (a << R*)
+  static constexpr double A0_WARN_FRACTION = 0.1;
 
  protected:
   // per type: material as given by pair_coeff I I
@@ -94,6 +96,7 @@ class PairThorntonYin : public Pair {
   void mix_pair(int, int);
   void check_break_against_skin();
   void check_timestep_against_rayleigh();
+  void check_law_domain(int, int, double, double, bool);
   double affine_velocity_gradient(double L[3][3]) const;
 
   // one contact in flight through the staged kernel (tycore::StepState)
