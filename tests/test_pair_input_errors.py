@@ -200,3 +200,41 @@ def test_moderate_damping_ratio_does_not_warn(tmp_path):
     rc, out = run_deck(deck(pair_coeff="pair_coeff * * 70e9 0.3 0.3 0.3 damping 0.9 0.5"),
                        tmp_path)
     assert rc == 0 and "WARNING" not in out, out[-2000:]
+
+
+def one_sphere_cell(box_fix):
+    # a sphere alone in a 1 cm periodic box: the pair's box-rate check runs without contacts
+    return f"""
+units si
+atom_style sphere
+boundary p p p
+comm_modify vel yes
+region box block 0 1e-2 0 1e-2 0 1e-2
+create_box 1 box
+create_atoms 1 single 2e-3 7e-3 4e-3
+set atom 1 diameter 1e-3 density 2650
+{LOAD_TYLMP}
+pair_style thornton/yin
+pair_coeff * * 70e9 0.3 0.3 0.0
+fix integrate all nve/sphere
+{box_fix}
+timestep 1e-3
+run 40
+"""
+
+
+@pytest.mark.parametrize("box_fix, warns", [
+    # eps_dot dt up to 1e-2 per step: the exponential update of fix cell/servo differs from
+    # h_rate dt by eps_dot dt/2 = 0.5 %, which the old linear check blamed on a barostat
+    ("fix cell all cell/servo axes x rate 2 y rate -10 z rate 4", False),
+    ("fix deform all deform 1 x trate 5 y trate -10 z trate 2 remap x", False),
+    ("fix deform all deform 1 x erate 5 y erate -10 z erate 2 remap x", False),
+    # a box change h_rate does not carry is still caught at fast rates
+    ("fix deform all deform 1 x trate 10 y volume z volume remap x", True),
+])
+def test_box_rate_check_is_exact_for_exponential_updates(box_fix, warns, tmp_path):
+    rc, out = run_deck(one_sphere_cell(box_fix), tmp_path)
+    assert rc == 0 and "ERROR" not in out, out[-2000:]
+    assert ("changed by" in out and "h_rate" in out) == warns, out[-3000:]
+    if warns:
+        assert "box component h_yy" in out
