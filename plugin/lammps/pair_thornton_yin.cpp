@@ -13,6 +13,7 @@
 
 #include "atom.h"
 #include "comm.h"
+#include "compute.h"
 #include "domain.h"
 #include "error.h"
 #include "fix_dummy.h"
@@ -79,6 +80,8 @@ PairThorntonYin::PairThorntonYin(LAMMPS *lmp) : Pair(lmp)
   neighprev = 0;
   dt = 0.0;
   tally_cell = 0;
+  record_contacts = 0;
+  record_step = -1;
   generic_paths = 0;
   for (double &h : box_h) h = 0.0;
   box_step = -1;
@@ -273,6 +276,14 @@ void PairThorntonYin::mix_pair(int i, int j)
 void PairThorntonYin::init_style()
 {
   tally_cell = 0;    // fix cell/servo switches the cell tallies on in its init(), after this
+  // the contact computes read the contacts of every force evaluation
+  record_contacts = 0;
+  for (int k = 0; k < modify->ncompute; ++k)
+    if (utils::strmatch(modify->compute[k]->style, "^thornton/yin/")) record_contacts = 1;
+  if (!record_contacts) {
+    records.clear();
+    record_step = -1;
+  }
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
     error->all(FLERR, "pair thornton/yin requires atom style sphere (per-atom radius, rmass, "
                "omega and torque)");
@@ -644,6 +655,12 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
     for (int k = 0; k < nall; ++k) contact_count[k] = 0.0;
   }
 
+  const bool recording = record_contacts != 0;
+  if (recording) {
+    records.clear();
+    record_step = update->ntimestep;
+  }
+
   // forces and torques of one contact on i and j (and the energy and cell tallies)
   const auto apply_contact = [&](const Contact &ct, bool with_energy) {
     const int i = ct.i, j = ct.j;
@@ -674,6 +691,8 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
     // a NaN or inf anywhere upstream (velocity, spin, history, ...) reaches the force: stop
     // here rather than propagate it (one comparison; NaN fails it)
     if (!(std::fabs(fx + fy + fz) <= DBL_MAX)) contact_fault(i, j, 0.0, true);
+    if (recording && (newton_pair || j < nlocal || atom->tag[i] < atom->tag[j]))
+      record_contact(ct, Fn, fs1, fs2, fs3);
     f[i][0] += fx;
     f[i][1] += fy;
     f[i][2] += fz;
@@ -879,6 +898,33 @@ template void PairThorntonYin::eval<true, true>(int, int);
 template void PairThorntonYin::eval<true, false>(int, int);
 template void PairThorntonYin::eval<false, true>(int, int);
 template void PairThorntonYin::eval<false, false>(int, int);
+
+/* ----------------------------------------------------------------------
+   one contact for the contact computes, with the force it applied this evaluation
+------------------------------------------------------------------------- */
+
+void PairThorntonYin::record_contact(const Contact &ct, double Fn, double fs1, double fs2,
+                                     double fs3)
+{
+  ContactRecord rec;
+  const int i = ct.i, j = ct.j;
+  rec.id_i = atom->tag[i];
+  rec.id_j = atom->tag[j];
+  for (int k = 0; k < 3; ++k) {
+    rec.normal_force[k] = Fn * ct.n[k];
+    rec.branch[k] = ct.del[k];
+  }
+  rec.tangential_force[0] = fs1;
+  rec.tangential_force[1] = fs2;
+  rec.tangential_force[2] = fs3;
+  rec.P = Fn;
+  rec.overlap = atom->radius[i] + atom->radius[j] - std::sqrt(ct.rsq);
+  rec.contact_radius = ct.st.contact_radius;
+  rec.sliding = ct.h->sliding;
+  rec.peeling = ct.h->peeling;
+  rec.mask = atom->mask[i] & atom->mask[j];
+  records.push_back(rec);
+}
 
 /* ----------------------------------------------------------------------
    history seen from the partner: vectors flip sign, scalars do not

@@ -12,6 +12,8 @@
 
 #include "contact_kernel.hpp"
 
+#include <vector>
+
 namespace LAMMPS_NS {
 
 class PairThorntonYin : public Pair {
@@ -53,6 +55,22 @@ class PairThorntonYin : public Pair {
     S_PULL_OFF_FORCE, S_BREAK_OVERLAP, N_SVECTOR
   };
 
+  // one contact as of the last force evaluation, kept while a compute thornton/yin/... exists
+  // (docs/compute_thornton_yin_contacts.md): each contact once over all ranks
+  struct ContactRecord {
+    double id_i, id_j;               // atom IDs
+    double normal_force[3];          // P n on atom i, viscous normal damping included
+    double tangential_force[3];      // on atom i, viscous tangential damping included
+    double branch[3];                // x_i - x_j (the virial's branch vector)
+    double P;                        // normal force (repulsive > 0), = n . normal_force
+    double overlap, contact_radius;  // delta, a
+    double sliding, peeling;         // 1 or 0
+    int mask;                        // mask_i & mask_j: both atoms in a group
+  };
+  const std::vector<ContactRecord> &contact_records() const { return records; }
+  bigint contact_record_step() const { return record_step; }
+  int contacts_recorded() const { return record_contacts; }
+
   // fraction of the Rayleigh time above which init() warns (physics.md §4)
   static constexpr double RAYLEIGH_WARN_FRACTION = 0.3;
   // a0/R* above which init() warns that the contact is large before any load (a << R*)
@@ -86,6 +104,13 @@ class PairThorntonYin : public Pair {
   // error path of the contact loop, out of line: an overlap beyond the law's validity or a
   // non-finite quantity (NaN/inf position, velocity, ... of atom i or j, or the contact force)
   __attribute__((noinline, cold)) void contact_fault(int i, int j, double delta, bool force);
+
+  int record_contacts;                  // a compute thornton/yin/... exists (init_style)
+  std::vector<ContactRecord> records;
+  bigint record_step;
+  struct Contact;
+  __attribute__((noinline)) void record_contact(const Contact &, double Fn, double fs1,
+                                                double fs2, double fs3);
 
   int tally_cell;
   double cell_tallies[N_TALLY];

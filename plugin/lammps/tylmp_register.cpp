@@ -1,7 +1,7 @@
 // Registration of all tylmp styles into a running LAMMPS.
 //
 // Debian's LAMMPS has no PLUGIN package, so the styles are inserted directly into the
-// public creator maps (Force::pair_map, Modify::fix_map) by tylmp_register(), which
+// public creator maps (Force::pair_map, Modify::fix_map, Modify::compute_map) by tylmp_register(), which
 // python/tylmp/__init__.py calls through ctypes. lammpsplugin_init() offers the same
 // styles to `plugin load` in LAMMPS builds of the same version that have PLUGIN.
 
@@ -19,6 +19,10 @@ namespace {
 
 template <typename T> Pair *create_pair(LAMMPS *lmp) { return new T(lmp); }
 template <typename T> Fix *create_fix(LAMMPS *lmp, int narg, char **arg)
+{
+  return new T(lmp, narg, arg);
+}
+template <typename T> Compute *create_compute(LAMMPS *lmp, int narg, char **arg)
 {
   return new T(lmp, narg, arg);
 }
@@ -40,9 +44,13 @@ extern "C" int tylmp_register(void *handle)
 #define TYLMP_FIX(style_name, Class) \
   (*lmp->modify->fix_map)[style_name] = &create_fix<Class>; \
   ++count;
+#define TYLMP_COMPUTE(style_name, Class) \
+  (*lmp->modify->compute_map)[style_name] = &create_compute<Class>; \
+  ++count;
   TYLMP_STYLE_LIST
 #undef TYLMP_PAIR
 #undef TYLMP_FIX
+#undef TYLMP_COMPUTE
   return count;
 }
 
@@ -65,7 +73,14 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.info = "tylmp fix " style_name; \
   plugin.creator.v2 = (lammpsplugin_factory2 *) &plugin_fix<Class>; \
   (*reg)(&plugin, lmp);
+#define TYLMP_COMPUTE(style_name, Class) \
+  plugin.style = "compute"; \
+  plugin.name = style_name; \
+  plugin.info = "tylmp compute " style_name; \
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &plugin_fix<Class>; \
+  (*reg)(&plugin, lmp);
   TYLMP_STYLE_LIST
 #undef TYLMP_PAIR
 #undef TYLMP_FIX
+#undef TYLMP_COMPUTE
 }
