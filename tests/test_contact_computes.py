@@ -1,4 +1,4 @@
-"""compute thornton/yin/contacts: the pair's own contacts as of
+"""compute thornton/yin/contacts and thornton/yin/micromechanics: the pair's own contacts as of
 its last force evaluation, checked against independent sums (LAMMPS's virial, fix cell/servo's
 contact tallies, compute pair/local within a run) and against closed forms on lattices."""
 import numpy as np
@@ -62,9 +62,10 @@ def sheared(specimen, tmp_path_factory):
     work = tmp_path_factory.mktemp("contacts_shear")
     deck = restart_deck(specimen, mu=0.3, gamma=0.6) + """fix cell all cell/servo axisym z 2e-3 1e5 csv cell.csv 3000
 compute c all thornton/yin/contacts
+compute m all thornton/yin/micromechanics
 compute pl all pair/local p1 p3
 compute pv all pressure NULL virial
-thermo_style custom step c_pv[*] vol
+thermo_style custom step c_pv[*] c_m[*] vol
 thermo_modify format float %.16g
 thermo 3000
 dump dc all local 3000 contacts_run.txt c_c[*]
@@ -128,6 +129,8 @@ def test_contact_count_and_sliding_agree_with_the_cell_fix_tallies(sheared, spec
     # the fix counts contacts from the pair's tallies: Z = 2C/N, N = 216
     assert len(rec["P"]) == pytest.approx(row["Z"][last] * 216 / 2, abs=1e-9)
     assert np.mean(rec["sliding"]) == pytest.approx(row["sliding_fraction"][last], abs=1e-12)
+    assert end["c_m[1]"] == len(rec["P"])
+    assert end["c_m[2]"] == pytest.approx(np.mean(rec["sliding"]), abs=1e-12)
 
 
 def test_contacts_agree_with_pair_local_within_the_run(sheared):
@@ -150,3 +153,126 @@ def test_contacts_stay_current_after_run_0(sheared):
     assert np.sum(now["P"]) == pytest.approx(np.sum(before["P"]), rel=1e-12)
     for k in range(1, 7):
         assert after[f"c_pv[{k}]"] == pytest.approx(end[f"c_pv[{k}]"], rel=1e-9, abs=1e-6)
+        assert after[f"c_m[{11 + k}]"] == pytest.approx(after[f"c_pv[{k}]"], rel=1e-9, abs=1e-6)
+
+
+def test_micromechanics_splits_add_up_to_the_virial(sheared):
+    work, end, _ = sheared
+    m = [None] + [end[f"c_m[{k}]"] for k in range(1, 42)]     # 1-based as in LAMMPS
+    virial = [end[f"c_pv[{k}]"] for k in range(1, 7)]
+    scale = max(abs(v) for v in virial)
+    for k in range(6):
+        total, normal, tangential = m[12 + k], m[18 + k], m[24 + k]
+        strong, weak = m[30 + k], m[36 + k]
+        assert total == pytest.approx(virial[k], abs=1e-9 * scale)
+        assert normal + tangential == pytest.approx(virial[k], abs=1e-9 * scale)
+        assert strong + weak == pytest.approx(virial[k], abs=1e-9 * scale)
+    # fabric: trace 1; the strong network carries most of the deviator (Thornton 2000)
+    assert m[5] + m[6] + m[7] == pytest.approx(1.0, abs=1e-12)
+    assert m[32] - m[30] > m[38] - m[36]
+    # from the dumped contacts, independently: mean force, strong fraction, tangential stress
+    rec = contacts_of(work / "contacts_run.txt")
+    assert m[3] == pytest.approx(np.mean(rec["P"]), rel=1e-12)
+    assert m[4] == pytest.approx(np.mean(rec["P"] > np.mean(rec["P"])), abs=1e-12)
+    tangential = stress_of(rec, ("ftx", "fty", "ftz"), end["Volume"])
+    np.testing.assert_allclose(m[24:30], tangential, rtol=1e-9, atol=1e-9 * scale)
+    # fabric from the branch vectors
+    l = np.stack([rec["lx"], rec["ly"], rec["lz"]])
+    n = l / np.linalg.norm(l, axis=0)
+    phi = np.array([np.mean(n[a] * n[b]) for a, b in zip(A_OF, B_OF)])
+    np.testing.assert_allclose(m[5:11], phi, rtol=1e-12, atol=1e-14)
+
+
+# ---- closed forms on simple orthorhombic lattices of equal spheres (Hertz, Gamma = 0) --------
+D = 2e-4                                            # diameter
+R_STAR = D / 4.0
+E_STAR = E / (2.0 * (1.0 - NU ** 2))
+
+
+def lattice_deck(spacing):
+    """4x4x4 spheres of diameter D on an orthorhombic lattice of the given spacings (m):
+    each sphere touches its neighbours along the axes where spacing < D; forces at run 0"""
+    sx, sy, sz = spacing
+    return f"""units si
+atom_style sphere
+atom_modify map array
+boundary p p p
+comm_modify vel yes
+lattice custom 1.0 a1 {sx} 0 0 a2 0 {sy} 0 a3 0 0 {sz} basis 0 0 0
+region box block 0 4 0 4 0 4
+create_box 1 box
+create_atoms 1 box
+set atom * diameter {D} density 2650
+{LOAD_TYLMP}pair_style thornton/yin
+pair_coeff * * {E} {NU} 0.3 0.0
+neighbor 1e-5 bin
+fix nve all nve/sphere
+compute m all thornton/yin/micromechanics
+compute pv all pressure NULL virial
+thermo_style custom step c_m[*] c_pv[*]
+thermo_modify format float %.16g
+run 0
+"""
+
+
+def hertz(delta):
+    return 4.0 / 3.0 * E_STAR * np.sqrt(R_STAR) * delta ** 1.5
+
+
+def micromechanics_of(out):
+    row = thermo_rows(out, "Step")[0][0]
+    return [None] + [row[f"c_m[{k}]"] for k in range(1, 42)]
+
+
+@pytest.mark.parametrize("spacing, fabric, deviator", [
+    ((1.99e-4, 1.995e-4, 1.998e-4), (1 / 3, 1 / 3, 1 / 3), 0.0),   # isotropic fabric
+    ((1.99e-4, 1.99e-4, 2.1e-4), (1 / 2, 1 / 2, 0.0), 0.5),         # x, y chains: phi1 - phi3
+    ((1.99e-4, 2.1e-4, 2.1e-4), (1.0, 0.0, 0.0), 1.0),              # x chains only
+])
+def test_lattice_fabric_and_stress_are_the_closed_forms(spacing, fabric, deviator, tmp_path):
+    m = micromechanics_of(run_ok(lattice_deck(spacing), tmp_path))
+    touching = [s < D for s in spacing]
+    forces = [hertz(D - s) if t else 0.0 for s, t in zip(spacing, touching)]
+    n_atoms = 64
+    assert m[1] == n_atoms * sum(touching)                 # one contact per atom and axis
+    np.testing.assert_allclose(m[5:8], fabric, atol=1e-15)
+    np.testing.assert_allclose(m[8:11], 0.0, atol=1e-15)
+    assert m[11] == pytest.approx(deviator, abs=1e-14)
+    # sigma_aa = P_a l_a / (l_x l_y l_z) per atom: P_a/(area normal to a)
+    sx, sy, sz = spacing
+    areas = (sy * sz, sx * sz, sx * sy)
+    expected = [f / area for f, area in zip(forces, areas)]
+    np.testing.assert_allclose(m[12:15], expected, rtol=1e-9)
+    np.testing.assert_allclose(m[15:18], 0.0, atol=1e-9 * max(expected))
+    np.testing.assert_allclose(m[18:24], m[12:18], rtol=1e-14)         # no tangential forces
+    np.testing.assert_allclose(m[24:30], 0.0, atol=1e-9 * max(expected))
+    assert m[2] == 0.0                                                  # nothing slides
+    mean = sum(f for f, t in zip(forces, touching) if t) / sum(touching)
+    assert m[3] == pytest.approx(mean, rel=1e-9)
+
+
+def test_lattice_strong_and_weak_networks(tmp_path):
+    # overlaps 1, 0.5, 0.2 um: P_x > <P> > P_y > P_z, so the strong network is the x chains
+    spacing = (1.99e-4, 1.995e-4, 1.998e-4)
+    m = micromechanics_of(run_ok(lattice_deck(spacing), tmp_path))
+    p_x, p_y, p_z = (hertz(D - s) for s in spacing)
+    assert p_x > (p_x + p_y + p_z) / 3 > p_y
+    assert m[4] == pytest.approx(1 / 3, abs=1e-15)
+    sx, sy, sz = spacing
+    np.testing.assert_allclose(m[30:33], [p_x / (sy * sz), 0.0, 0.0], rtol=1e-9, atol=1e-6)
+    np.testing.assert_allclose(m[36:39], [0.0, p_y / (sx * sz), p_z / (sx * sy)], rtol=1e-9,
+                               atol=1e-6)
+    # LAMMPS's virial is the same stress
+    row = thermo_rows(run_ok(lattice_deck(spacing), tmp_path), "Step")[0][0]
+    np.testing.assert_allclose(m[12:18], [row[f"c_pv[{k}]"] for k in range(1, 7)], rtol=1e-12,
+                               atol=1e-6)
+
+
+def test_micromechanics_group_keeps_contacts_with_both_atoms_in_it(tmp_path):
+    # group of the spheres with x < 2 lattice spacings: y and z contacts of those 32 spheres,
+    # x contacts only between the two layers inside (16), none across the group's edge
+    deck = lattice_deck((1.99e-4, 1.995e-4, 1.998e-4)).replace(
+        "compute m all", "region half block 0 1.5 0 4 0 4 units lattice\n"
+        "group half region half\ncompute m half")
+    m = micromechanics_of(run_ok(deck, tmp_path))
+    assert m[1] == 32 * 2 + 16
