@@ -72,7 +72,9 @@ dump dc all local 3000 contacts_run.txt c_c[*]
 dump dp all local 3000 pair_local_run.txt c_pl[*]
 dump_modify dc format float %.17g
 dump_modify dp format float %.17g
+""" + MICRO_PRINT + """
 run 3000
+unfix print
 undump dc
 undump dp
 dump dc all local 3000 contacts_run0.txt c_c[*]
@@ -84,6 +86,13 @@ run 0
     out = run_ok(deck, work)
     runs = thermo_rows(out, "Step")
     return work, runs[0][-1], runs[1][-1]
+
+
+# the compute's 41 values and the strain, every 300 steps, as a fix print table
+MICRO_PRINT = ('fix print all print 300 "$(step) $(f_cell[6]:%.16g)'
+               + "".join(f" $(c_m[{k}]:%.16g)" for k in range(1, 42))
+               + '" file micro.txt screen no title "# step eps_d13'
+               + "".join(f" c_m[{k}]" for k in range(1, 42)) + '"')
 
 
 def stress_of(rec, force, volume):
@@ -276,3 +285,26 @@ def test_micromechanics_group_keeps_contacts_with_both_atoms_in_it(tmp_path):
         "group half region half\ncompute m half")
     m = micromechanics_of(run_ok(deck, tmp_path))
     assert m[1] == 32 * 2 + 16
+
+
+def test_tyanalysis_draws_the_recorded_micromechanics(sheared):
+    # the figure of the record, and the shares it reports add up (normal + tangential, strong +
+    # weak = total), with the compute's last values
+    import subprocess
+    import sys
+    work, end, _ = sheared
+    out = subprocess.run([sys.executable, "-m", "tyanalysis", "micromechanics",
+                          str(work / "micro.txt"), "--out", str(work / "micro.png")],
+                         capture_output=True, text=True, check=True).stdout
+    values = dict(kv.split("=") for kv in out.splitlines()[0].split(": ", 1)[1].split())
+    assert float(values["q_normal_share"]) + float(values["q_tangential_share"]) == \
+        pytest.approx(1.0, abs=1e-9)
+    assert float(values["q_strong_share"]) + float(values["q_weak_share"]) == \
+        pytest.approx(1.0, abs=1e-9)
+    assert float(values["p_strong_share"]) + float(values["p_weak_share"]) == \
+        pytest.approx(1.0, abs=1e-9)
+    # normal forces carry most of the deviator, tangential ones a positive part (Thornton 2000)
+    assert 0.5 < float(values["q_normal_share"]) < 1.0
+    assert float(values["phi_d"]) == pytest.approx(end["c_m[11]"], rel=1e-5)    # printed to 6 digits
+    assert float(values["contacts"]) == end["c_m[1]"]
+    assert (work / "micro.png").stat().st_size > 10000
