@@ -78,3 +78,20 @@ def test_record_without_the_compute_columns_is_an_error(tmp_path):
     io.write_servo_csv(path, {"step": np.arange(3.0), "p": np.ones(3)})
     r = run_cli("micromechanics", path, "--out", tmp_path / "m.png")
     assert r.returncode == 2 and "expected the 41 columns" in r.stderr
+
+
+def test_fix_ave_time_table_is_read(tmp_path):
+    # fix ave/time ... c_micro[*] file F writes a title line, then '# TimeStep c_micro[1] ...'
+    cols = synthetic(5)
+    path = tmp_path / "micro.txt"
+    with open(path, "w") as fh:
+        fh.write("# Time-averaged data for fix record\n# TimeStep"
+                 + "".join(f" c_micro[{k}]" for k in range(1, 42)) + "\n")
+        for i in range(5):
+            fh.write(f"{int(cols['step'][i])}" + "".join(f" {cols[n][i]!r}" for n in micro.NAMES)
+                     + "\n")
+    table = micro.read_record(path)
+    values = micro.columns(table)
+    np.testing.assert_array_equal(values["phi_d"], cols["phi_d"])
+    r = run_cli("micromechanics", path, "--out", tmp_path / "m.png")
+    assert r.returncode == 0, r.stderr

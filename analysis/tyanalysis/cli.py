@@ -243,21 +243,12 @@ def cmd_two_spheres(a):
     _wrote(figures.two_spheres(x, y, a.out, curves, xlabel=xc, ylabel=yc))
 
 
-def _read_record(path):
-    """a fix cell/servo CSV (comma-separated, header repeated on restarts) or a fix print table"""
-    with open(path, encoding="utf-8", errors="replace") as fh:
-        first = fh.readline()
-    if "," in first and not first.lstrip().startswith("#"):
-        return io.read_servo_csv(path, require=None)
-    return io.read_print_table(path)
-
-
 def cmd_micromechanics(a):
-    t = _read_record(a.file)
+    t = micro.read_record(a.file)
     values = micro.columns(t, a.prefix)
-    xname = a.x or ("eps_d13" if "eps_d13" in t else "step" if "step" in t else None)
+    xname = a.x or next((c for c in ("eps_d13", "step", "TimeStep") if c in t), None)
     if xname is None:
-        raise ValueError(f"{t.path}: no eps_d13 or step column; choose the x axis with --x")
+        raise ValueError(f"{t.path}: no eps_d13, step or TimeStep column; choose x with --x")
     x = np.asarray(t[xname], float)
     xlabel = xname
     if xname.startswith("eps"):
@@ -323,10 +314,11 @@ def build_parser():
 
     p = sub.add_parser("micromechanics", help="fabric, strong/weak and normal/tangential stress, "
                        "sliding fraction from a record of compute thornton/yin/micromechanics")
-    p.add_argument("file", help="CSV of fix cell/servo or fix print table with the compute's "
-                   "41 values (named as tyanalysis.micromechanics.NAMES or PREFIX[1..41])")
+    p.add_argument("file", help="CSV of fix cell/servo, or table of fix print or fix ave/time, "
+                   "with the compute's 41 values (named as tyanalysis.micromechanics.NAMES or "
+                   "PREFIX[1..41])")
     p.add_argument("--out", required=True, help="PNG to write")
-    p.add_argument("--x", help="x-axis column (default eps_d13, else step)")
+    p.add_argument("--x", help="x-axis column (default eps_d13, else step or TimeStep)")
     p.add_argument("--prefix", help="indexed columns PREFIX[k] to use (e.g. c_micro)")
     p.add_argument("--label", help="figure title")
     p.set_defaults(func=cmd_micromechanics)

@@ -10,6 +10,8 @@ import re
 
 import numpy as np
 
+from . import io
+
 TENSOR = ("xx", "yy", "zz", "xy", "xz", "yz")
 # the compute's vector in order: one source of truth for the Python side, checked against the
 # C++ enum of plugin/lammps/compute_thornton_yin_micromechanics.h by tests/test_analysis_micro.py
@@ -21,6 +23,35 @@ NAMES = (("contacts", "sliding_fraction", "mean_normal_force", "strong_fraction"
 STRESS_PARTS = ("s", "s_normal", "s_tangential", "s_strong", "s_weak")
 
 _INDEXED = re.compile(r"^(.*)\[(\d+)\]$")
+
+
+def read_record(path):
+    """a fix cell/servo CSV (comma-separated, header repeated on restarts), or a table of fix
+    print or fix ave/time: whitespace-separated, the columns named by the last '#' line before
+    the data (fix ave/time writes a title line first)"""
+    with open(path, encoding="utf-8", errors="replace") as fh:
+        text = fh.read()
+    first = text.lstrip().split("\n", 1)[0]
+    if "," in first and not first.startswith("#"):
+        return io.read_servo_csv(path, require=None)
+    lines = text.split("\n")
+    header_at = None
+    for k, line in enumerate(lines):
+        if line.strip().startswith("#"):
+            header_at = k
+        elif line.strip():
+            break
+    if header_at is None:
+        return io.read_print_table(path)
+    names = lines[header_at].lstrip().lstrip("#").replace(",", " ").split()
+    data = [(k + 1, l) for k, l in enumerate(lines)
+            if k > header_at and l.strip() and not l.strip().startswith("#")]
+    cols, dropped = io._read_rows(path, names, data, lambda s: s.replace(",", " ").split(),
+                                  text.endswith("\n"))
+    table = io.Table(cols, path, dropped)
+    if len(table) == 0:
+        raise ValueError(f"{path}: no complete data rows")
+    return table
 
 
 def columns(table, prefix=None):
