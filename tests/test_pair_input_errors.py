@@ -238,3 +238,14 @@ def test_box_rate_check_is_exact_for_exponential_updates(box_fix, warns, tmp_pat
     assert ("changed by" in out and "h_rate" in out) == warns, out[-3000:]
     if warns:
         assert "box component h_yy" in out
+
+
+def test_overflowing_damping_force_stops_the_run(tmp_path):
+    # beta = 1e300 is finite and only warned about at init; the velocities it produces
+    # overflow the next force, which must stop the run naming the contact, not run on with
+    # an infinite temperature
+    text = deck(pair_coeff="pair_coeff * * 70e9 0.3 0.3 0.3 damping 1e300 0").replace(
+        "run 0", "fix integrate all nve/sphere\nrun 5\n")
+    rc, out = run_deck(text, tmp_path)
+    assert "damping ratio 1e+300 is too large for the explicit step" in out
+    assert "the contact force of atoms 1 and 2 is not finite at step" in out, out[-2000:]

@@ -576,10 +576,15 @@ void PairThorntonYin::contact_fault(int i, int j, double delta, bool force)
                "{} and {} ({}); the run stops here instead of spreading NaN: look for what set "
                "it (set, velocity, a fix or a variable)", update->ntimestep, ti, tj,
                bad.substr(2));
-  if (force || !std::isfinite(delta))
+  if (force || !std::isfinite(delta)) {
+    const double *vi = atom->v[i], *vj = atom->v[j];
+    const double speed = std::hypot(std::hypot(vi[0] - vj[0], vi[1] - vj[1]), vi[2] - vj[2]);
     error->one(FLERR, "pair thornton/yin: the contact force of atoms {} and {} is not finite at "
-               "step {} although their positions, velocities and radii are: its history or the "
-               "pair coefficients hold a non-finite value", ti, tj, update->ntimestep);
+               "step {} although their positions, velocities and radii are (relative speed "
+               "{:.4g}): a pair coefficient too large for this contact (see the warnings at "
+               "init, e.g. the damping ratio) or a non-finite value in its history", ti, tj,
+               update->ntimestep, speed);
+  }
   error->one(FLERR, "pair thornton/yin: overlap {:.4g} of atoms {} and {} exceeds the radius of "
              "the smaller sphere {:.4g}: the contact law is no longer valid; reduce the timestep "
              "(see the Rayleigh-time warning) or the impact velocity", delta, ti, tj,
@@ -803,6 +808,8 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
       if (!(delta <= MIN(radi, radj))) contact_fault(i, j, delta, false);
 
       if (touch[jj] && delta < 0.0) {    // delta_f <= 0: only tensile contacts can break
+        // a contact torn apart by an infinite position (overflowed velocity) is a fault too
+        if (!std::isfinite(delta)) contact_fault(i, j, delta, false);
         const double delta_break = ADHESIVE ? tycore::jkr::break_overlap(R, c.E_star, c.Gamma)
                                             : 0.0;
         if (delta < delta_break) {    // Thornton & Yin (1991): separation at delta_f

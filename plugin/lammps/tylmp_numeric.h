@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 
 namespace tylmp {
@@ -23,9 +24,11 @@ inline double finite_numeric(const char *file, int line, const char *text, const
 {
   char *end = nullptr;
   const double parsed = std::strtod(text, &end);
-  if (end != text && *end == '\0' && !std::isfinite(parsed))
+  if (end != text && *end == '\0' && !std::isfinite(parsed)) {
+    const bool overflow = !std::isnan(parsed) && !std::strpbrk(text, "iI");    // not "inf"
     lmp->error->all(file, line, "{} must be a finite number, got '{}'{}", what, text,
-                    std::isnan(parsed) ? "" : " (it overflows to infinity)");
+                    overflow ? " (it overflows to infinity)" : "");
+  }
   return LAMMPS_NS::utils::numeric(file, line, text, false, lmp);
 }
 
