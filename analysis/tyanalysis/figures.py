@@ -184,18 +184,16 @@ def micromechanics(x, xlabel, values, out, label=""):
     a_fab.set_title("(a) contact-normal fabric")
     q = {part: micro.mean_and_deviator(micro.tensor(values, part))[1] * KPA
          for part in micro.STRESS_PARTS}
-    for part, name, style in (("s", "total", "k-"), ("s_normal", "normal forces", "C0-"),
-                              ("s_tangential", "tangential forces", "C3--")):
-        a_nt.plot(x, q[part], style, label=name)
-    a_nt.set_ylabel("q [kPa]")
-    a_nt.set_title("(b) stress from normal and tangential forces")
-    a_nt.legend(frameon=False)
-    for part, name, style in (("s", "total", "k-"), ("s_strong", "strong: P > ⟨P⟩", "C1-"),
-                              ("s_weak", "weak: P ≤ ⟨P⟩", "C2--")):
-        a_sw.plot(x, q[part], style, label=name)
-    a_sw.set_ylabel("q [kPa]")
-    a_sw.set_title("(c) strong and weak networks")
-    a_sw.legend(frameon=False)
+    splits = ((a_nt, "(b) stress from normal and tangential forces",
+               (("s_normal", "normal forces", "C0-"), ("s_tangential", "tangential forces", "C3--"))),
+              (a_sw, "(c) strong and weak networks",
+               (("s_strong", "strong: P > ⟨P⟩", "C1-"), ("s_weak", "weak: P ≤ ⟨P⟩", "C2--"))))
+    for ax, title, parts in splits:
+        for part, name, style in (("s", "total", "k-"),) + parts:
+            ax.plot(x, q[part], style, label=name)
+        ax.set_ylabel("q [kPa]")
+        ax.set_title(title)
+        ax.legend(frameon=False)
     a_frac.plot(x, values["sliding_fraction"], "C3-", label="sliding contacts")
     a_frac.plot(x, values["strong_fraction"], "C1--", label="strong contacts")
     a_frac.set_ylabel("fraction of contacts")

@@ -27,7 +27,7 @@ template <typename T> Compute *create_compute(LAMMPS *lmp, int narg, char **arg)
   return new T(lmp, narg, arg);
 }
 template <typename T> void *plugin_pair(void *lmp) { return new T((LAMMPS *) lmp); }
-template <typename T> void *plugin_fix(void *lmp, int narg, char **arg)
+template <typename T> void *plugin_with_args(void *lmp, int narg, char **arg)
 {
   return new T((LAMMPS *) lmp, narg, arg);
 }
@@ -61,26 +61,21 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.version = LAMMPS_VERSION;
   plugin.author = "tylmp developers";
   plugin.handle = handle;
+#define TYLMP_PLUGIN(kind, style_name, member, factory_type, factory) \
+  plugin.style = kind; \
+  plugin.name = style_name; \
+  plugin.info = "tylmp " kind " " style_name; \
+  plugin.creator.member = (factory_type *) &factory; \
+  (*reg)(&plugin, lmp);
 #define TYLMP_PAIR(style_name, Class) \
-  plugin.style = "pair"; \
-  plugin.name = style_name; \
-  plugin.info = "tylmp pair " style_name; \
-  plugin.creator.v1 = (lammpsplugin_factory1 *) &plugin_pair<Class>; \
-  (*reg)(&plugin, lmp);
+  TYLMP_PLUGIN("pair", style_name, v1, lammpsplugin_factory1, plugin_pair<Class>)
 #define TYLMP_FIX(style_name, Class) \
-  plugin.style = "fix"; \
-  plugin.name = style_name; \
-  plugin.info = "tylmp fix " style_name; \
-  plugin.creator.v2 = (lammpsplugin_factory2 *) &plugin_fix<Class>; \
-  (*reg)(&plugin, lmp);
+  TYLMP_PLUGIN("fix", style_name, v2, lammpsplugin_factory2, plugin_with_args<Class>)
 #define TYLMP_COMPUTE(style_name, Class) \
-  plugin.style = "compute"; \
-  plugin.name = style_name; \
-  plugin.info = "tylmp compute " style_name; \
-  plugin.creator.v2 = (lammpsplugin_factory2 *) &plugin_fix<Class>; \
-  (*reg)(&plugin, lmp);
+  TYLMP_PLUGIN("compute", style_name, v2, lammpsplugin_factory2, plugin_with_args<Class>)
   TYLMP_STYLE_LIST
 #undef TYLMP_PAIR
 #undef TYLMP_FIX
 #undef TYLMP_COMPUTE
+#undef TYLMP_PLUGIN
 }
