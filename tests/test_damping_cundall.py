@@ -77,3 +77,16 @@ print "S ${{sx}} ${{sy}} ${{sz}} ${{speed}}"
     assert sy == pytest.approx(0.7, abs=1e-12)
     assert sz == pytest.approx(0.4, abs=1e-12)
     assert speed == 0.0
+
+
+@pytest.mark.parametrize("values, argument", [
+    ("inf 0.3", "lambda_linear"), ("0.3 nan", "lambda_angular"), ("1e400 0.3", "lambda_linear"),
+    ("0.3 -1e400", "lambda_angular"),
+])
+def test_non_finite_coefficient_is_refused_naming_it(tmp_path, values, argument):
+    # utils::numeric alone would turn 1e400 into inf and refuse 'inf' without naming it
+    from lmprun import run_deck
+    rc, out = run_deck(one_sphere(5e-3, 5e-3, 5e-3) + f"fix damp all damping/cundall {values}\n",
+                       tmp_path)
+    assert rc != 0 or "ERROR" in out
+    assert f"fix damping/cundall: {argument} must be a finite number" in out, out[-2000:]

@@ -11,6 +11,7 @@ import numpy as np
 from . import compare, figures
 from . import invariants as inv
 from . import io, metrics
+from . import micromechanics as micro
 
 
 def _g(x):
@@ -242,6 +243,20 @@ def cmd_two_spheres(a):
     _wrote(figures.two_spheres(x, y, a.out, curves, xlabel=xc, ylabel=yc))
 
 
+def cmd_micromechanics(a):
+    t = micro.read_record(a.file)
+    values = micro.columns(t, a.prefix)
+    xname = a.x or next((c for c in ("eps_d13", "step", "TimeStep") if c in t), None)
+    if xname is None:
+        raise ValueError(f"{t.path}: no eps_d13, step or TimeStep column; choose x with --x")
+    x = np.asarray(t[xname], float)
+    xlabel = xname
+    if xname.startswith("eps"):
+        x, xlabel = x * 100.0, f"{xname} [%]"
+    _kv(t.name, sorted(micro.summary(values).items()))
+    _wrote(figures.micromechanics(x, xlabel, values, a.out, a.label or ""))
+
+
 def cmd_summary(a):
     for f in a.files:
         s = metrics.summarize(io.read_servo_csv(f))
@@ -296,6 +311,17 @@ def build_parser():
     p.add_argument("--sinphi-tc", type=float, help="draw the surfaces through this compression "
                    "strength (default: through the stress state at the end of the prestrain)")
     files_cmd("summary", cmd_summary, "key numbers of each file, one JSON line per file", out=False)
+
+    p = sub.add_parser("micromechanics", help="fabric, strong/weak and normal/tangential stress, "
+                       "sliding fraction from a record of compute thornton/yin/micromechanics")
+    p.add_argument("file", help="CSV of fix cell/servo, or table of fix print or fix ave/time, "
+                   "with the compute's 41 values (named as tyanalysis.micromechanics.NAMES or "
+                   "PREFIX[1..41])")
+    p.add_argument("--out", required=True, help="PNG to write")
+    p.add_argument("--x", help="x-axis column (default eps_d13, else step or TimeStep)")
+    p.add_argument("--prefix", help="indexed columns PREFIX[k] to use (e.g. c_micro)")
+    p.add_argument("--label", help="figure title")
+    p.set_defaults(func=cmd_micromechanics)
 
     p = sub.add_parser("table", help="markdown table paper vs ours from a JSON {quantity: value}")
     p.add_argument("results", help="JSON object of our values (keys as in compare.PAPER)")

@@ -171,3 +171,37 @@ def two_spheres(overlap, force, out, curves=(), xlabel="overlap", ylabel="normal
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     return save_figure(fig, out)
+
+
+def micromechanics(x, xlabel, values, out, label=""):
+    """Contact-network measures of compute thornton/yin/micromechanics against x: deviatoric
+    fabric, q of the normal/tangential and strong/weak parts of the stress, sliding fraction."""
+    from . import micromechanics as micro
+    fig, axes = plt.subplots(2, 2, figsize=(10, 7.5), sharex=True)
+    (a_fab, a_nt), (a_sw, a_frac) = axes
+    a_fab.plot(x, values["phi_d"], color="k")
+    a_fab.set_ylabel("deviatoric fabric φ_d = √(3/2 φ′:φ′)")
+    a_fab.set_title("(a) contact-normal fabric")
+    q = {part: micro.mean_and_deviator(micro.tensor(values, part))[1] * KPA
+         for part in micro.STRESS_PARTS}
+    splits = ((a_nt, "(b) stress from normal and tangential forces",
+               (("s_normal", "normal forces", "C0-"), ("s_tangential", "tangential forces", "C3--"))),
+              (a_sw, "(c) strong and weak networks",
+               (("s_strong", "strong: P > ⟨P⟩", "C1-"), ("s_weak", "weak: P ≤ ⟨P⟩", "C2--"))))
+    for ax, title, parts in splits:
+        for part, name, style in (("s", "total", "k-"),) + parts:
+            ax.plot(x, q[part], style, label=name)
+        ax.set_ylabel("q [kPa]")
+        ax.set_title(title)
+        ax.legend(frameon=False)
+    a_frac.plot(x, values["sliding_fraction"], "C3-", label="sliding contacts")
+    a_frac.plot(x, values["strong_fraction"], "C1--", label="strong contacts")
+    a_frac.set_ylabel("fraction of contacts")
+    a_frac.set_ylim(bottom=0)
+    a_frac.set_title("(d) sliding and strong fractions")
+    a_frac.legend(frameon=False)
+    for ax in (a_sw, a_frac):
+        ax.set_xlabel(xlabel)
+    if label:
+        fig.suptitle(label)
+    return save_figure(fig, out)

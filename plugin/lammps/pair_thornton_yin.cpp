@@ -5,12 +5,15 @@
 ------------------------------------------------------------------------- */
 
 #include "pair_thornton_yin.h"
+#include "tylmp_numeric.h"
 
 #include "contact_kernel.hpp"
+#include "law_domain.hpp"
 #include "thornton_yin.hpp"
 
 #include "atom.h"
 #include "comm.h"
+#include "compute.h"
 #include "domain.h"
 #include "error.h"
 #include "fix_dummy.h"
@@ -24,6 +27,7 @@
 #include "neighbor.h"
 #include "update.h"
 
+#include <cfloat>
 #include <cmath>
 #include <cstring>
 
@@ -76,6 +80,8 @@ PairThorntonYin::PairThorntonYin(LAMMPS *lmp) : Pair(lmp)
   neighprev = 0;
   dt = 0.0;
   tally_cell = 0;
+  record_contacts = 0;
+  record_step = -1;
   generic_paths = 0;
   for (double &h : box_h) h = 0.0;
   box_step = -1;
@@ -187,10 +193,14 @@ void PairThorntonYin::coeff(int narg, char **arg)
   utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
   utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
 
-  const double E = utils::numeric(FLERR, arg[2], false, lmp);
-  const double nu = utils::numeric(FLERR, arg[3], false, lmp);
-  const double mu = utils::numeric(FLERR, arg[4], false, lmp);
-  const double Gamma = utils::numeric(FLERR, arg[5], false, lmp);
+  const auto number = [&](int k, const char *name) {
+    return tylmp::finite_numeric(FLERR, arg[k], fmt::format("pair_coeff thornton/yin: {}", name),
+                                 lmp);
+  };
+  const double E = number(2, "Young's modulus E");
+  const double nu = number(3, "Poisson's ratio nu");
+  const double mu = number(4, "friction coefficient mu");
+  const double Gamma = number(5, "interface energy Gamma");
   if (!(E > 0.0))
     error->all(FLERR, "pair_coeff thornton/yin: Young's modulus E must be > 0 (got {})", E);
   if (!(nu > -1.0 && nu < 0.5))
@@ -208,8 +218,8 @@ void PairThorntonYin::coeff(int narg, char **arg)
     if (strcmp(arg[iarg], "damping") == 0) {
       if (iarg + 3 > narg)
         error->all(FLERR, "pair_coeff thornton/yin: 'damping' needs two values beta_n beta_t");
-      beta_n = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-      beta_t = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+      beta_n = number(iarg + 1, "damping ratio beta_n");
+      beta_t = number(iarg + 2, "damping ratio beta_t");
       if (!(beta_n >= 0.0) || !(beta_t >= 0.0))
         error->all(FLERR, "pair_coeff thornton/yin: damping ratios must be >= 0 (got {} {})",
                    beta_n, beta_t);
@@ -266,6 +276,14 @@ void PairThorntonYin::mix_pair(int i, int j)
 void PairThorntonYin::init_style()
 {
   tally_cell = 0;    // fix cell/servo switches the cell tallies on in its init(), after this
+  // the contact computes read the contacts of every force evaluation
+  record_contacts = 0;
+  for (int k = 0; k < modify->ncompute; ++k)
+    if (utils::strmatch(modify->compute[k]->style, "^thornton/yin/")) record_contacts = 1;
+  if (!record_contacts) {
+    records.clear();
+    record_step = -1;
+  }
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
     error->all(FLERR, "pair thornton/yin requires atom style sphere (per-atom radius, rmass, "
                "omega and torque)");
@@ -302,6 +320,16 @@ void PairThorntonYin::init_style()
   MPI_Allreduce(local_max, maxrad_type, ntypes + 1, MPI_DOUBLE, MPI_MAX, world);
   delete[] local_max;
 
+  // the checks below see the mixed coefficients of unlike types (init_one mixes them later)
+  double rad_any = 0.0;
+  for (int t = 1; t <= ntypes; ++t) rad_any = MAX(rad_any, maxrad_type[t]);
+  for (int i = 1; i <= ntypes; ++i)
+    for (int j = i; j <= ntypes; ++j) {
+      if (!setflag[i][j]) mix_pair(i, j);
+      const double rad_i = maxrad_type[i] > 0.0 ? maxrad_type[i] : rad_any;
+      const double rad_j = maxrad_type[j] > 0.0 ? maxrad_type[j] : rad_any;
+      if (rad_i > 0.0 && rad_j > 0.0) check_law_domain(i, j, rad_i, rad_j, true);
+    }
   check_break_against_skin();
   check_timestep_against_rayleigh();
 }
@@ -348,6 +376,28 @@ void PairThorntonYin::check_timestep_against_rayleigh()
   }
   double t_rayleigh;
   MPI_Allreduce(&local_min, &t_rayleigh, 1, MPI_DOUBLE, MPI_MIN, world);
+  // no time step resolves a Rayleigh time that is zero, subnormal or NaN (E or the density
+  // far out of range)
+  if (!(t_rayleigh >= DBL_MIN))
+    error->all(FLERR, "pair thornton/yin: the Rayleigh time pi R sqrt(rho/G)/(0.1631 nu + "
+               "0.8766) of the smallest sphere is {:.4g}: no time step can resolve it; check E "
+               "(pair_coeff) and the density or mass of the spheres", t_rayleigh);
+  // viscous damping, -eta v with eta = 2 beta sqrt(m* k): beta > 1 is overdamped, and the
+  // explicit step of the damping force is stable for every contact (angular frequency below
+  // 2 pi/dt_R, theory.md §4) only while beta < dt_R/(2 pi dt)
+  double beta_max = 0.0;
+  for (int i = 1; i <= atom->ntypes; ++i)
+    for (int j = i; j <= atom->ntypes; ++j)
+      beta_max = MAX(beta_max, MAX(damp_n[i][j], damp_t[i][j]));
+  const double beta_stable = t_rayleigh / (2.0 * MY_PI * update->dt);
+  if (beta_max > 0.0 && t_rayleigh < BIG && (beta_max > 1.0 || beta_max > beta_stable) &&
+      comm->me == 0)
+    error->warning(FLERR, "pair thornton/yin: damping ratio {:.4g} is {}; use a damping ratio "
+                   "below {:.4g}", beta_max,
+                   beta_max > beta_stable ? "too large for the explicit step: a contact's "
+                   "damping force may grow without bound (it is stable for every contact only "
+                   "below dt_R/(2 pi dt))" : "above 1: contacts are overdamped and cannot "
+                   "rebound", MIN(1.0, beta_stable));
   if (t_rayleigh < BIG && update->dt > RAYLEIGH_WARN_FRACTION * t_rayleigh && comm->me == 0)
     error->warning(FLERR, "pair thornton/yin: timestep {:.4g} exceeds {} x the Rayleigh time "
                    "{:.4g} of the smallest sphere; reduce the timestep to at most {:.4g} "
@@ -360,6 +410,14 @@ void PairThorntonYin::check_timestep_against_rayleigh()
 double PairThorntonYin::init_one(int i, int j)
 {
   if (setflag[i][j] == 0) mix_pair(i, j);
+  // fix adapt changes mu and Gamma through extract() and calls init_one again
+  if (!(std::isfinite(friction[i][j]) && friction[i][j] >= 0.0))
+    error->all(FLERR, "pair thornton/yin: friction coefficient mu of types {} {} must be finite "
+               "and >= 0 (got {}; set by pair_coeff or fix adapt)", i, j, friction[i][j]);
+  if (!(std::isfinite(surface_energy[i][j]) && surface_energy[i][j] >= 0.0))
+    error->all(FLERR, "pair thornton/yin: interface energy Gamma of types {} {} must be finite "
+               "and >= 0 J/m^2 (got {}; set by pair_coeff or fix adapt)", i, j,
+               surface_energy[i][j]);
   E_star[j][i] = E_star[i][j];
   G_star[j][i] = G_star[i][j];
   friction[j][i] = friction[i][j];
@@ -376,12 +434,47 @@ double PairThorntonYin::init_one(int i, int j)
   for (int t = 1; t <= atom->ntypes; ++t) rad_any = MAX(rad_any, maxrad_type[t]);
   if (rad_i <= 0.0) rad_i = rad_any;
   if (rad_j <= 0.0) rad_j = rad_any;
+  // again here: fix adapt changes mu and Gamma and calls init_one (warnings come from init_style)
+  if (rad_i > 0.0 && rad_j > 0.0) check_law_domain(i, j, rad_i, rad_j, false);
   double cutoff = rad_i + rad_j;
   if (cutoff > 0.0)
     cutoff -= tycore::jkr::break_overlap(tycore::effective_radius(rad_i, rad_j), E_star[i][j],
                                          surface_energy[i][j]);
   cut[i][j] = cut[j][i] = cutoff;
   return cutoff;
+}
+
+/* ----------------------------------------------------------------------
+   Coefficients that make the law meaningless for the spheres of types i j (largest radii
+   rad_i, rad_j): bounds derived from the law, plugin/core/law_domain.hpp
+------------------------------------------------------------------------- */
+
+void PairThorntonYin::check_law_domain(int i, int j, double rad_i, double rad_j, bool warn)
+{
+  const tycore::PairCoefficients c{E_star[i][j], G_star[i][j], friction[i][j],
+                                   surface_energy[i][j]};
+  const double R = tycore::effective_radius(rad_i, rad_j);
+  const double a0_ratio = tycore::zero_load_radius_ratio(c, R);
+  if (!(a0_ratio < 1.0))
+    error->all(FLERR, "pair thornton/yin: types {} {}: the JKR zero-load contact radius a0 = "
+               "(9 pi Gamma R*^2/E*)^(1/3) = {:.4g} is not smaller than R* = {:.4g}, so the "
+               "contact law (small contacts, a << R*) does not apply; Gamma = {:.4g} must be "
+               "below E* R*/(9 pi) = {:.4g} (or E larger)", i, j, a0_ratio * R, R, c.Gamma,
+               c.E_star * R / (9.0 * MY_PI));
+  if (warn && a0_ratio > A0_WARN_FRACTION && comm->me == 0)
+    error->warning(FLERR, "pair thornton/yin: types {} {}: the JKR zero-load contact radius a0 "
+                   "= {:.4g} R*: the contact is large before any load and the small-contact "
+                   "law is strained; lower Gamma or raise E if this is not intended", i, j,
+                   a0_ratio);
+  const double delta_max = MIN(rad_i, rad_j);
+  const tycore::LawDomainFault fault = tycore::law_domain_fault(c, R, delta_max);
+  if (fault.quantity)
+    error->all(FLERR, "pair thornton/yin: types {} {}: the {} of the contact law is not finite "
+               "at overlap {:.4g} (the law's range is delta_f to the smaller radius {:.4g}) with "
+               "E* = {:.4g}, G* = {:.4g}, mu = {:.4g}, Gamma = {:.4g}, R* = {:.4g}: these "
+               "coefficients are far outside what the law can represent in 'units {}'", i, j,
+               fault.quantity, fault.delta, delta_max, c.E_star, c.G_star, c.mu, c.Gamma, R,
+               update->unit_style);
 }
 
 /* ----------------------------------------------------------------------
@@ -430,7 +523,18 @@ void PairThorntonYin::check_box_rate()
       const double change = h[k] - box_h[k];
       const double from_rate = domain->h_rate[k] * update->dt;
       const double scale = std::fabs(change) + std::fabs(from_rate);
-      if (std::fabs(change - from_rate) > 1e-3 * scale && scale > 1e-12 * std::fabs(h[k])) {
+      const auto agrees = [&](double expected) {
+        return std::fabs(change - expected) <= 1e-3 * scale;
+      };
+      // h_rate explains the change if it was held over the step (fix deform erate), or if
+      // the strain rate L = h_rate/h was, with h at the end of the step (fix cell/servo:
+      // L <- L exp(-eps_dot dt), h_rate = -eps_dot L_new, so h_old = h exp(-L dt)) or at its
+      // start (fix deform trate: h_rate = rate h_old, h = h_old exp(L dt)). Exact at any rate
+      // for the three; tilts are only changed linearly
+      const bool explained = agrees(from_rate) ||
+          (k < 3 && h[k] > 0.0 && agrees(-h[k] * std::expm1(-from_rate / h[k]))) ||
+          (k < 3 && box_h[k] > 0.0 && agrees(box_h[k] * std::expm1(from_rate / box_h[k])));
+      if (!explained && scale > 1e-12 * std::fabs(h[k])) {
         box_rate_warned = 1;
         if (comm->me == 0)
           error->warning(FLERR, "pair thornton/yin: box component h_{} changed by {:.4g} in the "
@@ -446,6 +550,45 @@ void PairThorntonYin::check_box_rate()
   }
   for (int k = 0; k < 6; ++k) box_h[k] = h[k];
   box_step = step;
+}
+
+/* ----------------------------------------------------------------------
+   a contact the law cannot take: name the atoms and what is wrong (error path only)
+------------------------------------------------------------------------- */
+
+void PairThorntonYin::contact_fault(int i, int j, double delta, bool force)
+{
+  const tagint ti = atom->tag[i], tj = atom->tag[j];
+  const auto vector_bad = [](const double *q) {
+    return !(std::isfinite(q[0]) && std::isfinite(q[1]) && std::isfinite(q[2]));
+  };
+  std::string bad;
+  for (const int k : {i, j}) {
+    const std::string of = fmt::format(" of atom {}", atom->tag[k]);
+    if (vector_bad(atom->x[k])) bad += ", position" + of;
+    if (vector_bad(atom->v[k])) bad += ", velocity" + of;
+    if (vector_bad(atom->omega[k])) bad += ", angular velocity" + of;
+    if (!std::isfinite(atom->radius[k])) bad += ", radius" + of;
+    if (!std::isfinite(atom->rmass[k])) bad += ", mass" + of;
+  }
+  if (!bad.empty())
+    error->one(FLERR, "pair thornton/yin: non-finite value at step {} in the contact of atoms "
+               "{} and {} ({}); the run stops here instead of spreading NaN: look for what set "
+               "it (set, velocity, a fix or a variable)", update->ntimestep, ti, tj,
+               bad.substr(2));
+  if (force || !std::isfinite(delta)) {
+    const double *vi = atom->v[i], *vj = atom->v[j];
+    const double speed = std::hypot(std::hypot(vi[0] - vj[0], vi[1] - vj[1]), vi[2] - vj[2]);
+    error->one(FLERR, "pair thornton/yin: the contact force of atoms {} and {} is not finite at "
+               "step {} although their positions, velocities and radii are (relative speed "
+               "{:.4g}): a pair coefficient too large for this contact (see the warnings at "
+               "init, e.g. the damping ratio) or a non-finite value in its history", ti, tj,
+               update->ntimestep, speed);
+  }
+  error->one(FLERR, "pair thornton/yin: overlap {:.4g} of atoms {} and {} exceeds the radius of "
+             "the smaller sphere {:.4g}: the contact law is no longer valid; reduce the timestep "
+             "(see the Rayleigh-time warning) or the impact velocity", delta, ti, tj,
+             MIN(atom->radius[i], atom->radius[j]));
 }
 
 /* ---------------------------------------------------------------------- */
@@ -517,6 +660,12 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
     for (int k = 0; k < nall; ++k) contact_count[k] = 0.0;
   }
 
+  const bool recording = record_contacts != 0;
+  if (recording) {
+    records.clear();
+    record_step = update->ntimestep;
+  }
+
   // forces and torques of one contact on i and j (and the energy and cell tallies)
   const auto apply_contact = [&](const Contact &ct, bool with_energy) {
     const int i = ct.i, j = ct.j;
@@ -544,6 +693,11 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
     const double fx = nx * Fn + fs1;
     const double fy = ny * Fn + fs2;
     const double fz = nz * Fn + fs3;
+    // a NaN or inf anywhere upstream (velocity, spin, history, ...) reaches the force: stop
+    // here rather than propagate it (one comparison; NaN fails it)
+    if (!(std::fabs(fx + fy + fz) <= DBL_MAX)) contact_fault(i, j, 0.0, true);
+    if (recording && (newton_pair || j < nlocal || atom->tag[i] < atom->tag[j]))
+      record_contact(ct, Fn, fs1, fs2, fs3);
     f[i][0] += fx;
     f[i][1] += fy;
     f[i][2] += fz;
@@ -649,14 +803,13 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
       const double delta = radsum - r;
       const double share = (newton_pair || j < nlocal) ? 1.0 : 0.5;
       // Hertz/JKR contact mechanics assume delta << R; once the overlap exceeds the smaller
-      // radius the law and the explicit step have long failed
-      if (delta > MIN(radi, radj))
-        error->one(FLERR, "pair thornton/yin: overlap {:.4g} of atoms {} and {} exceeds the "
-                   "radius of the smaller sphere {:.4g}: the contact law is no longer valid; "
-                   "reduce the timestep (see the Rayleigh-time warning) or the impact velocity",
-                   delta, atom->tag[i], atom->tag[j], MIN(radi, radj));
+      // radius the law and the explicit step have long failed. Written so that a NaN overlap
+      // (a NaN position or radius) fails it too
+      if (!(delta <= MIN(radi, radj))) contact_fault(i, j, delta, false);
 
       if (touch[jj] && delta < 0.0) {    // delta_f <= 0: only tensile contacts can break
+        // a contact torn apart by an infinite position (overflowed velocity) is a fault too
+        if (!std::isfinite(delta)) contact_fault(i, j, delta, false);
         const double delta_break = ADHESIVE ? tycore::jkr::break_overlap(R, c.E_star, c.Gamma)
                                             : 0.0;
         if (delta < delta_break) {    // Thornton & Yin (1991): separation at delta_f
@@ -752,6 +905,33 @@ template void PairThorntonYin::eval<true, true>(int, int);
 template void PairThorntonYin::eval<true, false>(int, int);
 template void PairThorntonYin::eval<false, true>(int, int);
 template void PairThorntonYin::eval<false, false>(int, int);
+
+/* ----------------------------------------------------------------------
+   one contact for the contact computes, with the force it applied this evaluation
+------------------------------------------------------------------------- */
+
+void PairThorntonYin::record_contact(const Contact &ct, double Fn, double fs1, double fs2,
+                                     double fs3)
+{
+  ContactRecord rec;
+  const int i = ct.i, j = ct.j;
+  rec.id_i = atom->tag[i];
+  rec.id_j = atom->tag[j];
+  for (int k = 0; k < 3; ++k) {
+    rec.normal_force[k] = Fn * ct.n[k];
+    rec.branch[k] = ct.del[k];
+  }
+  rec.tangential_force[0] = fs1;
+  rec.tangential_force[1] = fs2;
+  rec.tangential_force[2] = fs3;
+  rec.P = Fn;
+  rec.overlap = atom->radius[i] + atom->radius[j] - std::sqrt(ct.rsq);
+  rec.contact_radius = ct.st.contact_radius;
+  rec.sliding = ct.h->sliding;
+  rec.peeling = ct.h->peeling;
+  rec.mask = atom->mask[i] & atom->mask[j];
+  records.push_back(rec);
+}
 
 /* ----------------------------------------------------------------------
    history seen from the partner: vectors flip sign, scalars do not

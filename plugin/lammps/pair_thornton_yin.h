@@ -12,6 +12,8 @@
 
 #include "contact_kernel.hpp"
 
+#include <vector>
+
 namespace LAMMPS_NS {
 
 class PairThorntonYin : public Pair {
@@ -53,8 +55,26 @@ class PairThorntonYin : public Pair {
     S_PULL_OFF_FORCE, S_BREAK_OVERLAP, N_SVECTOR
   };
 
+  // one contact as of the last force evaluation, kept while a compute thornton/yin/... exists
+  // (docs/compute_thornton_yin_contacts.md): each contact once over all ranks
+  struct ContactRecord {
+    double id_i, id_j;               // atom IDs
+    double normal_force[3];          // P n on atom i, viscous normal damping included
+    double tangential_force[3];      // on atom i, viscous tangential damping included
+    double branch[3];                // x_i - x_j (the virial's branch vector)
+    double P;                        // normal force (repulsive > 0), = n . normal_force
+    double overlap, contact_radius;  // delta, a
+    double sliding, peeling;         // 1 or 0
+    int mask;                        // mask_i & mask_j: both atoms in a group
+  };
+  const std::vector<ContactRecord> &contact_records() const { return records; }
+  bigint contact_record_step() const { return record_step; }
+  int contacts_recorded() const { return record_contacts; }
+
   // fraction of the Rayleigh time above which init() warns (docs/theory.md §4.1)
   static constexpr double RAYLEIGH_WARN_FRACTION = 0.3;
+  // a0/R* above which init() warns that the contact is large before any load (a << R*)
+  static constexpr double A0_WARN_FRACTION = 0.1;
 
  protected:
   // per type: material as given by pair_coeff I I
@@ -81,6 +101,16 @@ class PairThorntonYin : public Pair {
   int box_from_setup;
   int box_rate_warned;
   void check_box_rate();
+  // error path of the contact loop, out of line: an overlap beyond the law's validity or a
+  // non-finite quantity (NaN/inf position, velocity, ... of atom i or j, or the contact force)
+  __attribute__((noinline, cold)) void contact_fault(int i, int j, double delta, bool force);
+
+  int record_contacts;                  // a compute thornton/yin/... exists (init_style)
+  std::vector<ContactRecord> records;
+  bigint record_step;
+  struct Contact;
+  __attribute__((noinline)) void record_contact(const Contact &, double Fn, double fs1,
+                                                double fs2, double fs3);
 
   int tally_cell;
   double cell_tallies[N_TALLY];
@@ -91,6 +121,7 @@ class PairThorntonYin : public Pair {
   void mix_pair(int, int);
   void check_break_against_skin();
   void check_timestep_against_rayleigh();
+  void check_law_domain(int, int, double, double, bool);
   double affine_velocity_gradient(double L[3][3]) const;
 
   // one contact in flight through the staged kernel (tycore::StepState)

@@ -1,7 +1,7 @@
 // Registration of all tylmp styles into a running LAMMPS.
 //
 // Debian's LAMMPS has no PLUGIN package, so the styles are inserted directly into the
-// public creator maps (Force::pair_map, Modify::fix_map) by tylmp_register(), which
+// public creator maps (Force::pair_map, Modify::fix_map, Modify::compute_map) by tylmp_register(), which
 // python/tylmp/__init__.py calls through ctypes. lammpsplugin_init() offers the same
 // styles to `plugin load` in LAMMPS builds of the same version that have PLUGIN.
 
@@ -22,8 +22,12 @@ template <typename T> Fix *create_fix(LAMMPS *lmp, int narg, char **arg)
 {
   return new T(lmp, narg, arg);
 }
+template <typename T> Compute *create_compute(LAMMPS *lmp, int narg, char **arg)
+{
+  return new T(lmp, narg, arg);
+}
 template <typename T> void *plugin_pair(void *lmp) { return new T((LAMMPS *) lmp); }
-template <typename T> void *plugin_fix(void *lmp, int narg, char **arg)
+template <typename T> void *plugin_with_args(void *lmp, int narg, char **arg)
 {
   return new T((LAMMPS *) lmp, narg, arg);
 }
@@ -40,9 +44,13 @@ extern "C" int tylmp_register(void *handle)
 #define TYLMP_FIX(style_name, Class) \
   (*lmp->modify->fix_map)[style_name] = &create_fix<Class>; \
   ++count;
+#define TYLMP_COMPUTE(style_name, Class) \
+  (*lmp->modify->compute_map)[style_name] = &create_compute<Class>; \
+  ++count;
   TYLMP_STYLE_LIST
 #undef TYLMP_PAIR
 #undef TYLMP_FIX
+#undef TYLMP_COMPUTE
   return count;
 }
 
@@ -53,19 +61,21 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.version = LAMMPS_VERSION;
   plugin.author = "tylmp developers";
   plugin.handle = handle;
+#define TYLMP_PLUGIN(kind, style_name, member, factory_type, factory) \
+  plugin.style = kind; \
+  plugin.name = style_name; \
+  plugin.info = "tylmp " kind " " style_name; \
+  plugin.creator.member = (factory_type *) &factory; \
+  (*reg)(&plugin, lmp);
 #define TYLMP_PAIR(style_name, Class) \
-  plugin.style = "pair"; \
-  plugin.name = style_name; \
-  plugin.info = "tylmp pair " style_name; \
-  plugin.creator.v1 = (lammpsplugin_factory1 *) &plugin_pair<Class>; \
-  (*reg)(&plugin, lmp);
+  TYLMP_PLUGIN("pair", style_name, v1, lammpsplugin_factory1, plugin_pair<Class>)
 #define TYLMP_FIX(style_name, Class) \
-  plugin.style = "fix"; \
-  plugin.name = style_name; \
-  plugin.info = "tylmp fix " style_name; \
-  plugin.creator.v2 = (lammpsplugin_factory2 *) &plugin_fix<Class>; \
-  (*reg)(&plugin, lmp);
+  TYLMP_PLUGIN("fix", style_name, v2, lammpsplugin_factory2, plugin_with_args<Class>)
+#define TYLMP_COMPUTE(style_name, Class) \
+  TYLMP_PLUGIN("compute", style_name, v2, lammpsplugin_factory2, plugin_with_args<Class>)
   TYLMP_STYLE_LIST
 #undef TYLMP_PAIR
 #undef TYLMP_FIX
+#undef TYLMP_COMPUTE
+#undef TYLMP_PLUGIN
 }

@@ -2,6 +2,8 @@
 #ifndef TYLMP_STYLES_H
 #define TYLMP_STYLES_H
 
+#include "compute_thornton_yin_contacts.h"
+#include "compute_thornton_yin_micromechanics.h"
 #include "fix_cell_servo.h"
 #include "fix_damping_cundall.h"
 #include "fix_neigh_history_thornton_yin.h"
@@ -11,6 +13,8 @@
   TYLMP_PAIR("thornton/yin", LAMMPS_NS::PairThorntonYin)    \
   TYLMP_FIX("damping/cundall", LAMMPS_NS::FixDampingCundall) \
   TYLMP_FIX("cell/servo", LAMMPS_NS::FixCellServo) \
-  TYLMP_FIX("NEIGH_HISTORY/THORNTON_YIN", LAMMPS_NS::FixNeighHistoryThorntonYin)
+  TYLMP_FIX("NEIGH_HISTORY/THORNTON_YIN", LAMMPS_NS::FixNeighHistoryThorntonYin) \
+  TYLMP_COMPUTE("thornton/yin/contacts", LAMMPS_NS::ComputeThorntonYinContacts) \
+  TYLMP_COMPUTE("thornton/yin/micromechanics", LAMMPS_NS::ComputeThorntonYinMicromechanics)
 
 #endif
