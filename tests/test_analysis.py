@@ -477,3 +477,63 @@ def test_curve_spread_measures_horizontal_distance_of_curves():
     # identical curves do not spread; a level one curve never reaches is skipped
     assert metrics.curve_spread([(x, x), (x, x)], [1.0, 5.0]) == 0.0
     assert metrics.curve_spread([(x, x), (x, 0.1 * x)], [5.0]) is None
+
+
+# ---- definitions of the pre-strain amplitude (docs/fidelity.md "Definitions") -----------------------
+
+G_SEC = 20e6                      # synthetic secant stiffness: q = G_SEC (eps1 - eps3), Pa
+
+
+def linear_axisym_record(d13_end=0.01, n=201):
+    """Axisymmetric compression at p = 100 kPa with q = sig1 - sig3 = G_SEC d, d = eps1 - eps3,
+    and a dilation eps_v = -d/5 (which must not enter any deviatoric measure)."""
+    d = np.linspace(0.0, d13_end, n)
+    q = G_SEC * d
+    sig = np.stack([P0 + 2 * q / 3, P0 - q / 3, P0 - q / 3], axis=1)
+    ev = -0.2 * d
+    eps = np.stack([2 * d / 3 + ev / 3, -d / 3 + ev / 3, -d / 3 + ev / 3], axis=1)
+    return record(sig, eps)
+
+
+def test_strain_measures_in_axisymmetric_compression():
+    """Closed forms for e = (d/3)(2, -1, -1): eps_q = 2d/3, |e| = sqrt(2/3) d,
+    gamma_oct = (2/3) sqrt((e1-e2)^2 + (e2-e3)^2 + (e3-e1)^2) = (2 sqrt2 / 3) d."""
+    d = 0.003
+    eps = np.array([[2 * d / 3 + 1e-3, -d / 3 + 1e-3, -d / 3 + 1e-3]])
+    closed = {"eps_d13": d, "eps_q": 2 * d / 3, "pi_radius": math.sqrt(2 / 3) * d,
+              "gamma_oct": 2 / 3 * math.sqrt(d ** 2 + 0 + d ** 2)}
+    for key, (_, f, factor) in metrics.STRAIN_MEASURES.items():
+        assert float(f(eps)[0]) == pytest.approx(closed[key], rel=1e-12)
+        assert factor * d == pytest.approx(closed[key], rel=1e-12)
+
+
+def test_q_at_prestrain_amplitude_each_measure(tmp_path):
+    f = tmp_path / "lin.csv"
+    io.write_servo_csv(f, linear_axisym_record())
+    t = io.read_servo_csv(str(f))
+    a = 0.00285
+    rows = {k: (d13, q) for k, _, d13, q in metrics.prestrain_readings(t, a)}
+    # the amplitude a in measure m is reached at d = a / (m per unit d), where q = G_SEC d
+    for key, d_needed in {"eps_d13": a, "eps_q": 1.5 * a, "pi_radius": a / math.sqrt(2 / 3),
+                          "gamma_oct": a * 3 / (2 * math.sqrt(2))}.items():
+        assert rows[key][0] == pytest.approx(d_needed, rel=1e-12)
+        assert rows[key][1] == pytest.approx(G_SEC * d_needed, rel=1e-9)
+    assert metrics.strain_at_q(t, 51.4e3) == pytest.approx(51.4e3 / G_SEC, rel=1e-9)
+    assert metrics.q_at_amplitude(t, 0.02, "eps_d13") == (None, None)      # beyond the record
+    so = run_cli("prestrain", str(f))
+    r = kv(so, "lin eps_q")
+    assert r["q_kPa"] == pytest.approx(G_SEC * 1.5 * a * 1e-3, rel=1e-5)
+    assert r["vs_paper_pct"] == pytest.approx(100 * (G_SEC * 1.5 * a / 51.4e3 - 1), rel=1e-5)
+    s = kv(so, "lin stress measures at eps_d13")
+    assert s["sqrt_J2_kPa"] == pytest.approx(G_SEC * a * 1e-3 / math.sqrt(3), rel=1e-5)
+    assert s["tau_oct_kPa"] == pytest.approx(G_SEC * a * 1e-3 * math.sqrt(2) / 3, rel=1e-5)
+
+
+def test_prestrain_end_is_the_last_row_on_the_leg():
+    """A circle whose first row has turned only 0.8 deg (the paper-scale CSV interval) still
+    starts after the prestrain: that row must not be taken as its end."""
+    t = io.Table({k: np.asarray(v, float) for k, v in
+                  nonradial_record("circle", n_pre=30, step_deg=0.8).items()})
+    i0 = compare.prestrain_end(t)
+    assert i0 == 29
+    assert metrics.derived(t)["q"][i0] == pytest.approx(Q0, rel=1e-9)

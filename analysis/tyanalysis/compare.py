@@ -110,9 +110,14 @@ def from_radial(tables):
     return {"b_at_max_sinphi": best["b_median"], "sinphi_max_radial": best["sinphi_max"]}
 
 
-def prestrain_end(table, tol_deg=1.0):
+def prestrain_end(table, tol_deg=1e-6):
     """Index of the last row of the axisymmetric-compression prestrain: the row before the
-    strain Lode angle first leaves 0 deg by more than tol_deg (None if it never does)."""
+    strain Lode angle first leaves 0 deg by more than tol_deg (None if it never does).
+    On the prestrain leg the fix keeps eps2 = eps3 to round-off (Lode angle < 2e-10 deg in the
+    paper-scale records), while the first row on a circle or triangle has turned by the
+    path speed x CSV interval (0.8 deg at paper scale), so the tolerance is tiny: a tolerance
+    of 1 deg took that first, already unloading row (q 5 kPa below the prestrain's) as the end
+    of the prestrain (docs/fidelity.md "Definitions")."""
     d = metrics.derived(table)
     r = np.hypot(d["pi_ex"], d["pi_ey"])
     dev = np.abs((d["lode_strain_deg"] + 180.0) % 360.0 - 180.0)

@@ -152,3 +152,66 @@ def summarize(table):
         out["inertial_number_median"] = _f(np.nanmedian(table["inertial_number"]))
     out["consistency_max"] = consistency(table)
     return out
+
+
+# ---- deviatoric strain measures and the pre-strain amplitude (docs/fidelity.md "Definitions") ----
+
+# Each measure of the deviatoric strain as a function of the principal natural strains (n, 3),
+# with its value in axisymmetric compression as a multiple of eps1 - eps3: there
+# e = (d/3)(2, -1, -1), e:e = 2 d^2/3, |e| = sqrt(2/3) d (docs/theory.md §7.1, §7.4).
+def _pi_radius_strain(eps):
+    return inv.pi_radius(eps)
+
+
+STRAIN_MEASURES = {
+    "eps_d13": ("ε1 − ε3", lambda e: e[:, 0] - e[:, 2], 1.0),
+    "eps_q": ("ε_q = √(2/3 e:e)", inv.deviatoric_strain, 2.0 / 3.0),
+    "gamma_oct": ("γ_oct = (2/√3)√(e:e)", lambda e: 2.0 / math.sqrt(3.0) * _pi_radius_strain(e),
+                  2.0 * math.sqrt(2.0) / 3.0),
+    "pi_radius": ("|e| = √(e:e)", _pi_radius_strain, math.sqrt(2.0 / 3.0)),
+}
+
+# Measures of the deviatoric stress, as multiples of q = sqrt(3 J2) (= sig1 - sig3 in
+# axisymmetric compression): |s| = sqrt(2/3) q, sqrt(J2) = q/sqrt(3), tau_oct = (sqrt(2)/3) q.
+STRESS_MEASURES = {
+    "q": ("q = √(3J2) = σ1 − σ3", 1.0),
+    "pi_radius": ("|s| = √(s:s)", math.sqrt(2.0 / 3.0)),
+    "sqrt_J2": ("√J2", 1.0 / math.sqrt(3.0)),
+    "tau_oct": ("τ_oct", math.sqrt(2.0) / 3.0),
+}
+
+
+def compression_leg(table):
+    """Slice of the rows of the first axisymmetric-compression leg: up to the end of a
+    pre-strain (compare.prestrain_end), or the whole record if the strain never leaves
+    compression (an axisymmetric test)."""
+    from . import compare
+    i0 = compare.prestrain_end(table)
+    return slice(0, len(table) if i0 is None else i0 + 1)
+
+
+def q_at_amplitude(table, amplitude, measure):
+    """Deviatoric stress q [Pa] and eps1 - eps3 where the deviatoric strain measure `measure`
+    (a key of STRAIN_MEASURES) first reaches `amplitude` on the compression leg, by linear
+    interpolation between rows; (None, None) if the leg ends before."""
+    d = derived(table)
+    leg = compression_leg(table)
+    m = STRAIN_MEASURES[measure][1](d["eps"][leg])
+    return value_at(m, d["q"][leg], amplitude), value_at(m, d["eps_d13"][leg], amplitude)
+
+
+def prestrain_readings(table, amplitude):
+    """q at the pre-strain amplitude read as each strain measure: rows of
+    (measure, label, eps1 - eps3 needed in axisymmetric compression, q [Pa] or None)."""
+    out = []
+    for key, (label, _f_, factor) in STRAIN_MEASURES.items():
+        q, _ = q_at_amplitude(table, amplitude, key)
+        out.append((key, label, amplitude / factor, q))
+    return out
+
+
+def strain_at_q(table, q_target):
+    """eps1 - eps3 where q first reaches q_target on the compression leg (None if never)."""
+    d = derived(table)
+    leg = compression_leg(table)
+    return value_at(d["q"][leg], d["eps_d13"][leg], q_target)
