@@ -537,3 +537,68 @@ def test_prestrain_end_is_the_last_row_on_the_leg():
     i0 = compare.prestrain_end(t)
     assert i0 == 29
     assert metrics.derived(t)["q"][i0] == pytest.approx(Q0, rel=1e-9)
+
+
+# ---- coordination numbers (docs/fidelity.md "Coordination") ---------------------------------------
+
+def lattice_with_rattlers(m=4, a=1e-3):
+    """Simple cubic lattice of m^3 spheres of diameter a (1 + 1e-6) (six contacts each, across
+    the periodic faces too), plus a sphere of radius 0.2 a at a cube centre (no contact: the
+    corners are sqrt(3) a / 2 away) and one of radius 0.2 a displaced 0.2 a from another cube
+    centre towards one corner (one contact: 0.666 a < 0.7 a; the next corners are 0.821 a away)."""
+    g = (np.arange(m) + 0.25) * a
+    lat = np.array([[x, y, z] for x in g for y in g for z in g])
+    centre = lat[0] + 0.5 * a
+    toward = lat[0] + 1.5 * a + 0.2 * a * np.ones(3) / math.sqrt(3)    # towards lattice point (2,2,2)
+    pos = np.vstack([lat, centre, toward])
+    diam = np.concatenate([np.full(m ** 3, a * (1 + 1e-6)), [0.4 * a, 0.4 * a]])
+    return np.full(3, m * a), diam, pos
+
+
+def test_coordination_closed_form():
+    box, diam, pos = lattice_with_rattlers()
+    i, j, overlap = metrics.contacts(box, diam, pos)
+    c = metrics.coordination(metrics.counts_per_sphere(i, j, len(diam)))
+    # 64 lattice spheres x 6 / 2 = 192 contacts, plus the single contact of the last sphere
+    assert (c["N"], c["C"], c["N0"], c["N1"]) == (66, 193, 1, 1)
+    assert c["Z"] == pytest.approx(2 * 193 / 66, rel=1e-15)
+    assert c["Zm"] == pytest.approx((2 * 193 - 1) / (66 - 1 - 1), rel=1e-15)
+    single = (i == 65) | (j == 65)
+    assert np.allclose(overlap[~single], 1 - 1 / (1 + 1e-6), rtol=1e-6)
+    dist, sumr = (math.sqrt(3) / 2 - 0.2), 0.5 * (1 + 1e-6) + 0.2
+    assert overlap[single] == pytest.approx(1 - dist / sumr, rel=1e-9)
+    # the same with the spheres shifted by a box length (positions outside [0, L))
+    i2, _, _ = metrics.contacts(box, diam, pos + box * np.array([1, -1, 2]))
+    assert len(i2) == 193
+
+
+def test_cli_coordination(tmp_path):
+    box, diam, pos = lattice_with_rattlers()
+    f = tmp_path / "lattice.data"
+    lines = ["LAMMPS data file", "", f"{len(diam)} atoms", "1 atom types", "",
+             f"-1e-3 {box[0] - 1e-3!r} xlo xhi", f"0 {box[1]!r} ylo yhi", f"0 {box[2]!r} zlo zhi", "",
+             "Atoms # sphere", ""]
+    lines += [f"{k + 1} 1 {diam[k]!r} 2650 {pos[k, 0] - 1e-3!r} {pos[k, 1]!r} {pos[k, 2]!r} 0 0 0"
+              for k in range(len(diam))]
+    lines += ["", "Velocities", ""] + [f"{k + 1} 0 0 0 0 0 0" for k in range(len(diam))]
+    f.write_text("\n".join(lines) + "\n")
+    r = kv(run_cli("coordination", str(f)), "lattice")
+    assert (r["N"], r["C"], r["N0"], r["N1"]) == (66, 193, 1, 1)
+    assert r["Zm"] == pytest.approx(385 / 64, rel=1e-5)
+    vol = math.pi / 6 * float(np.sum(diam ** 3))
+    assert r["solid_fraction"] == pytest.approx(vol / float(np.prod(box)), rel=1e-5)
+
+
+def test_rattlers_recovered_from_recorded_z_and_zm(tmp_path):
+    """A record keeps Z and Zm to 12 digits; for N = 3620, 2C = 13596, N0 = 721, N1 = 3 the
+    integers follow back uniquely (the same for the small lattice)."""
+    n, two_c, n0, n1 = 3620, 13596, 721, 3
+    z, zm = float(f"{two_c / n:.12g}"), float(f"{(two_c - n1) / (n - n0 - n1):.12g}")
+    assert metrics.rattlers_from_z(n, z, zm) == [(n0, n1)]
+    assert metrics.rattlers_from_z(66, 386 / 66, 385 / 64) == [(1, 1)]
+    cols = axisym_record(0.4, 0.25, n=11)
+    cols["Z"], cols["Zm"] = np.full(11, z), np.full(11, zm)
+    f = tmp_path / "prep.csv"
+    io.write_servo_csv(f, cols)
+    r = kv(run_cli("coordination", str(f)), "prep")
+    assert r["N0_N1"] == "721,3" and r["N"] == 3620

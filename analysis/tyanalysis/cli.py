@@ -188,6 +188,27 @@ def cmd_prestrain(a):
                 (f"{key}_kPa", q13 * factor * 1e-3) for key, (_, factor) in metrics.STRESS_MEASURES.items()])
 
 
+def cmd_coordination(a):
+    """Z and the rattler-free Z_m of the spheres in LAMMPS data files (docs/fidelity.md)."""
+    for f in a.files:
+        if f.endswith(".csv"):            # a fix cell/servo record: its last row's Z and Zm
+            t = io.read_servo_csv(f)
+            z, zm = float(t["Z"][-1]), float(t["Zm"][-1])
+            sols = metrics.rattlers_from_z(a.n, z, zm)
+            _kv(t.name, [("step", float(t["step"][-1])), ("N", a.n), ("Z", z), ("Zm", zm),
+                         ("solid_fraction", float(t["solid_fraction"][-1]))]
+                + [("N0_N1", " or ".join(f"{n0},{n1}" for n0, n1 in sols) or None)])
+            continue
+        lo, hi, _, diam, pos = io.read_sphere_data(f)
+        i, j, overlap = metrics.contacts(hi - lo, diam, pos - lo)
+        c = metrics.coordination(metrics.counts_per_sphere(i, j, len(diam)))
+        phi = float(np.sum(math.pi / 6 * diam ** 3) / np.prod(hi - lo))
+        _kv(os.path.splitext(os.path.basename(f))[0],
+            [(k, c[k]) for k in ("N", "C", "N0", "N1", "Z", "Zm")]
+            + [("solid_fraction", phi), ("overlap_rel_mean", float(np.mean(overlap)) if len(overlap) else None),
+               ("overlap_rel_max", float(np.max(overlap)) if len(overlap) else None)])
+
+
 def cmd_table(a):
     ours = compare.load_results(a.results)
     _emit_table(ours, a.out)
@@ -319,6 +340,12 @@ def build_parser():
                   "γ_oct or |e| (Figs 7-9)", out=False)
     p.add_argument("--amplitude", type=float, default=compare.PAPER["prestrain_eps_d_pct"][0] / 100,
                    help="pre-strain amplitude (default 0.00285, the paper's 0.285 %%)")
+    p = sub.add_parser("coordination", help="Z = 2C/N and Zm = (2C - N1)/(N - N0 - N1) of LAMMPS data files")
+    p.add_argument("files", nargs="+", help="data files with 'Atoms # sphere' rows, orthogonal periodic "
+                   "box; or fix cell/servo CSV records (N0, N1 recovered from the last row's Z and Zm)")
+    p.add_argument("--n", type=int, default=compare.PAPER["n_particles"][0],
+                   help="number of spheres of the CSV records (default 3620)")
+    p.set_defaults(func=cmd_coordination)
     files_cmd("summary", cmd_summary, "key numbers of each file, one JSON line per file", out=False)
 
     p = sub.add_parser("table", help="markdown table paper vs ours from a JSON {quantity: value}")

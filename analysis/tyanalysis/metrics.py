@@ -215,3 +215,54 @@ def strain_at_q(table, q_target):
     d = derived(table)
     leg = compression_leg(table)
     return value_at(d["q"][leg], d["eps_d13"][leg], q_target)
+
+
+# ---- coordination numbers (docs/theory.md §7.1; docs/fidelity.md "Coordination") --------------
+
+def contacts(box, diameters, positions):
+    """Contacts in an orthogonal periodic box of side lengths `box` (3,): the pairs (i, j)
+    closer than r_i + r_j by minimum image (a geometric overlap, which is a contact of the law
+    at Γ = 0), with their overlap relative to r_i + r_j."""
+    from scipy.spatial import cKDTree
+    box = np.asarray(box, float)
+    d = np.asarray(diameters, float)
+    x = np.mod(np.asarray(positions, float), box)
+    x = np.where(x >= box, x - box, x)                   # np.mod may return box itself
+    pairs = cKDTree(x, boxsize=box).query_pairs(float(d.max()), output_type="ndarray")
+    i, j = pairs[:, 0], pairs[:, 1]
+    dv = x[j] - x[i]
+    dv -= box * np.round(dv / box)
+    dist = np.sqrt(np.einsum("ij,ij->i", dv, dv))
+    sumr = 0.5 * (d[i] + d[j])
+    touching = dist < sumr
+    return i[touching], j[touching], 1.0 - dist[touching] / sumr[touching]
+
+
+def counts_per_sphere(i, j, n):
+    """Contacts of each of n spheres from the contact list (i, j)."""
+    return np.bincount(i, minlength=n) + np.bincount(j, minlength=n)
+
+
+def coordination(counts):
+    """Z = 2C/N and the mechanical (rattler-free) coordination number of Thornton (2000,
+    Géotechnique 50(1), eq. 8) Z_m = (2C - N1)/(N - N0 - N1), N0 and N1 the numbers of spheres
+    with no and with one contact, from the contacts per sphere."""
+    c = np.asarray(counts, dtype=np.int64)
+    n, two_c = len(c), int(c.sum())
+    n0, n1 = int(np.sum(c == 0)), int(np.sum(c == 1))
+    return {"N": n, "C": two_c // 2, "N0": n0, "N1": n1, "Z": two_c / n,
+            "Zm": (two_c - n1) / (n - n0 - n1) if n > n0 + n1 else float("nan")}
+
+
+def rattlers_from_z(n, z, zm, tol=1e-6):
+    """(N0, N1) from a record's Z and Z_m of n spheres: 2C = Z n is an integer, and
+    Z_m (N - N0 - N1) = 2C - N1 holds for integer N0, N1 >= 0; every solution within `tol`
+    of an integer (the CSV keeps 12 digits) is returned, ideally exactly one."""
+    two_c = int(round(z * n))
+    out = []
+    for n1 in range(0, n + 1):
+        active = (two_c - n1) / zm
+        k = round(active)
+        if abs(active - k) < tol and 0 <= n - k - n1 <= n:
+            out.append((int(n - k - n1), n1))
+    return out
