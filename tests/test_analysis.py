@@ -400,7 +400,8 @@ def test_cli_table_and_compare(files):
                  "--cdst", files["cdst.csv"], "--plane-strain", files["ps.csv"])
     rows = {r.split("|")[1].strip().split(" [")[0]: [c.strip() for c in r.split("|")[1:-1]]
             for r in so.splitlines() if r.startswith("| ") and not r.startswith("| quantity")}
-    assert float(rows["coordination_dense"][2]) == pytest.approx(6.07)
+    assert float(rows["coordination_dense"][2]) == pytest.approx(6.3)     # Zm (docs/fidelity.md)
+    assert float(rows["Z_all_spheres_dense"][2]) == pytest.approx(6.07)
     assert float(rows["void_ratio_30pct_dense"][2]) == pytest.approx(0.515 + 0.09, rel=1e-3)
     assert float(rows["eps_d13_at_peak_dense_pct"][2]) == pytest.approx(5.0, rel=1e-3)
     assert float(rows["b_at_max_sinphi"][2]) == pytest.approx(0.5)
