@@ -159,16 +159,12 @@ def summarize(table):
 # Each measure of the deviatoric strain as a function of the principal natural strains (n, 3),
 # with its value in axisymmetric compression as a multiple of eps1 - eps3: there
 # e = (d/3)(2, -1, -1), e:e = 2 d^2/3, |e| = sqrt(2/3) d (docs/theory.md §7.1, §7.4).
-def _pi_radius_strain(eps):
-    return inv.pi_radius(eps)
-
-
 STRAIN_MEASURES = {
     "eps_d13": ("ε1 − ε3", lambda e: e[:, 0] - e[:, 2], 1.0),
     "eps_q": ("ε_q = √(2/3 e:e)", inv.deviatoric_strain, 2.0 / 3.0),
-    "gamma_oct": ("γ_oct = (2/√3)√(e:e)", lambda e: 2.0 / math.sqrt(3.0) * _pi_radius_strain(e),
+    "gamma_oct": ("γ_oct = (2/√3)√(e:e)", lambda e: 2.0 / math.sqrt(3.0) * inv.pi_radius(e),
                   2.0 * math.sqrt(2.0) / 3.0),
-    "pi_radius": ("|e| = √(e:e)", _pi_radius_strain, math.sqrt(2.0 / 3.0)),
+    "pi_radius": ("|e| = √(e:e)", inv.pi_radius, math.sqrt(2.0 / 3.0)),
 }
 
 # Measures of the deviatoric stress, as multiples of q = sqrt(3 J2) (= sig1 - sig3 in
@@ -204,7 +200,7 @@ def prestrain_readings(table, amplitude):
     """q at the pre-strain amplitude read as each strain measure: rows of
     (measure, label, eps1 - eps3 needed in axisymmetric compression, q [Pa] or None)."""
     out = []
-    for key, (label, _f_, factor) in STRAIN_MEASURES.items():
+    for key, (label, _, factor) in STRAIN_MEASURES.items():
         q, _ = q_at_amplitude(table, amplitude, key)
         out.append((key, label, amplitude / factor, q))
     return out
