@@ -400,7 +400,8 @@ def test_cli_table_and_compare(files):
                  "--cdst", files["cdst.csv"], "--plane-strain", files["ps.csv"])
     rows = {r.split("|")[1].strip().split(" [")[0]: [c.strip() for c in r.split("|")[1:-1]]
             for r in so.splitlines() if r.startswith("| ") and not r.startswith("| quantity")}
-    assert float(rows["coordination_dense"][2]) == pytest.approx(6.07)
+    assert float(rows["coordination_dense"][2]) == pytest.approx(6.3)     # Zm (docs/fidelity.md)
+    assert float(rows["Z_all_spheres_dense"][2]) == pytest.approx(6.07)
     assert float(rows["void_ratio_30pct_dense"][2]) == pytest.approx(0.515 + 0.09, rel=1e-3)
     assert float(rows["eps_d13_at_peak_dense_pct"][2]) == pytest.approx(5.0, rel=1e-3)
     assert float(rows["b_at_max_sinphi"][2]) == pytest.approx(0.5)
@@ -477,3 +478,128 @@ def test_curve_spread_measures_horizontal_distance_of_curves():
     # identical curves do not spread; a level one curve never reaches is skipped
     assert metrics.curve_spread([(x, x), (x, x)], [1.0, 5.0]) == 0.0
     assert metrics.curve_spread([(x, x), (x, 0.1 * x)], [5.0]) is None
+
+
+# ---- definitions of the pre-strain amplitude (docs/fidelity.md "Definitions") -----------------------
+
+G_SEC = 20e6                      # synthetic secant stiffness: q = G_SEC (eps1 - eps3), Pa
+
+
+def linear_axisym_record(d13_end=0.01, n=201):
+    """Axisymmetric compression at p = 100 kPa with q = sig1 - sig3 = G_SEC d, d = eps1 - eps3,
+    and a dilation eps_v = -d/5 (which must not enter any deviatoric measure)."""
+    d = np.linspace(0.0, d13_end, n)
+    q = G_SEC * d
+    sig = np.stack([P0 + 2 * q / 3, P0 - q / 3, P0 - q / 3], axis=1)
+    ev = -0.2 * d
+    eps = np.stack([2 * d / 3 + ev / 3, -d / 3 + ev / 3, -d / 3 + ev / 3], axis=1)
+    return record(sig, eps)
+
+
+def test_strain_measures_in_axisymmetric_compression():
+    """Closed forms for e = (d/3)(2, -1, -1): eps_q = 2d/3, |e| = sqrt(2/3) d,
+    gamma_oct = (2/3) sqrt((e1-e2)^2 + (e2-e3)^2 + (e3-e1)^2) = (2 sqrt2 / 3) d."""
+    d = 0.003
+    eps = np.array([[2 * d / 3 + 1e-3, -d / 3 + 1e-3, -d / 3 + 1e-3]])
+    closed = {"eps_d13": d, "eps_q": 2 * d / 3, "pi_radius": math.sqrt(2 / 3) * d,
+              "gamma_oct": 2 / 3 * math.sqrt(d ** 2 + 0 + d ** 2)}
+    for key, (_, f, factor) in metrics.STRAIN_MEASURES.items():
+        assert float(f(eps)[0]) == pytest.approx(closed[key], rel=1e-12)
+        assert factor * d == pytest.approx(closed[key], rel=1e-12)
+
+
+def test_q_at_prestrain_amplitude_each_measure(tmp_path):
+    f = tmp_path / "lin.csv"
+    io.write_servo_csv(f, linear_axisym_record())
+    t = io.read_servo_csv(str(f))
+    a = 0.00285
+    rows = {k: (d13, q) for k, _, d13, q in metrics.prestrain_readings(t, a)}
+    # the amplitude a in measure m is reached at d = a / (m per unit d), where q = G_SEC d
+    for key, d_needed in {"eps_d13": a, "eps_q": 1.5 * a, "pi_radius": a / math.sqrt(2 / 3),
+                          "gamma_oct": a * 3 / (2 * math.sqrt(2))}.items():
+        assert rows[key][0] == pytest.approx(d_needed, rel=1e-12)
+        assert rows[key][1] == pytest.approx(G_SEC * d_needed, rel=1e-9)
+    assert metrics.strain_at_q(t, 51.4e3) == pytest.approx(51.4e3 / G_SEC, rel=1e-9)
+    assert metrics.q_at_amplitude(t, 0.02, "eps_d13") == (None, None)      # beyond the record
+    so = run_cli("prestrain", str(f))
+    r = kv(so, "lin eps_q")
+    assert r["q_kPa"] == pytest.approx(G_SEC * 1.5 * a * 1e-3, rel=1e-5)
+    assert r["vs_paper_pct"] == pytest.approx(100 * (G_SEC * 1.5 * a / 51.4e3 - 1), rel=1e-5)
+    s = kv(so, "lin stress measures at eps_d13")
+    assert s["sqrt_J2_kPa"] == pytest.approx(G_SEC * a * 1e-3 / math.sqrt(3), rel=1e-5)
+    assert s["tau_oct_kPa"] == pytest.approx(G_SEC * a * 1e-3 * math.sqrt(2) / 3, rel=1e-5)
+
+
+def test_prestrain_end_is_the_last_row_on_the_leg():
+    """A circle whose first row has turned only 0.8 deg (the paper-scale CSV interval) still
+    starts after the prestrain: that row must not be taken as its end."""
+    t = io.Table({k: np.asarray(v, float) for k, v in
+                  nonradial_record("circle", n_pre=30, step_deg=0.8).items()})
+    i0 = compare.prestrain_end(t)
+    assert i0 == 29
+    assert metrics.derived(t)["q"][i0] == pytest.approx(Q0, rel=1e-9)
+
+
+# ---- coordination numbers (docs/fidelity.md "Coordination") ---------------------------------------
+
+def lattice_with_rattlers(m=4, a=1e-3):
+    """Simple cubic lattice of m^3 spheres of diameter a (1 + 1e-6) (six contacts each, across
+    the periodic faces too), plus a sphere of radius 0.2 a at a cube centre (no contact: the
+    corners are sqrt(3) a / 2 away) and one of radius 0.2 a displaced 0.2 a from another cube
+    centre towards one corner (one contact: 0.666 a < 0.7 a; the next corners are 0.821 a away)."""
+    g = (np.arange(m) + 0.25) * a
+    lat = np.array([[x, y, z] for x in g for y in g for z in g])
+    centre = lat[0] + 0.5 * a
+    toward = lat[0] + 1.5 * a + 0.2 * a * np.ones(3) / math.sqrt(3)    # towards lattice point (2,2,2)
+    pos = np.vstack([lat, centre, toward])
+    diam = np.concatenate([np.full(m ** 3, a * (1 + 1e-6)), [0.4 * a, 0.4 * a]])
+    return np.full(3, m * a), diam, pos
+
+
+def test_coordination_closed_form():
+    box, diam, pos = lattice_with_rattlers()
+    i, j, overlap = metrics.contacts(box, diam, pos)
+    c = metrics.coordination(metrics.counts_per_sphere(i, j, len(diam)))
+    # 64 lattice spheres x 6 / 2 = 192 contacts, plus the single contact of the last sphere
+    assert (c["N"], c["C"], c["N0"], c["N1"]) == (66, 193, 1, 1)
+    assert c["Z"] == pytest.approx(2 * 193 / 66, rel=1e-15)
+    assert c["Zm"] == pytest.approx((2 * 193 - 1) / (66 - 1 - 1), rel=1e-15)
+    single = (i == 65) | (j == 65)
+    assert np.allclose(overlap[~single], 1 - 1 / (1 + 1e-6), rtol=1e-6)
+    dist, sumr = (math.sqrt(3) / 2 - 0.2), 0.5 * (1 + 1e-6) + 0.2
+    assert overlap[single] == pytest.approx(1 - dist / sumr, rel=1e-9)
+    # the same with the spheres shifted by a box length (positions outside [0, L))
+    i2, _, _ = metrics.contacts(box, diam, pos + box * np.array([1, -1, 2]))
+    assert len(i2) == 193
+
+
+def test_cli_coordination(tmp_path):
+    box, diam, pos = lattice_with_rattlers()
+    f = tmp_path / "lattice.data"
+    lines = ["LAMMPS data file", "", f"{len(diam)} atoms", "1 atom types", "",
+             f"-1e-3 {box[0] - 1e-3!r} xlo xhi", f"0 {box[1]!r} ylo yhi", f"0 {box[2]!r} zlo zhi", "",
+             "Atoms # sphere", ""]
+    lines += [f"{k + 1} 1 {diam[k]!r} 2650 {pos[k, 0] - 1e-3!r} {pos[k, 1]!r} {pos[k, 2]!r} 0 0 0"
+              for k in range(len(diam))]
+    lines += ["", "Velocities", ""] + [f"{k + 1} 0 0 0 0 0 0" for k in range(len(diam))]
+    f.write_text("\n".join(lines) + "\n")
+    r = kv(run_cli("coordination", str(f)), "lattice")
+    assert (r["N"], r["C"], r["N0"], r["N1"]) == (66, 193, 1, 1)
+    assert r["Zm"] == pytest.approx(385 / 64, rel=1e-5)
+    vol = math.pi / 6 * float(np.sum(diam ** 3))
+    assert r["solid_fraction"] == pytest.approx(vol / float(np.prod(box)), rel=1e-5)
+
+
+def test_rattlers_recovered_from_recorded_z_and_zm(tmp_path):
+    """A record keeps Z and Zm to 12 digits; for N = 3620, 2C = 13596, N0 = 721, N1 = 3 the
+    integers follow back uniquely (the same for the small lattice)."""
+    n, two_c, n0, n1 = 3620, 13596, 721, 3
+    z, zm = float(f"{two_c / n:.12g}"), float(f"{(two_c - n1) / (n - n0 - n1):.12g}")
+    assert metrics.rattlers_from_z(n, z, zm) == [(n0, n1)]
+    assert metrics.rattlers_from_z(66, 386 / 66, 385 / 64) == [(1, 1)]
+    cols = axisym_record(0.4, 0.25, n=11)
+    cols["Z"], cols["Zm"] = np.full(11, z), np.full(11, zm)
+    f = tmp_path / "prep.csv"
+    io.write_servo_csv(f, cols)
+    r = kv(run_cli("coordination", str(f)), "prep")
+    assert r["N0_N1"] == "721,3" and r["N"] == 3620

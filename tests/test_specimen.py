@@ -142,6 +142,75 @@ def test_paper_cell_side_implied():
     assert L1 / (4.3 * MM) > 1.04
 
 
+# ---- candidate size distributions (docs/specimen.md) --------------------------------------
+
+# the facts each candidate claims to honour exactly: which mean is 0.26 mm, and whether
+# 3620 spheres at solid fraction 0.5 fill the paper's 4.3 mm cube
+CLAIMS = {"maxent": ("number", True), "geometric": ("number", True),
+          "mean-only": ("number", False), "volume-mean": ("volume", False)}
+
+
+def test_every_candidate_is_listed():
+    assert set(sp.DISTRIBUTIONS) == set(CLAIMS)
+
+
+@pytest.mark.parametrize("name", sorted(CLAIMS))
+@pytest.mark.parametrize("n", [N_QUICK, N_PAPER, 8000])
+def test_candidate_honours_its_facts(name, n):
+    mean_kind, cell = CLAIMS[name]
+    d, c = sp.size_counts(n, distribution=name)
+    # five sizes from 0.135 to 0.4 mm, every size present, n spheres
+    assert len(d) == 5 and np.all(np.diff(d) > 0) and np.all(c > 0) and int(c.sum()) == n
+    assert d[0] == 0.135 * MM and d[-1] == 0.4 * MM
+    number_mean = float(c @ d) / n                          # Σ c d / n
+    volume_mean = float(c @ d ** 4) / float(c @ d ** 3)     # Σ c d^4 / Σ c d^3
+    assert abs((number_mean if mean_kind == "number" else volume_mean) / MM - 0.26) < 1e-12
+    assert sp.number_mean(d, c) == pytest.approx(number_mean, rel=1e-14)
+    assert sp.volume_mean(d, c) == pytest.approx(volume_mean, rel=1e-14)
+    # cell side of 3620 spheres at 0.5: L^3 = 3620 (π/6) <d^3> / 0.5
+    if n == N_PAPER:
+        L = (N_PAPER * math.pi / 6 * float(c @ d ** 3) / n / 0.5) ** (1 / 3)
+        if cell:
+            assert abs(L / (4.3 * MM) - 1.0) < 1e-4
+        else:
+            assert abs(L / (4.3 * MM) - 1.0) > 0.04         # documented: 4.53 / 3.51 mm
+
+
+def test_candidate_spacings_and_the_volume_mean_bound():
+    d, _ = sp.paper_size_distribution(distribution="geometric")
+    assert np.allclose(d[1:] / d[:-1], (0.4 / 0.135) ** 0.25, rtol=1e-14)
+    d, _ = sp.paper_size_distribution(distribution="maxent")
+    assert np.allclose(np.diff(d), 0.06625 * MM, rtol=1e-12)
+    # D[4,3] >= <d^3>^(1/3) (moment inequality): with the paper's cell <d^3>^(1/3) = 0.2758 mm,
+    # so a volume mean of 0.26 mm cannot also fill 4.3 mm at 0.5 -- whatever the fractions
+    mean_d3 = 0.5 * (4.3 * MM) ** 3 / (N_PAPER * math.pi / 6)
+    assert mean_d3 ** (1 / 3) / MM == pytest.approx(0.27578, abs=1e-5)
+    for name in CLAIMS:
+        d, p = sp.paper_size_distribution(distribution=name)
+        assert sp.volume_mean(d, p) >= float(p @ d ** 3) ** (1 / 3)
+
+
+def test_default_distribution_unchanged():
+    d0, c0 = sp.size_counts(N_PAPER)
+    d1, c1 = sp.size_counts(N_PAPER, distribution="maxent")
+    assert np.array_equal(c0, [313, 930, 1388, 830, 159]) and np.array_equal(c0, c1)
+    assert np.array_equal(d0, d1)
+    d2, c2 = sp.size_counts(N_PAPER, match_cell=False)
+    d3, c3 = sp.size_counts(N_PAPER, distribution="mean-only")
+    assert np.array_equal(c2, c3) and np.array_equal(d2, d3)
+    with pytest.raises(ValueError, match="unknown size distribution 'nope'"):
+        sp.size_counts(N_PAPER, distribution="nope")
+
+
+def test_generate_with_candidate():
+    L, d, pos = sp.generate(N_QUICK, 0.5, seed=2, distribution="volume-mean")
+    sizes, counts = sp.size_counts(N_QUICK, distribution="volume-mean")
+    assert np.array_equal(np.sort(d), np.sort(np.repeat(sizes, counts)))
+    assert abs(vol_fraction(d, L) - 0.5) < 1e-12
+    i, j = sp.find_overlaps(pos, d, L)
+    assert len(i) == 0
+
+
 # ---- generated assemblies ------------------------------------------------------------
 
 def check_assembly(L, d, pos, n, phi):
@@ -271,3 +340,16 @@ def test_cli(tmp_path):
     L, d0, pos0 = sp.generate(N_QUICK, 0.5, seed=3)
     assert np.all(box == L) and np.array_equal(d, d0) and np.array_equal(pos, pos0)
     assert np.all(rho == 2650e12)
+
+
+def test_cli_distributions_table(capsys):
+    assert sp.main(["--distributions"]) == 0
+    rows = [r for r in capsys.readouterr().out.splitlines() if r.startswith("| ") and "---" not in r]
+    table = {r.split("|")[1].strip(): [c.strip() for c in r.split("|")[2:-1]] for r in rows[1:]}
+    assert set(table) == set(CLAIMS)
+    for name in CLAIMS:
+        d, c = sp.size_counts(N_PAPER, distribution=name)
+        assert table[name][1] == ", ".join(map(str, c))
+        # φ0 of 3620 spheres in the 4.3 mm cube, recomputed here
+        phi = math.pi / 6 * float(c @ d ** 3) / (4.3 * MM) ** 3
+        assert float(table[name][6]) == pytest.approx(phi, abs=6e-5)

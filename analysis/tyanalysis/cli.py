@@ -169,6 +169,47 @@ def cmd_pi_plane(a):
     _wrote(figures.pi_plane(tables, labels, a.out, surfaces, guides))
 
 
+def cmd_prestrain(a):
+    """q at the pre-strain amplitude under each deviatoric strain measure (docs/fidelity.md)."""
+    q_paper = compare.PAPER["prestrain_q_kPa"][0]
+    for t in _read_all(a.files):
+        d = metrics.derived(t)
+        leg = metrics.compression_leg(t)
+        k = leg.stop - 1
+        _kv(t.name, [("leg_end_eps_d13_pct", float(d["eps_d13"][k]) * 100),
+                     ("leg_end_q_kPa", float(d["q"][k]) * 1e-3),
+                     ("eps_d13_at_paper_q_pct", metrics._f(metrics.strain_at_q(t, q_paper * 1e3), 100))])
+        readings = metrics.prestrain_readings(t, a.amplitude)
+        for key, label, d13, q in readings:
+            _kv(f"{t.name} {key}", [("eps_d13_needed_pct", d13 * 100), ("q_kPa", metrics._f(q, 1e-3)),
+                                    ("vs_paper_pct", None if q is None else 100 * (q * 1e-3 / q_paper - 1))])
+        q13 = readings[0][3]            # the decks' reading, eps1 - eps3, in other stress measures
+        if q13 is not None:
+            _kv(f"{t.name} stress measures at eps_d13", [
+                (f"{key}_kPa", q13 * factor * 1e-3) for key, (_, factor) in metrics.STRESS_MEASURES.items()])
+
+
+def cmd_coordination(a):
+    """Z and the rattler-free Z_m of the spheres in LAMMPS data files (docs/fidelity.md)."""
+    for f in a.files:
+        if f.endswith(".csv"):            # a fix cell/servo record: its last row's Z and Zm
+            t = io.read_servo_csv(f)
+            z, zm = float(t["Z"][-1]), float(t["Zm"][-1])
+            sols = metrics.rattlers_from_z(a.n, z, zm)
+            _kv(t.name, [("step", float(t["step"][-1])), ("N", a.n), ("Z", z), ("Zm", zm),
+                         ("solid_fraction", float(t["solid_fraction"][-1]))]
+                + [("N0_N1", " or ".join(f"{n0},{n1}" for n0, n1 in sols) or None)])
+            continue
+        lo, hi, _, diam, pos = io.read_sphere_data(f)
+        i, j, overlap = metrics.contacts(hi - lo, diam, pos - lo)
+        c = metrics.coordination(metrics.counts_per_sphere(i, j, len(diam)))
+        phi = float(np.sum(math.pi / 6 * diam ** 3) / np.prod(hi - lo))
+        _kv(os.path.splitext(os.path.basename(f))[0],
+            [(k, c[k]) for k in ("N", "C", "N0", "N1", "Z", "Zm")]
+            + [("solid_fraction", phi), ("overlap_rel_mean", float(np.mean(overlap)) if len(overlap) else None),
+               ("overlap_rel_max", float(np.max(overlap)) if len(overlap) else None)])
+
+
 def cmd_table(a):
     ours = compare.load_results(a.results)
     _emit_table(ours, a.out)
@@ -310,6 +351,16 @@ def build_parser():
                    help="Π radius of the guides (strain; default: at the end of the prestrain)")
     p.add_argument("--sinphi-tc", type=float, help="draw the surfaces through this compression "
                    "strength (default: through the stress state at the end of the prestrain)")
+    p = files_cmd("prestrain", cmd_prestrain, "q at the pre-strain amplitude read as ε1 − ε3, ε_q, "
+                  "γ_oct or |e| (Figs 7-9)", out=False)
+    p.add_argument("--amplitude", type=float, default=compare.PAPER["prestrain_eps_d_pct"][0] / 100,
+                   help="pre-strain amplitude (default 0.00285, the paper's 0.285 %%)")
+    p = sub.add_parser("coordination", help="Z = 2C/N and Zm = (2C - N1)/(N - N0 - N1) of LAMMPS data files")
+    p.add_argument("files", nargs="+", help="data files with 'Atoms # sphere' rows, orthogonal periodic "
+                   "box; or fix cell/servo CSV records (N0, N1 recovered from the last row's Z and Zm)")
+    p.add_argument("--n", type=int, default=compare.PAPER["n_particles"][0],
+                   help="number of spheres of the CSV records (default 3620)")
+    p.set_defaults(func=cmd_coordination)
     files_cmd("summary", cmd_summary, "key numbers of each file, one JSON line per file", out=False)
 
     p = sub.add_parser("micromechanics", help="fabric, strong/weak and normal/tangential stress, "

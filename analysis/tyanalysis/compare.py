@@ -20,8 +20,10 @@ PAPER = {
     "solid_fraction_loose": (0.618, "", "§2", "start of shear, prepared with μ = 0.3"),
     "void_ratio_start_dense": (1 / 0.660 - 1, "", "§2 (derived)", "e = 1/ν_s − 1"),
     "void_ratio_start_loose": (1 / 0.618 - 1, "", "§2 (derived)", "e = 1/ν_s − 1"),
-    "coordination_dense": (6.07, "", "§2", "average coordination number, end of isotropic compression"),
-    "coordination_loose": (5.02, "", "§2", "average coordination number, end of isotropic compression"),
+    "coordination_dense": (6.07, "", "§2", "average coordination number, end of isotropic compression; "
+                           "compared with Zm, rattlers excluded (docs/fidelity.md)"),
+    "coordination_loose": (5.02, "", "§2", "average coordination number, end of isotropic compression; "
+                           "compared with Zm, rattlers excluded (docs/fidelity.md)"),
     "eps_d13_at_peak_dense_pct": (5.0, "%", "§3, Fig. 1", "'peak ... at about 5% strain' (approx.)"),
     "eps_d13_steady_loose_pct": (15.0, "%", "§3, Fig. 1", "loose: constant deviator stress from about 15% (approx.)"),
     "void_ratio_30pct_dense": (0.598, "", "§3, Fig. 2", "at 30% deviator strain"),
@@ -94,8 +96,8 @@ def from_axisym(table, role):
     s = metrics.summarize(table)
     out = {f"solid_fraction_{role}": s.get("solid_fraction_start"),
            f"void_ratio_start_{role}": s.get("void_ratio_start"),
-           f"coordination_{role}": s.get("Z_start"),
-           f"mech_coordination_{role}": s.get("Zm_start"),
+           f"coordination_{role}": s.get("Zm_start"),
+           f"Z_all_spheres_{role}": s.get("Z_start"),
            f"void_ratio_30pct_{role}": s.get("void_ratio_at_30pct"),
            f"sinphi_max_{role}": s["sinphi_max"], f"sinphi_end_{role}": s["sinphi_end"],
            f"q_peak_{role}_kPa": s["q_peak_kPa"]}
@@ -110,9 +112,14 @@ def from_radial(tables):
     return {"b_at_max_sinphi": best["b_median"], "sinphi_max_radial": best["sinphi_max"]}
 
 
-def prestrain_end(table, tol_deg=1.0):
+def prestrain_end(table, tol_deg=1e-6):
     """Index of the last row of the axisymmetric-compression prestrain: the row before the
-    strain Lode angle first leaves 0 deg by more than tol_deg (None if it never does)."""
+    strain Lode angle first leaves 0 deg by more than tol_deg (None if it never does).
+    On the prestrain leg the fix keeps eps2 = eps3 to round-off (Lode angle < 2e-10 deg in the
+    paper-scale records), while the first row on a circle or triangle has turned by the
+    path speed x CSV interval (0.8 deg at paper scale), so the tolerance is tiny: a tolerance
+    of 1 deg took that first, already unloading row (q 5 kPa below the prestrain's) as the end
+    of the prestrain (docs/fidelity.md "Definitions")."""
     d = metrics.derived(table)
     r = np.hypot(d["pi_ex"], d["pi_ey"])
     dev = np.abs((d["lode_strain_deg"] + 180.0) % 360.0 - 180.0)

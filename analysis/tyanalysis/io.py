@@ -179,3 +179,42 @@ def write_json(path, obj, indent=1):
     with open(tmp, "w") as fh:
         json.dump(obj, fh, indent=indent)
     os.replace(tmp, path)
+
+
+_DATA_SECTIONS = ("Atoms", "Velocities", "Masses", "Ellipsoids", "Lines", "Triangles", "Bodies",
+                  "Bonds", "Angles", "Dihedrals", "Impropers", "Pair Coeffs", "PairIJ Coeffs")
+
+
+def read_sphere_data(path):
+    """Box and spheres of a LAMMPS data file with `Atoms # sphere` rows (id type diameter
+    density x y z [ix iy iz], as `write_data` and tylmp.specimen write them), orthogonal box:
+    (lo (3,), hi (3,), ids (n,), diameters (n,), positions (n, 3)), rows sorted by id."""
+    lo, hi = np.zeros(3), np.zeros(3)
+    rows, section = [], None
+    with open(path, "r", encoding="utf-8") as fh:
+        next(fh)                                         # title line
+        for line in fh:
+            s = line.split("#")[0].strip()
+            head = line.strip()
+            if any(head.startswith(name) for name in _DATA_SECTIONS):
+                section = head.split()[0]
+                if section == "Atoms" and "#" in head and head.split("#")[1].strip() != "sphere":
+                    raise ValueError(f"{path}: Atoms section is not atom_style sphere: {head!r}")
+                continue
+            if not s:
+                continue
+            t = s.split()
+            if section is None:
+                for a, key in enumerate(("xlo", "ylo", "zlo")):
+                    if len(t) >= 4 and t[2] == key:
+                        lo[a], hi[a] = float(t[0]), float(t[1])
+                if len(t) >= 4 and t[3] == "xy":
+                    if any(float(v) != 0.0 for v in t[:3]):
+                        raise ValueError(f"{path}: triclinic box (tilt {t[:3]}) is not supported")
+            elif section == "Atoms":
+                rows.append([float(v) for v in t[:7]])
+    if not rows:
+        raise ValueError(f"{path}: no Atoms rows")
+    a = np.array(rows)
+    a = a[np.argsort(a[:, 0])]
+    return lo, hi, a[:, 0].astype(np.int64), a[:, 2], a[:, 4:7]

@@ -152,3 +152,113 @@ def summarize(table):
         out["inertial_number_median"] = _f(np.nanmedian(table["inertial_number"]))
     out["consistency_max"] = consistency(table)
     return out
+
+
+# ---- deviatoric strain measures and the pre-strain amplitude (docs/fidelity.md "Definitions") ----
+
+# Each measure of the deviatoric strain as a function of the principal natural strains (n, 3),
+# with its value in axisymmetric compression as a multiple of eps1 - eps3: there
+# e = (d/3)(2, -1, -1), e:e = 2 d^2/3, |e| = sqrt(2/3) d (docs/theory.md §7.1, §7.4).
+STRAIN_MEASURES = {
+    "eps_d13": ("ε1 − ε3", lambda e: e[:, 0] - e[:, 2], 1.0),
+    "eps_q": ("ε_q = √(2/3 e:e)", inv.deviatoric_strain, 2.0 / 3.0),
+    "gamma_oct": ("γ_oct = (2/√3)√(e:e)", lambda e: 2.0 / math.sqrt(3.0) * inv.pi_radius(e),
+                  2.0 * math.sqrt(2.0) / 3.0),
+    "pi_radius": ("|e| = √(e:e)", inv.pi_radius, math.sqrt(2.0 / 3.0)),
+}
+
+# Measures of the deviatoric stress, as multiples of q = sqrt(3 J2) (= sig1 - sig3 in
+# axisymmetric compression): |s| = sqrt(2/3) q, sqrt(J2) = q/sqrt(3), tau_oct = (sqrt(2)/3) q.
+STRESS_MEASURES = {
+    "q": ("q = √(3J2) = σ1 − σ3", 1.0),
+    "pi_radius": ("|s| = √(s:s)", math.sqrt(2.0 / 3.0)),
+    "sqrt_J2": ("√J2", 1.0 / math.sqrt(3.0)),
+    "tau_oct": ("τ_oct", math.sqrt(2.0) / 3.0),
+}
+
+
+def compression_leg(table):
+    """Slice of the rows of the first axisymmetric-compression leg: up to the end of a
+    pre-strain (compare.prestrain_end), or the whole record if the strain never leaves
+    compression (an axisymmetric test)."""
+    from . import compare
+    i0 = compare.prestrain_end(table)
+    return slice(0, len(table) if i0 is None else i0 + 1)
+
+
+def q_at_amplitude(table, amplitude, measure):
+    """Deviatoric stress q [Pa] and eps1 - eps3 where the deviatoric strain measure `measure`
+    (a key of STRAIN_MEASURES) first reaches `amplitude` on the compression leg, by linear
+    interpolation between rows; (None, None) if the leg ends before."""
+    d = derived(table)
+    leg = compression_leg(table)
+    m = STRAIN_MEASURES[measure][1](d["eps"][leg])
+    return value_at(m, d["q"][leg], amplitude), value_at(m, d["eps_d13"][leg], amplitude)
+
+
+def prestrain_readings(table, amplitude):
+    """q at the pre-strain amplitude read as each strain measure: rows of
+    (measure, label, eps1 - eps3 needed in axisymmetric compression, q [Pa] or None)."""
+    out = []
+    for key, (label, _, factor) in STRAIN_MEASURES.items():
+        q, _ = q_at_amplitude(table, amplitude, key)
+        out.append((key, label, amplitude / factor, q))
+    return out
+
+
+def strain_at_q(table, q_target):
+    """eps1 - eps3 where q first reaches q_target on the compression leg (None if never)."""
+    d = derived(table)
+    leg = compression_leg(table)
+    return value_at(d["q"][leg], d["eps_d13"][leg], q_target)
+
+
+# ---- coordination numbers (docs/theory.md §7.1; docs/fidelity.md "Coordination") --------------
+
+def contacts(box, diameters, positions):
+    """Contacts in an orthogonal periodic box of side lengths `box` (3,): the pairs (i, j)
+    closer than r_i + r_j by minimum image (a geometric overlap, which is a contact of the law
+    at Γ = 0), with their overlap relative to r_i + r_j."""
+    from scipy.spatial import cKDTree
+    box = np.asarray(box, float)
+    d = np.asarray(diameters, float)
+    x = np.mod(np.asarray(positions, float), box)
+    x = np.where(x >= box, x - box, x)                   # np.mod may return box itself
+    pairs = cKDTree(x, boxsize=box).query_pairs(float(d.max()), output_type="ndarray")
+    i, j = pairs[:, 0], pairs[:, 1]
+    dv = x[j] - x[i]
+    dv -= box * np.round(dv / box)
+    dist = np.sqrt(np.einsum("ij,ij->i", dv, dv))
+    sumr = 0.5 * (d[i] + d[j])
+    touching = dist < sumr
+    return i[touching], j[touching], 1.0 - dist[touching] / sumr[touching]
+
+
+def counts_per_sphere(i, j, n):
+    """Contacts of each of n spheres from the contact list (i, j)."""
+    return np.bincount(i, minlength=n) + np.bincount(j, minlength=n)
+
+
+def coordination(counts):
+    """Z = 2C/N and the mechanical (rattler-free) coordination number of Thornton (2000,
+    Géotechnique 50(1), eq. 8) Z_m = (2C - N1)/(N - N0 - N1), N0 and N1 the numbers of spheres
+    with no and with one contact, from the contacts per sphere."""
+    c = np.asarray(counts, dtype=np.int64)
+    n, two_c = len(c), int(c.sum())
+    n0, n1 = int(np.sum(c == 0)), int(np.sum(c == 1))
+    return {"N": n, "C": two_c // 2, "N0": n0, "N1": n1, "Z": two_c / n,
+            "Zm": (two_c - n1) / (n - n0 - n1) if n > n0 + n1 else float("nan")}
+
+
+def rattlers_from_z(n, z, zm, tol=1e-6):
+    """(N0, N1) from a record's Z and Z_m of n spheres: 2C = Z n is an integer, and
+    Z_m (N - N0 - N1) = 2C - N1 holds for integer N0, N1 >= 0; every solution within `tol`
+    of an integer (the CSV keeps 12 digits) is returned, ideally exactly one."""
+    two_c = int(round(z * n))
+    out = []
+    for n1 in range(0, n + 1):
+        active = (two_c - n1) / zm
+        k = round(active)
+        if abs(active - k) < tol and 0 <= n - k - n1 <= n:
+            out.append((int(n - k - n1), n1))
+    return out

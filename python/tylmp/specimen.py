@@ -41,7 +41,8 @@ import numpy as np
 
 __all__ = [
     "D_MIN", "D_MAX", "D_MEAN", "N_PAPER", "L_PAPER", "PHI_PAPER", "DENSITY",
-    "SCALES", "paper_size_distribution", "size_counts", "box_side", "solid_fraction",
+    "SCALES", "DISTRIBUTIONS", "paper_size_distribution", "size_counts", "box_side",
+    "solid_fraction", "number_mean", "volume_mean", "describe_distributions",
     "generate", "find_overlaps", "write_data", "read_data", "main",
 ]
 
@@ -92,44 +93,85 @@ def _maxent(d, constraints, targets, iters=200):
     return p
 
 
-def paper_size_distribution(match_cell=True, n_sizes=N_SIZES):
-    """Five diameters [m] and their number fractions (sum 1).
+# Candidate size distributions (docs/specimen.md, "Candidate distributions"): each honours the
+# paper's five sizes from 0.135 to 0.4 mm and reads its other facts in one way.
+#   name: (spacing of the five diameters, which mean is 0.26 mm, whether the mean d^3 of the
+#          paper's cell -- 3620 spheres at solid fraction 0.5 in a 4.3 mm cube -- is imposed)
+DISTRIBUTIONS = {
+    "maxent": ("even", "number", True),        # default: every stated fact, even spacing
+    "geometric": ("geometric", "number", True),  # every stated fact, sieve-like spacing
+    "mean-only": ("even", "number", False),    # relaxes the cell: phi0 0.584 in 4.3 mm
+    "volume-mean": ("even", "volume", False),  # "average" = D[4,3]; relaxes the cell
+}
+DEFAULT_DISTRIBUTION = "maxent"
 
-    Diameters are evenly spaced from 0.135 to 0.4 mm.  The fractions are the
-    maximum-entropy distribution with number mean exactly 0.26 mm and, if
-    ``match_cell`` (default), with the mean d^3 implied by the paper's cell
-    (3620 spheres, solid fraction 0.5, cube side 4.3 mm).  With ``match_cell=False``
-    only the mean is imposed (an exponential family, nearly uniform), which would give
-    a 4.53 mm cube at solid fraction 0.5.
+
+def _distribution_name(distribution, match_cell):
+    name = distribution or (DEFAULT_DISTRIBUTION if match_cell else "mean-only")
+    if name not in DISTRIBUTIONS:
+        raise ValueError(f"unknown size distribution {name!r}; use one of {sorted(DISTRIBUTIONS)}")
+    return name
+
+
+def number_mean(diameters, weights=None):
+    """Σ w d / Σ w: the number-mean diameter (weights = counts or number fractions)."""
+    d = np.asarray(diameters, float)
+    w = np.ones_like(d) if weights is None else np.asarray(weights, float)
+    return float(w @ d / w.sum())
+
+
+def volume_mean(diameters, weights=None):
+    """Σ w d⁴ / Σ w d³: the volume- (and, at one density, mass-) weighted mean diameter D[4,3]."""
+    d = np.asarray(diameters, float)
+    w = np.ones_like(d) if weights is None else np.asarray(weights, float)
+    return float(w @ d ** 4 / (w @ d ** 3))
+
+
+def paper_size_distribution(match_cell=True, n_sizes=N_SIZES, distribution=None):
+    """Five diameters [m] and their number fractions (sum 1) of a candidate distribution.
+
+    ``distribution`` names a key of DISTRIBUTIONS (default "maxent"; ``match_cell=False``
+    without a name selects "mean-only", as before).  The fractions are the maximum-entropy
+    distribution on the five diameters (evenly or geometrically spaced from 0.135 to 0.4 mm)
+    subject to the candidate's constraints: the number mean 0.26 mm (or, for "volume-mean",
+    the volume-weighted mean Σ p d⁴ / Σ p d³ = 0.26 mm) and, where imposed, the mean d^3
+    implied by the paper's cell (3620 spheres, solid fraction 0.5, cube side 4.3 mm).
+    "mean-only" would need a 4.53 mm cube at solid fraction 0.5.
     """
-    d = np.linspace(D_MIN, D_MAX, n_sizes)
-    if match_cell:
-        mean_d3 = PHI_PAPER * L_PAPER ** 3 / (N_PAPER * _TWO_PI_OVER_6)
-        p = _maxent(d, [lambda x: x, lambda x: x ** 3], [D_MEAN, mean_d3])
-    else:
-        p = _maxent(d, [lambda x: x], [D_MEAN])
-    # polish the mean to round-off: move the tiny residual into the end fractions
-    # (keeps Σp = 1; the correction is at the 1e-16 level)
-    resid = D_MEAN - float(p @ d)
-    dp = resid / (d[-1] - d[0])
-    p[-1] += dp
-    p[0] -= dp
+    spacing, mean_kind, cell = DISTRIBUTIONS[_distribution_name(distribution, match_cell)]
+    d = (np.linspace if spacing == "even" else np.geomspace)(D_MIN, D_MAX, n_sizes)
+    if mean_kind == "number":
+        features, targets = [lambda x: x], [D_MEAN]
+    else:                        # Σ p (d^4 - D d^3) = 0 is linear in p
+        features, targets = [lambda x: x ** 4 - D_MEAN * x ** 3], [0.0]
+    if cell:
+        features.append(lambda x: x ** 3)
+        targets.append(PHI_PAPER * L_PAPER ** 3 / (N_PAPER * _TWO_PI_OVER_6))
+    p = _maxent(d, features, targets)
+    if mean_kind == "number":
+        # polish the mean to round-off: move the tiny residual into the end fractions
+        # (keeps Σp = 1; the correction is at the 1e-16 level)
+        resid = D_MEAN - float(p @ d)
+        dp = resid / (d[-1] - d[0])
+        p[-1] += dp
+        p[0] -= dp
     return d, p
 
 
-def size_counts(n, match_cell=True):
+def size_counts(n, match_cell=True, distribution=None):
     """Integer counts per size for ``n`` spheres and the diameters [m] actually used.
 
     Counts: largest-remainder rounding of n × fractions (sum exactly n).  Because
     integer counts cannot reproduce a mean of exactly 0.26 mm with fixed diameters,
     the three interior diameters are shifted by one common, tiny amount (≈1e-5 mm for
-    n = 3620) so that the number mean is 0.26 mm to round-off; the end diameters stay
-    exactly 0.135 and 0.4 mm.
+    n = 3620) so that the candidate's mean (number mean, or D[4,3] for "volume-mean") is
+    0.26 mm to round-off; the end diameters stay exactly 0.135 and 0.4 mm.
     """
     n = int(n)
     if n < N_SIZES:
         raise ValueError(f"need at least {N_SIZES} spheres, got {n}")
-    d, p = paper_size_distribution(match_cell=match_cell)
+    name = _distribution_name(distribution, match_cell)
+    d, p = paper_size_distribution(distribution=name)
     raw = n * p
     counts = np.floor(raw).astype(np.int64)
     short = n - int(counts.sum())
@@ -139,11 +181,22 @@ def size_counts(n, match_cell=True):
         raise ValueError(f"n = {n} too small for the size distribution")
     d = d.copy()
     interior = slice(1, -1)
-    delta = (n * D_MEAN - float(counts @ d)) / float(counts[interior].sum())
-    d[interior] += delta
-    # second pass against round-off in the sum
-    delta2 = (n * D_MEAN - float(counts @ d)) / float(counts[interior].sum())
-    d[interior] += delta2
+    if DISTRIBUTIONS[name][1] == "number":
+        delta = (n * D_MEAN - float(counts @ d)) / float(counts[interior].sum())
+        d[interior] += delta
+        # second pass against round-off in the sum
+        delta2 = (n * D_MEAN - float(counts @ d)) / float(counts[interior].sum())
+        d[interior] += delta2
+    else:
+        # Newton on g(delta) = Σ c d^4 - D Σ c d^3 with the interior diameters shifted
+        c = counts[interior].astype(float)
+        for _ in range(50):
+            g = float(counts @ d ** 4 - D_MEAN * (counts @ d ** 3))
+            dg = float(c @ (4.0 * d[interior] ** 3 - 3.0 * D_MEAN * d[interior] ** 2))
+            step = g / dg
+            d[interior] -= step
+            if abs(step) < 1e-17:
+                break
     return d, counts
 
 
@@ -311,7 +364,7 @@ def _relax(pos, diam, L, gap, overshoot=1e-2, damp=0.5, max_iter=20000):
 
 def generate(n=N_PAPER, solid_fraction=PHI_PAPER, seed=1, match_cell=True, gap=1e-6,
              rsa_solid_fraction=0.30, compress_step=0.02, max_attempts=100000,
-             return_info=False):
+             return_info=False, distribution=None):
     """Random contact-free periodic assembly.
 
     Returns ``(box_side, diameters, positions)`` in metres, spheres ordered largest
@@ -320,11 +373,12 @@ def generate(n=N_PAPER, solid_fraction=PHI_PAPER, seed=1, match_cell=True, gap=1
     ``solid_fraction``.  If the target exceeds ``rsa_solid_fraction`` (RSA jams well
     below 0.5), RSA is done in a larger box and the assembly is compressed
     isotropically to the target in steps of ``compress_step`` (relative box side),
-    removing overlaps after each step.  ``return_info=True`` appends a dict.
+    removing overlaps after each step.  ``distribution`` names the size distribution
+    (DISTRIBUTIONS; default "maxent").  ``return_info=True`` appends a dict.
     """
     t0 = time.perf_counter()
     phi_fn = globals()["solid_fraction"]
-    d_sizes, counts = size_counts(n, match_cell=match_cell)
+    d_sizes, counts = size_counts(n, match_cell=match_cell, distribution=distribution)
     diam = np.repeat(d_sizes, counts)[::-1].copy()      # largest first
     L = box_side(diam, solid_fraction)
     rng = np.random.default_rng(seed)
@@ -424,6 +478,25 @@ def read_data(path):
     return box, a[:, 2], a[:, 3], a[:, 4:7]
 
 
+def describe_distributions(n=N_PAPER):
+    """Markdown table of the candidate distributions for n spheres: diameters and counts per
+    size, number mean, D[4,3], standard deviation, cube side at solid fraction 0.5 and solid
+    fraction in the paper's 4.3 mm cube (scaled to n spheres: side 4.3 mm × (n/3620)^(1/3))."""
+    lines = ["| distribution | diameters [mm] | counts | number mean [mm] | D[4,3] [mm] | "
+             "std [mm] | side at φ0 = 0.5 [mm] | φ0 in the paper's cube |",
+             "|---|---|---|---|---|---|---|---|"]
+    cube = L_PAPER * (n / N_PAPER) ** (1.0 / 3.0)
+    for name in DISTRIBUTIONS:
+        d, c = size_counts(n, distribution=name)
+        diam = np.repeat(d, c)
+        lines.append(
+            f"| {name} | {', '.join(f'{x * 1e3:.5f}' for x in d)} | {', '.join(map(str, c))} | "
+            f"{number_mean(d, c) * 1e3:.4f} | {volume_mean(d, c) * 1e3:.4f} | "
+            f"{float(np.std(diam)) * 1e3:.4f} | {box_side(diam, PHI_PAPER) * 1e3:.4f} | "
+            f"{solid_fraction(diam, cube):.4f} |")
+    return "\n".join(lines)
+
+
 # ---------------------------------------------------------------------------
 # command line
 # ---------------------------------------------------------------------------
@@ -444,15 +517,27 @@ def main(argv=None):
                     help="particle density [kg/m^3] (default 2650e12, paper's scaling)")
     ap.add_argument("--gap", type=float, default=1e-6,
                     help="minimum relative gap between surfaces (default 1e-6)")
+    ap.add_argument("--distribution", choices=sorted(DISTRIBUTIONS), default=None,
+                    help="size distribution (default maxent; docs/specimen.md, candidate "
+                         "distributions)")
     ap.add_argument("--mean-only", action="store_true",
-                    help="max-entropy distribution constrained by the mean diameter only")
+                    help="max-entropy distribution constrained by the mean diameter only "
+                         "(= --distribution mean-only)")
+    ap.add_argument("--distributions", action="store_true",
+                    help="print the candidate size distributions for n spheres (markdown table) "
+                         "and exit")
     args = ap.parse_args(argv)
     n = args.n if args.n is not None else SCALES[args.scale]
+    if args.distributions:
+        print(describe_distributions(n))
+        return 0
     if not 0.0 < args.solid_fraction < 0.6:
         ap.error("--solid-fraction must be in (0, 0.6)")
+    if args.mean_only and args.distribution not in (None, "mean-only"):
+        ap.error(f"--mean-only contradicts --distribution {args.distribution}")
     L, diam, pos, info = generate(n, args.solid_fraction, seed=args.seed,
                                   match_cell=not args.mean_only, gap=args.gap,
-                                  return_info=True)
+                                  return_info=True, distribution=args.distribution)
     write_data(args.out, L, diam, pos, density=args.density)
     ds = info["size_diameters"]
     print(f"wrote {args.out}: {n} spheres, cube side {L * 1e3:.6f} mm, "
