@@ -102,7 +102,8 @@ def specimens(tmp_path_factory):
     for kind in ("dense", "loose"):
         deck = f"in.prepare_{kind}"
         (work / deck).write_text(f"variable specimen index {kind}\nvariable scale index quick\n"
-                                 "include inputs/common/specimen.in\n")
+                                 f"variable tylmp_common string {REPO}/inputs/common\n"
+                                 "include ${tylmp_common}/specimen.in\n")
         procs[kind] = subprocess.Popen(_lmp_cmd(deck, None), cwd=str(work), text=True,
                                        stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                                        env=_env())
@@ -126,6 +127,7 @@ def run_deck(tmp_path_factory, specimens, name, variables=None, tag=None):
     # the cached specimen was reused, not prepared again
     after = {f: os.path.getmtime(work / "tylmp_specimens" / f) for f in before}
     assert after == before, "the deck prepared its specimen again instead of reusing it"
+    assert "reusing specimen tylmp_specimens/" in out
     return work, out
 
 
@@ -393,3 +395,149 @@ def test_plane_strain_figure(plane_strain):
     out = work / f"plane_strain_{rot}.png"
     cli("pi-plane", str(work / f"plane_strain_{rot}.csv"), "--out", str(out), cwd=work)
     assert_png(out)
+
+
+# ---------------------------------------------------------------------------------------------
+# the specimen cache: choices checked, keyed on the preparation settings, never torn (issues 14,
+# 15). Variants prepare with prep_max_steps 3000 (seconds) and shear to 0.05 % only.
+
+SHORT = {"strain": 0.0005}
+QUICK_PREP = {"prep_max_steps": 3000}
+
+
+def _run(deck, cwd, variables=None):
+    proc = subprocess.run(_lmp_cmd(deck, variables), cwd=str(cwd), capture_output=True,
+                          text=True, timeout=TIMEOUT, env=_env())
+    return proc.returncode, proc.stdout + proc.stderr
+
+
+def _record(path):
+    import json
+    with open(str(path) + ".json") as fh:
+        return json.load(fh)
+
+
+def _complete(path):
+    return os.path.isfile(path) and os.path.getsize(path) == _record(path)["bytes"]
+
+
+@pytest.mark.parametrize("deck,name,value,allowed", [
+    ("axisym", "specimen", "lose", "dense, loose"),
+    ("friction", "scale", "papers", "quick, paper"),
+    ("cdst", "rotation", "clockwise", "cw, ccw"),
+    ("plane_strain", "plane", "strain", "total, deviatoric")])
+def test_unknown_choice_is_an_error(tmp_path, deck, name, value, allowed):
+    os.symlink(os.path.join(REPO, "inputs"), tmp_path / "inputs")
+    rc, out = _run(f"inputs/{deck}.in", tmp_path, {name: value})
+    assert rc != 0
+    assert f"ERROR: -var {name} {value}: unknown value; {name} is one of {allowed}" in out
+    assert not (tmp_path / "tylmp_specimens").exists()      # nothing prepared
+
+
+def test_cache_keyed_on_preparation_settings(tmp_path_factory, specimens):
+    work = _workdir(tmp_path_factory, "cache_keyed", specimens)
+    standard = work / "tylmp_specimens" / "dense_quick.restart"
+    before = standard.stat().st_mtime
+    # the standard settings reuse the standard file
+    rc, out = _run("inputs/axisym.in", work, SHORT)
+    _check(rc, out, "axisym.in")
+    assert f"reusing specimen tylmp_specimens/dense_quick.restart" in out
+    # another preparation setting is another specimen, with its own file; the standard one stays
+    rc, out = _run("inputs/axisym.in", work, dict(SHORT, **QUICK_PREP))
+    _check(rc, out, "axisym.in -var prep_max_steps 3000")
+    keyed = [f for f in os.listdir(work / "tylmp_specimens")
+             if f.startswith("dense_quick_") and f.endswith(".restart")]
+    assert len(keyed) == 1 and f"preparing specimen tylmp_specimens/{keyed[0]}: none cached" in out
+    assert standard.stat().st_mtime == before
+    assert _record(work / "tylmp_specimens" / keyed[0])["settings"]["prep_max_steps"] == "3000"
+    rc, out = _run("inputs/axisym.in", work, dict(SHORT, **QUICK_PREP))
+    _check(rc, out, "axisym.in -var prep_max_steps 3000, again")
+    assert f"reusing specimen tylmp_specimens/{keyed[0]}" in out
+    # a cached file prepared with other settings under that name is detected and re-prepared
+    shutil.copy(standard, work / "tylmp_specimens" / keyed[0])
+    shutil.copy(str(standard) + ".json", work / "tylmp_specimens" / (keyed[0] + ".json"))
+    rc, out = _run("inputs/axisym.in", work, dict(SHORT, **QUICK_PREP))
+    _check(rc, out, "axisym.in on a mismatched cache")
+    assert (f"preparing specimen tylmp_specimens/{keyed[0]}: it was prepared with other settings"
+            " (prep_max_steps 150000 -> 3000)") in out
+    assert _record(work / "tylmp_specimens" / keyed[0])["settings"]["prep_max_steps"] == "3000"
+
+
+def test_torn_cached_specimen_is_prepared_again(tmp_path):
+    os.symlink(os.path.join(REPO, "inputs"), tmp_path / "inputs")
+    variables = dict(SHORT, **QUICK_PREP)
+    _check(*_run("inputs/axisym.in", tmp_path, variables), "first preparation")
+    (path,) = [tmp_path / "tylmp_specimens" / f for f in os.listdir(tmp_path / "tylmp_specimens")
+               if f.endswith(".restart")]
+    size = path.stat().st_size
+    with open(path, "r+b") as fh:          # a run killed while writing it (before: in place)
+        fh.truncate(size // 2)
+    rc, out = _run("inputs/axisym.in", tmp_path, variables)
+    _check(rc, out, "deck on a torn cache")
+    assert f"the cached file is torn: {size // 2} bytes, its record says {size}" in out
+    assert _complete(path) and path.stat().st_size == size
+
+
+def test_killed_while_writing_leaves_no_final_file(tmp_path):
+    """The restart is written under a temporary name, renamed once complete. Here the temporary
+    name is a FIFO the test reads from, so that LAMMPS is killed in the middle of the write."""
+    os.symlink(os.path.join(REPO, "inputs"), tmp_path / "inputs")
+    variables = dict(SHORT, **QUICK_PREP)
+    _check(*_run("inputs/axisym.in", tmp_path, variables), "first preparation")
+    (path,) = [tmp_path / "tylmp_specimens" / f for f in os.listdir(tmp_path / "tylmp_specimens")
+               if f.endswith(".restart")]
+    size = path.stat().st_size
+    os.remove(path)
+    os.remove(str(path) + ".json")
+    tmp = str(path) + ".tmp"
+    os.mkfifo(tmp)
+    fd = os.open(tmp, os.O_RDONLY | os.O_NONBLOCK)
+    proc = subprocess.Popen(_lmp_cmd("inputs/axisym.in", variables), cwd=str(tmp_path),
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=_env())
+    try:
+        got, deadline = b"", time.time() + 300
+        while len(got) < size // 2 and time.time() < deadline and proc.poll() is None:
+            try:
+                got += os.read(fd, 65536)
+            except BlockingIOError:
+                time.sleep(0.01)
+        assert len(got) >= size // 2, "write_restart did not write to the temporary name"
+        proc.kill()         # half of the restart written
+        proc.wait(timeout=60)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+        os.close(fd)
+    assert not path.exists() and not os.path.exists(str(path) + ".json")
+    # what a killed write leaves: half a file under the temporary name; the next deck prepares
+    # the specimen afresh
+    os.remove(tmp)
+    with open(tmp, "wb") as fh:
+        fh.write(got[:size // 2])
+    rc, out = _run("inputs/axisym.in", tmp_path, variables)
+    _check(rc, out, "deck after a killed preparation")
+    assert f"preparing specimen {path.relative_to(tmp_path)}: none cached" in out
+    assert _complete(path) and path.stat().st_size == size and not os.path.lexists(tmp)
+
+
+def test_deck_runs_from_any_directory(tmp_path_factory, specimens):
+    """An absolute deck path from an empty directory, the specimens where -var specimen_dir
+    says, and a deck copied alone (its fragments then come with the installed package)."""
+    store = tmp_path_factory.mktemp("specimen_store")
+    shutil.copytree(specimens, store / "cache")
+    away = tmp_path_factory.mktemp("elsewhere")
+    rc, out = _run(os.path.join(REPO, "inputs", "axisym.in"), away,
+                   dict(SHORT, specimen_dir=str(store / "cache")))
+    _check(rc, out, "axisym.in from another directory")
+    assert f"deck fragments: {os.path.join(REPO, 'inputs', 'common')}" in out
+    assert f"reusing specimen {store / 'cache' / 'dense_quick.restart'}" in out
+    assert (away / "axisym.csv").is_file() and not (away / "tylmp_specimens").exists()
+    alone = tmp_path_factory.mktemp("deck_alone")
+    shutil.copy(os.path.join(REPO, "inputs", "axisym.in"), alone / "axisym.in")
+    rc, out = _run("axisym.in", alone, dict(SHORT, specimen_dir=str(store / "cache")))
+    _check(rc, out, "a copied axisym.in")
+    import tylmp
+    packaged = os.path.join(os.path.dirname(tylmp.__file__), "inputs", "common")
+    assert f"deck fragments: {packaged}" in out
+    assert f"reusing specimen {store / 'cache' / 'dense_quick.restart'}" in out
+    assert (alone / "axisym.csv").is_file()
