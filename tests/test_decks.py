@@ -131,9 +131,13 @@ def run_deck(tmp_path_factory, specimens, name, variables=None, tag=None):
     return work, out
 
 
+OUTPUT = {}
+
+
 @pytest.fixture(scope="module")
 def axisym_dense(tmp_path_factory, specimens):
-    return run_deck(tmp_path_factory, specimens, "axisym")[0]
+    work, OUTPUT["axisym"] = run_deck(tmp_path_factory, specimens, "axisym")
+    return work
 
 
 @pytest.fixture(scope="module")
@@ -193,6 +197,52 @@ def test_axisym_csv_columns(axisym_dense):
     # the deck stops at its default end, 30 % deviator strain (halt checked every 500 steps:
     # the last CSV row may precede the halting step by a few hundred steps)
     assert 0.295 <= t["eps_d13"][-1] < 0.31
+
+
+def _thermo(out):
+    """The thermo table of the last run in a LAMMPS screen output: header names -> columns."""
+    lines = out.splitlines()
+    start = max(k for k, line in enumerate(lines) if line.split()[:1] == ["Step"])
+    header = lines[start].split()
+    rows = []
+    for line in lines[start + 1:]:
+        if line.startswith("Loop time"):
+            break
+        try:
+            rows.append([float(v) for v in line.split()])
+        except ValueError:          # a message within the table (fix halt)
+            continue
+    return {name: np.array([r[k] for r in rows]) for k, name in enumerate(header)}
+
+
+def test_outputs_fragment_names_the_fix_vector():
+    """inputs/common/outputs.in: v_NAME is item i of the fix's vector, and NAME the CSV column
+    of that item (docs/fix_cell_servo.md: CSV = step, time, items 1-26, 30-35, 27)."""
+    import re
+    text = open(os.path.join(REPO, "inputs", "common", "outputs.in")).read()
+    index = {name: int(i) for name, i in
+             re.findall(r"^variable\s+(\w+)\s+equal\s+f_\$\{servo\}\[(\d+)\]", text, re.M)}
+    assert sorted(index.values()) == list(range(1, 36))
+    csv_items = list(range(1, 27)) + list(range(30, 36)) + [27]
+    for column, item in zip(CSV_COLUMNS[2:], csv_items):
+        name = "b_measured" if column == "b" else column
+        assert index[name] == item, (column, item)
+
+
+def test_axisym_thermo_named_outputs(axisym_dense):
+    """The deck's thermo columns are named (v_eps_d13, v_p, ...) and are the record's values
+    at the same steps."""
+    thermo = _thermo(OUTPUT["axisym"])
+    assert "v_eps_d13" in thermo and "v_p" in thermo and "v_q" in thermo
+    assert not any(name.startswith("f_") for name in thermo)
+    t, _ = read_csv(axisym_dense / "axisym.csv")
+    row = {int(s): k for k, s in enumerate(t["step"])}
+    common = [k for k, s in enumerate(thermo["Step"]) if int(s) in row and s > 0]
+    assert len(common) > 5
+    for name in ("eps_d13", "p", "q", "sinphi", "eps_v", "Zm", "inertial_number"):
+        ours = thermo["v_" + name][common]
+        theirs = t[name][[row[int(s)] for s in thermo["Step"][common]]]
+        assert np.allclose(ours, theirs, rtol=1e-4, atol=1e-12), name
 
 
 def test_axisym_dense_dilates_and_softens(axisym_dense):
