@@ -477,3 +477,27 @@ def test_curve_spread_measures_horizontal_distance_of_curves():
     # identical curves do not spread; a level one curve never reaches is skipped
     assert metrics.curve_spread([(x, x), (x, x)], [1.0, 5.0]) == 0.0
     assert metrics.curve_spread([(x, x), (x, 0.1 * x)], [5.0]) is None
+
+
+def test_tyanalysis_command_uses_its_own_interpreter(files, tmp_path):
+    """The `tyanalysis` command (build/bin/tyanalysis, installed to bin/) runs with the Python
+    that has the packages even when the `python3` first on PATH is another one."""
+    build = os.environ.get("TYLMP_BUILD_DIR", os.path.join(REPO, "build"))
+    command = os.path.join(build, "bin", "tyanalysis")
+    assert os.access(command, os.X_OK), command
+    fake = tmp_path / "fakebin"
+    fake.mkdir()
+    (fake / "python3").write_text("#!/bin/sh\necho 'not the python with numpy' >&2\nexit 3\n")
+    (fake / "python3").chmod(0o755)
+    env = dict(os.environ, MPLBACKEND="Agg",
+               PATH=os.pathsep.join([str(fake), os.path.dirname(command), os.environ["PATH"]]),
+               PYTHONPATH=os.pathsep.join([ANALYSIS] + [p for p in os.environ.get(
+                   "PYTHONPATH", "").split(os.pathsep) if p]))
+    # what a user types after a deck: the bare command name, found on PATH
+    r = subprocess.run(["tyanalysis", "summary", files["dense.csv"]], capture_output=True,
+                       text=True, env=env, timeout=60)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert json.loads(r.stdout)["q_peak_kPa"] == pytest.approx(120.0)
+    r = subprocess.run(["tyanalysis", "--help"], capture_output=True, text=True, env=env,
+                       timeout=60)
+    assert r.returncode == 0 and r.stdout.startswith("usage: tyanalysis ")

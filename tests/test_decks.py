@@ -245,6 +245,19 @@ def test_axisym_thermo_named_outputs(axisym_dense):
         assert np.allclose(ours, theirs, rtol=1e-4, atol=1e-12), name
 
 
+def test_axisym_prints_its_plot_command(axisym_dense):
+    """The deck ends with the plotting command; typed as printed (tyanalysis on PATH) it
+    draws the figure."""
+    line = [x for x in OUTPUT["axisym"].splitlines() if x.startswith("plot: ")][-1]
+    assert line == "plot: tyanalysis axisym axisym.csv --out axisym.png"
+    build = os.environ.get("TYLMP_BUILD_DIR", os.path.join(REPO, "build"))
+    env = dict(_env(), PATH=os.pathsep.join([os.path.join(build, "bin"), os.environ["PATH"]]))
+    proc = subprocess.run(line[len("plot: "):].split(), cwd=str(axisym_dense), env=env,
+                          capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    assert_png(axisym_dense / "axisym.png")
+
+
 def test_axisym_dense_dilates_and_softens(axisym_dense):
     t, _ = read_csv(axisym_dense / "axisym.csv")
     # dilation (compression positive: eps_v < 0) from the first per cent on, and a lot of it

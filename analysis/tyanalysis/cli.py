@@ -1,4 +1,5 @@
-"""Command line: python3 -m tyanalysis <subcommand> ...  (see --help of each subcommand)."""
+"""Command line: tyanalysis <subcommand> ... (installed by CMake; or python3 -m tyanalysis with
+the interpreter that has the packages); see --help of each subcommand."""
 import argparse
 import json
 import math
@@ -264,7 +265,7 @@ def _finite(obj):
 # ---- parser --------------------------------------------------------------------------------------
 
 def build_parser():
-    ap = argparse.ArgumentParser(prog="python3 -m tyanalysis",
+    ap = argparse.ArgumentParser(prog="tyanalysis",
                                  description="Figures and tables for the periodic-cell tests "
                                              "(CSV of fix cell/servo).")
     sub = ap.add_subparsers(dest="command", required=True)
