@@ -248,11 +248,14 @@ def specimen_cache(ptr, common):
         _print(L, f"reusing specimen {path} ({summary})")
     else:
         if _rank(L) == 0:
-            os.makedirs(directory or ".", exist_ok=True)
-            # (a leftover path.tmp of a killed run is overwritten by write_restart)
-            for stale in (path, path + ".json"):
-                if os.path.lexists(stale):
-                    os.remove(stale)
+            try:
+                os.makedirs(directory or ".", exist_ok=True)
+                # (a leftover path.tmp of a killed run is overwritten by write_restart)
+                for stale in (path, path + ".json"):
+                    if os.path.lexists(stale):
+                        os.remove(stale)
+            except OSError as err:
+                _fail(L, f"specimen_dir {directory}: cannot prepare the specimen there ({err})")
         _print(L, f"preparing specimen {path}: {why} ({summary})")
     L.command(f'variable specimen_file string "{path}"')
     L.command(f'variable specimen_stem string "{os.path.join(directory, stem)}"')
@@ -267,15 +270,18 @@ def specimen_commit(ptr, tmp, path):
     rename it onto `path` (a run killed before this leaves no file under the final name)."""
     L = _lmp(ptr)
     if _rank(L) == 0:
-        meta = dict(_pending.get(path, {}), bytes=os.path.getsize(tmp), sha256=_sha256(tmp))
-        record_tmp = path + ".json.tmp"
-        with open(record_tmp, "w", encoding="utf-8") as fh:
-            json.dump(meta, fh, indent=1, sort_keys=True)
-            fh.write("\n")
-            fh.flush()
-            os.fsync(fh.fileno())
-        with open(tmp, "rb") as fh:
-            os.fsync(fh.fileno())
-        os.replace(record_tmp, path + ".json")
-        os.replace(tmp, path)
+        try:
+            meta = dict(_pending.get(path, {}), bytes=os.path.getsize(tmp), sha256=_sha256(tmp))
+            record_tmp = path + ".json.tmp"
+            with open(record_tmp, "w", encoding="utf-8") as fh:
+                json.dump(meta, fh, indent=1, sort_keys=True)
+                fh.write("\n")
+                fh.flush()
+                os.fsync(fh.fileno())
+            with open(tmp, "rb") as fh:
+                os.fsync(fh.fileno())
+            os.replace(record_tmp, path + ".json")
+            os.replace(tmp, path)
+        except OSError as err:
+            _fail(L, f"cannot store the specimen {path} ({err}); nothing was put under that name")
     _print(L, f"wrote specimen {path}")
