@@ -526,13 +526,18 @@ def test_cache_keyed_on_preparation_settings(tmp_path_factory, specimens):
     assert _record(work / "tylmp_specimens" / keyed[0])["settings"]["prep_max_steps"] == "3000"
 
 
-def test_torn_cached_specimen_is_prepared_again(tmp_path):
-    os.symlink(os.path.join(REPO, "inputs"), tmp_path / "inputs")
-    variables = dict(SHORT, **QUICK_PREP)
-    _check(*_run("inputs/axisym.in", tmp_path, variables), "first preparation")
-    (path,) = [tmp_path / "tylmp_specimens" / f for f in os.listdir(tmp_path / "tylmp_specimens")
+def _prepared_variant(work, variables):
+    """Prepare a specimen variant in work (inputs/ linked there): its path and size."""
+    os.symlink(os.path.join(REPO, "inputs"), work / "inputs")
+    _check(*_run("inputs/axisym.in", work, variables), "first preparation")
+    (path,) = [work / "tylmp_specimens" / f for f in os.listdir(work / "tylmp_specimens")
                if f.endswith(".restart")]
-    size = path.stat().st_size
+    return path, path.stat().st_size
+
+
+def test_torn_cached_specimen_is_prepared_again(tmp_path):
+    variables = dict(SHORT, **QUICK_PREP)
+    path, size = _prepared_variant(tmp_path, variables)
     with open(path, "r+b") as fh:          # a run killed while writing it (before: in place)
         fh.truncate(size // 2)
     rc, out = _run("inputs/axisym.in", tmp_path, variables)
@@ -544,12 +549,8 @@ def test_torn_cached_specimen_is_prepared_again(tmp_path):
 def test_killed_while_writing_leaves_no_final_file(tmp_path):
     """The restart is written under a temporary name, renamed once complete. Here the temporary
     name is a FIFO the test reads from, so that LAMMPS is killed in the middle of the write."""
-    os.symlink(os.path.join(REPO, "inputs"), tmp_path / "inputs")
     variables = dict(SHORT, **QUICK_PREP)
-    _check(*_run("inputs/axisym.in", tmp_path, variables), "first preparation")
-    (path,) = [tmp_path / "tylmp_specimens" / f for f in os.listdir(tmp_path / "tylmp_specimens")
-               if f.endswith(".restart")]
-    size = path.stat().st_size
+    path, size = _prepared_variant(tmp_path, variables)
     os.remove(path)
     os.remove(str(path) + ".json")
     tmp = str(path) + ".tmp"
@@ -604,3 +605,14 @@ def test_deck_runs_from_any_directory(tmp_path_factory, specimens):
     assert f"deck fragments: {packaged}" in out
     assert f"reusing specimen {store / 'cache' / 'dense_quick.restart'}" in out
     assert (alone / "axisym.csv").is_file()
+
+
+@pytest.mark.parametrize("name,value,message", [
+    ("tylmp_common", "/nonexistent", "ERROR: tylmp_common = /nonexistent: the deck fragments "
+                                     "(specimen.in, prepare.in, numerics.in) are not there"),
+    ("specimen_dir", "/proc/tylmp", "ERROR: specimen_dir /proc/tylmp: cannot prepare the "
+                                    "specimen there")])
+def test_bad_directories_are_errors(tmp_path, name, value, message):
+    os.symlink(os.path.join(REPO, "inputs"), tmp_path / "inputs")
+    rc, out = _run("inputs/axisym.in", tmp_path, {name: value})
+    assert rc != 0 and message in out
