@@ -616,3 +616,18 @@ def test_bad_directories_are_errors(tmp_path, name, value, message):
     os.symlink(os.path.join(REPO, "inputs"), tmp_path / "inputs")
     rc, out = _run("inputs/axisym.in", tmp_path, {name: value})
     assert rc != 0 and message in out
+
+
+def test_specimen_that_cannot_be_stored_is_an_error(tmp_path):
+    """A failed write of the specimen's record stops the deck with an error naming the file,
+    and nothing is put under the final name."""
+    variables = dict(SHORT, **QUICK_PREP)
+    path, _ = _prepared_variant(tmp_path, variables)
+    os.remove(path)
+    os.remove(str(path) + ".json")
+    os.mkdir(str(path) + ".json.tmp")           # the record's temporary name is taken
+    rc, out = _run("inputs/axisym.in", tmp_path, variables)
+    assert rc != 0
+    assert (f"ERROR: cannot store the specimen {path.relative_to(tmp_path)} ([Errno 21] Is a "
+            "directory") in out
+    assert not path.exists() and not os.path.exists(str(path) + ".json")

@@ -84,9 +84,17 @@ def _print(L, text):
 
 
 def _fail(L, text):
+    """An error met by every rank alike: the message, then exit status 1."""
     _print(L, "ERROR: " + text)
     L.command("quit 1")
     raise SystemExit(1)         # not reached: quit ends the process
+
+
+def _fail_one(L, text):
+    """An error met by one rank: the message, then a Python exception, which LAMMPS turns into
+    an error on that rank (MPI_Abort), so that no other rank waits for it."""
+    _print(L, "ERROR: " + text)
+    raise RuntimeError(text)
 
 
 def _rank(L):
@@ -95,13 +103,18 @@ def _rank(L):
 
 # ---- deck start: choices and the fragments directory ------------------------------------------
 
-def _deck_path():
-    """The deck given with -in/-i to this process, from its command line (None for stdin)."""
+def _argv():
+    """The command line of this process (lmp's, the python command runs inside it)."""
     try:
         with open("/proc/self/cmdline", "rb") as fh:
-            argv = [a.decode(errors="replace") for a in fh.read().split(b"\0") if a]
+            return [a.decode(errors="replace") for a in fh.read().split(b"\0") if a]
     except OSError:
-        return None
+        return []
+
+
+def _deck_path():
+    """The deck given with -in/-i to this process, from its command line (None for stdin)."""
+    argv = _argv()
     for k, arg in enumerate(argv[:-1]):
         if arg in ("-in", "-i"):
             return os.path.abspath(argv[k + 1])
@@ -214,11 +227,7 @@ def check_cached(path, key, settings=None):
 
 
 def _command_line_vars():
-    try:
-        with open("/proc/self/cmdline", "rb") as fh:
-            argv = [a.decode(errors="replace") for a in fh.read().split(b"\0") if a]
-    except OSError:
-        return set()
+    argv = _argv()
     return {argv[k + 1] for k, a in enumerate(argv[:-1]) if a in ("-var", "-v")}
 
 
@@ -247,15 +256,17 @@ def specimen_cache(ptr, common):
     if why is None:
         _print(L, f"reusing specimen {path} ({summary})")
     else:
-        if _rank(L) == 0:
-            try:
-                os.makedirs(directory or ".", exist_ok=True)
-                # (a leftover path.tmp of a killed run is overwritten by write_restart)
-                for stale in (path, path + ".json"):
-                    if os.path.lexists(stale):
-                        os.remove(stale)
-            except OSError as err:
-                _fail(L, f"specimen_dir {directory}: cannot prepare the specimen there ({err})")
+        # every rank alike (a failure is then the same on all of them); a leftover path.tmp of
+        # a killed run is overwritten by write_restart
+        try:
+            os.makedirs(directory or ".", exist_ok=True)
+            for stale in (path, path + ".json"):
+                try:
+                    os.remove(stale)
+                except FileNotFoundError:
+                    pass
+        except OSError as err:
+            _fail(L, f"specimen_dir {directory}: cannot prepare the specimen there ({err})")
         _print(L, f"preparing specimen {path}: {why} ({summary})")
     L.command(f'variable specimen_file string "{path}"')
     L.command(f'variable specimen_stem string "{os.path.join(directory, stem)}"')
@@ -283,5 +294,6 @@ def specimen_commit(ptr, tmp, path):
             os.replace(record_tmp, path + ".json")
             os.replace(tmp, path)
         except OSError as err:
-            _fail(L, f"cannot store the specimen {path} ({err}); nothing was put under that name")
+            _fail_one(L, f"cannot store the specimen {path} ({err}); nothing was put under that "
+                         "name")
     _print(L, f"wrote specimen {path}")
