@@ -9,7 +9,10 @@ their CSV records checked qualitatively against the paper (sections 3-5, Figs 1-
   cdst.in          the strain stays on its circle while the Lode angles turn (Fig 7)
   plane_strain.in  each leg of the triangle keeps one principal deviatoric strain fixed
                    (Figs 8-9), both directions
-and the analysis CLI (python3 -m tyanalysis) draws every figure from these records.
+and the analysis CLI (python3 -m tyanalysis) draws every figure from these records; thermo shows
+the fix's outputs by name (inputs/common/outputs.in) and the deck prints its `tyanalysis` command.
+The decks' -var choices are checked, and the specimen cache (tylmp.decks) is keyed on the
+preparation settings, never left torn, and found from any directory (issues 14, 15).
 
 Each deck runs in its own temporary directory with `inputs/` symlinked to the repository's, as
 `lmp -in inputs/NAME.in` from a repository root; the dense and loose specimens are prepared
