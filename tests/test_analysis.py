@@ -619,3 +619,11 @@ def test_pi_plane_guides_only_for_the_path_followed(files, drawn, tmp_path):
     fig = drawn("pi-plane", files["ps.csv"], "--labels", "ps", "--out", tmp_path / "t.png")
     assert [k for k in _axes(fig, "strain path")["lines"] if ": circle" in k or ": plane-strain" in k] \
         == ["ps: plane-strain triangle"]
+
+
+def test_axisym_figure_labels_records_by_their_parameter(files, drawn, tmp_path):
+    """Records named by mu are labelled 'μ = ...' and drawn in increasing mu."""
+    names = [files[f"sweep_mu{m}.csv"] for m in (0.5, 0.1, 0.3)]
+    fig = drawn("axisym", *names, "--out", tmp_path / "mu.png")
+    curves = [k for k in _axes(fig, "Fig. 1")["lines"] if not k.startswith("paper")]
+    assert curves == ["μ = 0.1", "μ = 0.3", "μ = 0.5"]

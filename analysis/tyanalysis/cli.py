@@ -46,7 +46,21 @@ def _wrote(out):
 
 # ---- subcommands ---------------------------------------------------------------------------------
 
+def _by_parameter(files):
+    """Files named by a parameter (friction_mu0.3.csv, radial_b0.5.csv): their legend labels
+    ('μ = 0.3', 'b = 0.5') and the files in increasing parameter; else (None, files)."""
+    for symbol, pattern in (("μ", r"mu[_=-]?([0-9]+(?:\.[0-9]+)?)"), ("b", r"_b([0-9]+(?:\.[0-9]+)?)")):
+        found = [re.search(pattern, os.path.basename(os.path.splitext(f)[0])) for f in files]
+        if all(found):
+            values = [float(m.group(1)) for m in found]
+            order = sorted(range(len(files)), key=values.__getitem__)
+            return [f"{symbol} = {values[k]:g}" for k in order], [files[k] for k in order]
+    return None, files
+
+
 def cmd_axisym(a):
+    if not a.labels:
+        a.labels, a.files = _by_parameter(a.files)
     tables = _read_all(a.files)
     labels = _labels(a.files, a.labels)
     for t, lab in zip(tables, labels):
