@@ -83,7 +83,7 @@ EPS_Q0 = 0.00285                # prestrain (deviatoric strain eps_q), paper §5
 Q0 = 51.4e3                     # deviatoric stress after the prestrain, Pa
 
 
-def nonradial_record(path="circle", n_pre=30, step_deg=3.0):
+def nonradial_record(path="circle", n_pre=30, step_deg=3.0, circle_radius=1.0):
     """Prestrain in axisymmetric compression to eps_q = 0.285 %, q = 51.4 kPa, then the strain
     Lode angle turns (circle of constant radius, or along the plane-strain triangle's first side
     to its vertex at 60 deg); the stress Lode angle turns 79/60 times as fast and q stays
@@ -93,7 +93,7 @@ def nonradial_record(path="circle", n_pre=30, step_deg=3.0):
     pre = np.linspace(0.0, 1.0, n_pre)
     if path == "circle":
         th = np.arange(step_deg, 360.0 + 1e-9, step_deg)
-        re_ = np.full_like(th, r0)
+        re_ = np.full_like(th, circle_radius * r0)
     else:                                     # side y = r0 from x = 0 to the vertex x = sqrt3 r0
         xs = np.linspace(0.0, math.sqrt(3) * r0, 41)[1:]
         th = np.degrees(np.arctan2(xs, r0))
@@ -363,9 +363,13 @@ def test_cli_pi_plane(files):
         r = kv(so, lab)
         assert r["prestrain_eps_q_pct"] == pytest.approx(0.285, rel=1e-5)
         assert r["prestrain_q_kPa"] == pytest.approx(51.4, rel=1e-5)
-        assert r["stress_rotation_deg"] == pytest.approx(79.0, rel=1e-5)
-        assert r["strain_rotation_deg"] == pytest.approx(60.0, rel=1e-5)
         assert r["p_max_kPa"] == pytest.approx(100.5, rel=1e-6)
+    assert kv(so, "cdst")["path"] == "circle" and "stress_rotation_deg" not in kv(so, "cdst")
+    r = kv(so, "ps")
+    assert r["path"] == "triangle"
+    # the rotation of the paper's Fig. 9 is a measure of the triangle's first leg
+    assert r["stress_rotation_deg"] == pytest.approx(79.0, rel=1e-5)
+    assert r["strain_rotation_deg"] == pytest.approx(60.0, rel=1e-5)
     out2 = os.path.join(files["dir"], "pi2.png")
     run_cli("pi-plane", files["b0.5.csv"], "--guide", "both", "--strain-radius", 0.01,
             "--sinphi-tc", 0.45, "--out", out2)
@@ -603,3 +607,149 @@ def test_rattlers_recovered_from_recorded_z_and_zm(tmp_path):
     io.write_servo_csv(f, cols)
     r = kv(run_cli("coordination", str(f)), "prep")
     assert r["N0_N1"] == "721,3" and r["N"] == 3620
+
+
+def test_tyanalysis_command_uses_its_own_interpreter(files, tmp_path):
+    """The `tyanalysis` command (build/bin/tyanalysis, installed to bin/) runs with the Python
+    that has the packages even when the `python3` first on PATH is another one."""
+    build = os.environ.get("TYLMP_BUILD_DIR", os.path.join(REPO, "build"))
+    command = os.path.join(build, "bin", "tyanalysis")
+    assert os.access(command, os.X_OK), command
+    fake = tmp_path / "fakebin"
+    fake.mkdir()
+    (fake / "python3").write_text("#!/bin/sh\necho 'not the python with numpy' >&2\nexit 3\n")
+    (fake / "python3").chmod(0o755)
+    env = dict(os.environ, MPLBACKEND="Agg",
+               PATH=os.pathsep.join([str(fake), os.path.dirname(command), os.environ["PATH"]]),
+               PYTHONPATH=os.pathsep.join([ANALYSIS] + [p for p in os.environ.get(
+                   "PYTHONPATH", "").split(os.pathsep) if p]))
+    # what a user types after a deck: the bare command name, found on PATH
+    r = subprocess.run(["tyanalysis", "summary", files["dense.csv"]], capture_output=True,
+                       text=True, env=env, timeout=60)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert json.loads(r.stdout)["q_peak_kPa"] == pytest.approx(120.0)
+    r = subprocess.run(["tyanalysis", "--help"], capture_output=True, text=True, env=env,
+                       timeout=60)
+    assert r.returncode == 0 and r.stdout.startswith("usage: tyanalysis ")
+
+
+# ---- figures: the paper's values, labels, guides ----------------------------------------------
+
+@pytest.fixture
+def drawn(monkeypatch):
+    """Run the CLI in this process and keep, for every figure it saves, its axes' legend
+    entries (label -> x, y data), titles and whether every axis label lies inside the figure."""
+    from tyanalysis import cli, figures
+    kept = []
+    save = figures.save_figure
+
+    def keep(fig, out, dpi=120):
+        fig.tight_layout()
+        fig.canvas.draw()
+        renderer = fig.canvas.get_renderer()
+        box = fig.bbox
+        axes = []
+        for ax in fig.axes:
+            lines = {ln.get_label(): (np.asarray(ln.get_xdata(), float), np.asarray(ln.get_ydata(), float))
+                     for ln in ax.get_lines() if not ln.get_label().startswith("_")}
+            labels_inside = all(
+                t.get_text() == "" or (lambda e: e.x0 >= box.x0 - 1 and e.x1 <= box.x1 + 1
+                                       and e.y0 >= box.y0 - 1 and e.y1 <= box.y1 + 1)(t.get_window_extent(renderer))
+                for t in (ax.xaxis.label, ax.yaxis.label))
+            legend = ax.get_legend()
+            axes.append({"title": ax.get_title(), "lines": lines, "labels_inside": labels_inside,
+                         "legend": [t.get_text() for t in legend.get_texts()] if legend else []})
+        kept.append(axes)
+        return save(fig, out, dpi)
+
+    monkeypatch.setattr(figures, "save_figure", keep)
+
+    def run(*args):
+        assert cli.main([str(a) for a in args]) == 0
+        return kept[-1]
+    return run
+
+
+def _axes(fig, title_part):
+    (ax,) = [a for a in fig if title_part in a["title"]]
+    return ax
+
+
+def _paper_line(ax, text):
+    (hit,) = [v for k, v in ax["lines"].items() if k.startswith("paper") and text in k]
+    return hit
+
+
+def test_axisym_figure_carries_the_papers_void_ratios(files, drawn, tmp_path):
+    fig = drawn("axisym", files["dense.csv"], files["loose.csv"], "--out", tmp_path / "a.png")
+    e = _axes(fig, "Void ratio (Fig. 2)")
+    # §3: 0.598 dense, 0.606 loose at 30 %; §2: start e = 1/0.660 - 1, 1/0.618 - 1
+    for text, x, y in (("dense at 30 %", 30.0, 0.598), ("loose at 30 %", 30.0, 0.606),
+                       ("dense start", 0.0, 1 / 0.660 - 1), ("loose start", 0.0, 1 / 0.618 - 1)):
+        xs, ys = _paper_line(e, text)
+        assert (xs[0], ys[0]) == pytest.approx((x, y))
+    xs, _ = _paper_line(_axes(fig, "Fig. 1"), "peak at about 5 %")
+    assert np.all(xs == 5.0)
+    assert all(ax["labels_inside"] for ax in fig)
+
+
+def test_radial_figure_labels_by_b_in_order_and_explains_the_surfaces(files, drawn, tmp_path):
+    fig = drawn("radial", files["b1.0.csv"], files["b0.0.csv"], files["b0.5.csv"],
+                "--out", tmp_path / "r.png")
+    # the records' own b, in increasing order, whatever the order of the files
+    assert _axes(fig, "Mobilised")["legend"] == ["b = 0", "b = 0.5", "b = 1"]
+    pi = _axes(fig, "Fig. 4")
+    # through sin(phi_TC) = 0.45 (b = 0): K = (1 + s)/(1 - s), LD eta = (K + 2)^3/K - 27,
+    # MN I1 I2/I3 = (K + 2)(2K + 1)/K
+    K = 1.45 / 0.55
+    eta, mn = (K + 2) ** 3 / K - 27, (K + 2) * (2 * K + 1) / K
+    ld_label = [t for t in pi["legend"] if t.startswith("Lade–Duncan")]
+    mn_label = [t for t in pi["legend"] if t.startswith("Matsuoka–Nakai")]
+    assert ld_label and f"η = I1³/I3 − 27 = {eta:.3g}" in ld_label[0] and "0.450" in ld_label[0]
+    assert mn_label and f"I1·I2/I3 = {mn:.4g}" in mn_label[0]
+    # §4, Fig. 5: the eta curves coincide below eta = 7
+    _, ys = _paper_line(_axes(fig, "Fig. 5"), "η < 7")
+    assert np.all(ys == 7.0)
+    # §4: strongest near b = 0.5, Lode angle 30 deg
+    xs, ys = _paper_line(pi, "b = 0.5")
+    assert math.degrees(math.atan2(xs[-1], ys[-1])) == pytest.approx(30.0)
+    assert all(ax["labels_inside"] for ax in fig)
+
+
+def test_pi_plane_figure_carries_the_papers_prestrain_and_rotation(files, drawn, tmp_path):
+    fig = drawn("pi-plane", files["ps.csv"], "--labels", "ps", "--out", tmp_path / "p.png")
+    stress = _axes(fig, "stress path")
+    xs, ys = _paper_line(stress, "51.4 kPa")
+    # Pi radius of q = 51.4 kPa in axisymmetric compression: sqrt(2/3) q, on axis 1
+    assert (xs[0], ys[0]) == pytest.approx((0.0, math.sqrt(2 / 3) * 51.4))
+    xs, ys = _paper_line(stress, "79°")
+    assert math.degrees(math.atan2(xs[-1], ys[-1])) == pytest.approx(79.0)
+    assert all(ax["labels_inside"] for ax in fig)
+
+
+def test_pi_plane_guides_only_for_the_path_followed(files, drawn, tmp_path):
+    """A circle off the prestrain radius (a user's path) gets its circle, no triangle and no
+    rotation; the paper's triangle gets its triangle."""
+    path = tmp_path / "user_circle.csv"
+    io.write_servo_csv(path, nonradial_record("circle", circle_radius=1.5))
+    fig = drawn("pi-plane", path, "--out", tmp_path / "c.png")
+    strain = _axes(fig, "strain path")
+    guides = [k for k in strain["lines"] if ": circle" in k or ": plane-strain" in k]
+    r0 = EPS_Q0 / math.sqrt(2 / 3)
+    assert guides == [f"user_circle: circle r = {100 * 1.5 * r0:.3g} %"]
+    xs, ys = strain["lines"][guides[0]]
+    assert np.allclose(np.hypot(xs, ys), 100 * 1.5 * r0)
+    assert not any("79°" in k for k in _axes(fig, "stress path")["lines"])
+    so = run_cli("pi-plane", path, "--out", tmp_path / "c2.png")
+    assert kv(so, "user_circle")["path"] == "circle" and "stress_rotation_deg" not in so
+    fig = drawn("pi-plane", files["ps.csv"], "--labels", "ps", "--out", tmp_path / "t.png")
+    assert [k for k in _axes(fig, "strain path")["lines"] if ": circle" in k or ": plane-strain" in k] \
+        == ["ps: plane-strain triangle"]
+
+
+def test_axisym_figure_labels_records_by_their_parameter(files, drawn, tmp_path):
+    """Records named by mu are labelled 'μ = ...' and drawn in increasing mu."""
+    names = [files[f"sweep_mu{m}.csv"] for m in (0.5, 0.1, 0.3)]
+    fig = drawn("axisym", *names, "--out", tmp_path / "mu.png")
+    curves = [k for k in _axes(fig, "Fig. 1")["lines"] if not k.startswith("paper")]
+    assert curves == ["μ = 0.1", "μ = 0.3", "μ = 0.5"]

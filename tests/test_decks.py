@@ -9,7 +9,10 @@ their CSV records checked qualitatively against the paper (sections 3-5, Figs 1-
   cdst.in          the strain stays on its circle while the Lode angles turn (Fig 7)
   plane_strain.in  each leg of the triangle keeps one principal deviatoric strain fixed
                    (Figs 8-9), both directions
-and the analysis CLI (python3 -m tyanalysis) draws every figure from these records.
+and the analysis CLI (python3 -m tyanalysis) draws every figure from these records; thermo shows
+the fix's outputs by name (inputs/common/outputs.in) and the deck prints its `tyanalysis` command.
+The decks' -var choices are checked, and the specimen cache (tylmp.decks) is keyed on the
+preparation settings, never left torn, and found from any directory (issues 14, 15).
 
 Each deck runs in its own temporary directory with `inputs/` symlinked to the repository's, as
 `lmp -in inputs/NAME.in` from a repository root; the dense and loose specimens are prepared
@@ -102,7 +105,8 @@ def specimens(tmp_path_factory):
     for kind in ("dense", "loose"):
         deck = f"in.prepare_{kind}"
         (work / deck).write_text(f"variable specimen index {kind}\nvariable scale index quick\n"
-                                 "include inputs/common/specimen.in\n")
+                                 f"variable tylmp_common string {REPO}/inputs/common\n"
+                                 "include ${tylmp_common}/specimen.in\n")
         procs[kind] = subprocess.Popen(_lmp_cmd(deck, None), cwd=str(work), text=True,
                                        stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                                        env=_env())
@@ -126,12 +130,17 @@ def run_deck(tmp_path_factory, specimens, name, variables=None, tag=None):
     # the cached specimen was reused, not prepared again
     after = {f: os.path.getmtime(work / "tylmp_specimens" / f) for f in before}
     assert after == before, "the deck prepared its specimen again instead of reusing it"
+    assert "reusing specimen tylmp_specimens/" in out
     return work, out
+
+
+OUTPUT = {}
 
 
 @pytest.fixture(scope="module")
 def axisym_dense(tmp_path_factory, specimens):
-    return run_deck(tmp_path_factory, specimens, "axisym")[0]
+    work, OUTPUT["axisym"] = run_deck(tmp_path_factory, specimens, "axisym")
+    return work
 
 
 @pytest.fixture(scope="module")
@@ -191,6 +200,65 @@ def test_axisym_csv_columns(axisym_dense):
     # the deck stops at its default end, 30 % deviator strain (halt checked every 500 steps:
     # the last CSV row may precede the halting step by a few hundred steps)
     assert 0.295 <= t["eps_d13"][-1] < 0.31
+
+
+def _thermo(out):
+    """The thermo table of the last run in a LAMMPS screen output: header names -> columns."""
+    lines = out.splitlines()
+    start = max(k for k, line in enumerate(lines) if line.split()[:1] == ["Step"])
+    header = lines[start].split()
+    rows = []
+    for line in lines[start + 1:]:
+        if line.startswith("Loop time"):
+            break
+        try:
+            rows.append([float(v) for v in line.split()])
+        except ValueError:          # a message within the table (fix halt)
+            continue
+    return {name: np.array([r[k] for r in rows]) for k, name in enumerate(header)}
+
+
+def test_outputs_fragment_names_the_fix_vector():
+    """inputs/common/outputs.in: v_NAME is item i of the fix's vector, and NAME the CSV column
+    of that item (docs/fix_cell_servo.md: CSV = step, time, items 1-26, 30-35, 27)."""
+    import re
+    text = open(os.path.join(REPO, "inputs", "common", "outputs.in")).read()
+    index = {name: int(i) for name, i in
+             re.findall(r"^variable\s+(\w+)\s+equal\s+f_\$\{servo\}\[(\d+)\]", text, re.M)}
+    assert sorted(index.values()) == list(range(1, 36))
+    csv_items = list(range(1, 27)) + list(range(30, 36)) + [27]
+    for column, item in zip(CSV_COLUMNS[2:], csv_items):
+        name = "b_measured" if column == "b" else column
+        assert index[name] == item, (column, item)
+
+
+def test_axisym_thermo_named_outputs(axisym_dense):
+    """The deck's thermo columns are named (v_eps_d13, v_p, ...) and are the record's values
+    at the same steps."""
+    thermo = _thermo(OUTPUT["axisym"])
+    assert "v_eps_d13" in thermo and "v_p" in thermo and "v_q" in thermo
+    assert not any(name.startswith("f_") for name in thermo)
+    t, _ = read_csv(axisym_dense / "axisym.csv")
+    row = {int(s): k for k, s in enumerate(t["step"])}
+    common = [k for k, s in enumerate(thermo["Step"]) if int(s) in row and s > 0]
+    assert len(common) > 5
+    for name in ("eps_d13", "p", "q", "sinphi", "eps_v", "Zm", "inertial_number"):
+        ours = thermo["v_" + name][common]
+        theirs = t[name][[row[int(s)] for s in thermo["Step"][common]]]
+        assert np.allclose(ours, theirs, rtol=1e-4, atol=1e-12), name
+
+
+def test_axisym_prints_its_plot_command(axisym_dense):
+    """The deck ends with the plotting command; typed as printed (tyanalysis on PATH) it
+    draws the figure."""
+    line = [x for x in OUTPUT["axisym"].splitlines() if x.startswith("plot: ")][-1]
+    assert line == "plot: tyanalysis axisym axisym.csv --out axisym.png"
+    build = os.environ.get("TYLMP_BUILD_DIR", os.path.join(REPO, "build"))
+    env = dict(_env(), PATH=os.pathsep.join([os.path.join(build, "bin"), os.environ["PATH"]]))
+    proc = subprocess.run(line[len("plot: "):].split(), cwd=str(axisym_dense), env=env,
+                          capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    assert_png(axisym_dense / "axisym.png")
 
 
 def test_axisym_dense_dilates_and_softens(axisym_dense):
@@ -393,3 +461,176 @@ def test_plane_strain_figure(plane_strain):
     out = work / f"plane_strain_{rot}.png"
     cli("pi-plane", str(work / f"plane_strain_{rot}.csv"), "--out", str(out), cwd=work)
     assert_png(out)
+
+
+# ---------------------------------------------------------------------------------------------
+# the specimen cache: choices checked, keyed on the preparation settings, never torn (issues 14,
+# 15). Variants prepare with prep_max_steps 3000 (seconds) and shear to 0.05 % only.
+
+SHORT = {"strain": 0.0005}
+QUICK_PREP = {"prep_max_steps": 3000}
+
+
+def _run(deck, cwd, variables=None):
+    proc = subprocess.run(_lmp_cmd(deck, variables), cwd=str(cwd), capture_output=True,
+                          text=True, timeout=TIMEOUT, env=_env())
+    return proc.returncode, proc.stdout + proc.stderr
+
+
+def _record(path):
+    import json
+    with open(str(path) + ".json") as fh:
+        return json.load(fh)
+
+
+def _complete(path):
+    return os.path.isfile(path) and os.path.getsize(path) == _record(path)["bytes"]
+
+
+@pytest.mark.parametrize("deck,name,value,allowed", [
+    ("axisym", "specimen", "lose", "dense, loose"),
+    ("friction", "scale", "papers", "quick, paper"),
+    ("cdst", "rotation", "clockwise", "cw, ccw"),
+    ("plane_strain", "plane", "strain", "total, deviatoric")])
+def test_unknown_choice_is_an_error(tmp_path, deck, name, value, allowed):
+    os.symlink(os.path.join(REPO, "inputs"), tmp_path / "inputs")
+    rc, out = _run(f"inputs/{deck}.in", tmp_path, {name: value})
+    assert rc != 0
+    assert f"ERROR: -var {name} {value}: unknown value; {name} is one of {allowed}" in out
+    assert not (tmp_path / "tylmp_specimens").exists()      # nothing prepared
+
+
+def test_cache_keyed_on_preparation_settings(tmp_path_factory, specimens):
+    work = _workdir(tmp_path_factory, "cache_keyed", specimens)
+    standard = work / "tylmp_specimens" / "dense_quick.restart"
+    before = standard.stat().st_mtime
+    # the standard settings reuse the standard file
+    rc, out = _run("inputs/axisym.in", work, SHORT)
+    _check(rc, out, "axisym.in")
+    assert f"reusing specimen tylmp_specimens/dense_quick.restart" in out
+    # another preparation setting is another specimen, with its own file; the standard one stays
+    rc, out = _run("inputs/axisym.in", work, dict(SHORT, **QUICK_PREP))
+    _check(rc, out, "axisym.in -var prep_max_steps 3000")
+    keyed = [f for f in os.listdir(work / "tylmp_specimens")
+             if f.startswith("dense_quick_") and f.endswith(".restart")]
+    assert len(keyed) == 1 and f"preparing specimen tylmp_specimens/{keyed[0]}: none cached" in out
+    assert standard.stat().st_mtime == before
+    assert _record(work / "tylmp_specimens" / keyed[0])["settings"]["prep_max_steps"] == "3000"
+    rc, out = _run("inputs/axisym.in", work, dict(SHORT, **QUICK_PREP))
+    _check(rc, out, "axisym.in -var prep_max_steps 3000, again")
+    assert f"reusing specimen tylmp_specimens/{keyed[0]}" in out
+    # a cached file prepared with other settings under that name is detected and re-prepared
+    shutil.copy(standard, work / "tylmp_specimens" / keyed[0])
+    shutil.copy(str(standard) + ".json", work / "tylmp_specimens" / (keyed[0] + ".json"))
+    rc, out = _run("inputs/axisym.in", work, dict(SHORT, **QUICK_PREP))
+    _check(rc, out, "axisym.in on a mismatched cache")
+    assert (f"preparing specimen tylmp_specimens/{keyed[0]}: it was prepared with other settings"
+            " (prep_max_steps 150000 -> 3000)") in out
+    assert _record(work / "tylmp_specimens" / keyed[0])["settings"]["prep_max_steps"] == "3000"
+
+
+def _prepared_variant(work, variables):
+    """Prepare a specimen variant in work (inputs/ linked there): its path and size."""
+    os.symlink(os.path.join(REPO, "inputs"), work / "inputs")
+    _check(*_run("inputs/axisym.in", work, variables), "first preparation")
+    (path,) = [work / "tylmp_specimens" / f for f in os.listdir(work / "tylmp_specimens")
+               if f.endswith(".restart")]
+    return path, path.stat().st_size
+
+
+def test_torn_cached_specimen_is_prepared_again(tmp_path):
+    variables = dict(SHORT, **QUICK_PREP)
+    path, size = _prepared_variant(tmp_path, variables)
+    with open(path, "r+b") as fh:          # a run killed while writing it (before: in place)
+        fh.truncate(size // 2)
+    rc, out = _run("inputs/axisym.in", tmp_path, variables)
+    _check(rc, out, "deck on a torn cache")
+    assert f"the cached file is torn: {size // 2} bytes, its record says {size}" in out
+    assert _complete(path) and path.stat().st_size == size
+
+
+def test_killed_while_writing_leaves_no_final_file(tmp_path):
+    """The restart is written under a temporary name, renamed once complete. Here the temporary
+    name is a FIFO the test reads from, so that LAMMPS is killed in the middle of the write."""
+    variables = dict(SHORT, **QUICK_PREP)
+    path, size = _prepared_variant(tmp_path, variables)
+    os.remove(path)
+    os.remove(str(path) + ".json")
+    tmp = str(path) + ".tmp"
+    os.mkfifo(tmp)
+    fd = os.open(tmp, os.O_RDONLY | os.O_NONBLOCK)
+    proc = subprocess.Popen(_lmp_cmd("inputs/axisym.in", variables), cwd=str(tmp_path),
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=_env())
+    try:
+        got, deadline = b"", time.time() + 300
+        while len(got) < size // 2 and time.time() < deadline and proc.poll() is None:
+            try:
+                got += os.read(fd, 65536)
+            except BlockingIOError:
+                time.sleep(0.01)
+        assert len(got) >= size // 2, "write_restart did not write to the temporary name"
+        proc.kill()         # half of the restart written
+        proc.wait(timeout=60)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+        os.close(fd)
+    assert not path.exists() and not os.path.exists(str(path) + ".json")
+    # what a killed write leaves: half a file under the temporary name; the next deck prepares
+    # the specimen afresh
+    os.remove(tmp)
+    with open(tmp, "wb") as fh:
+        fh.write(got[:size // 2])
+    rc, out = _run("inputs/axisym.in", tmp_path, variables)
+    _check(rc, out, "deck after a killed preparation")
+    assert f"preparing specimen {path.relative_to(tmp_path)}: none cached" in out
+    assert _complete(path) and path.stat().st_size == size and not os.path.lexists(tmp)
+
+
+def test_deck_runs_from_any_directory(tmp_path_factory, specimens):
+    """An absolute deck path from an empty directory, the specimens where -var specimen_dir
+    says, and a deck copied alone (its fragments then come with the installed package)."""
+    store = tmp_path_factory.mktemp("specimen_store")
+    shutil.copytree(specimens, store / "cache")
+    away = tmp_path_factory.mktemp("elsewhere")
+    rc, out = _run(os.path.join(REPO, "inputs", "axisym.in"), away,
+                   dict(SHORT, specimen_dir=str(store / "cache")))
+    _check(rc, out, "axisym.in from another directory")
+    assert f"deck fragments: {os.path.join(REPO, 'inputs', 'common')}" in out
+    assert f"reusing specimen {store / 'cache' / 'dense_quick.restart'}" in out
+    assert (away / "axisym.csv").is_file() and not (away / "tylmp_specimens").exists()
+    alone = tmp_path_factory.mktemp("deck_alone")
+    shutil.copy(os.path.join(REPO, "inputs", "axisym.in"), alone / "axisym.in")
+    rc, out = _run("axisym.in", alone, dict(SHORT, specimen_dir=str(store / "cache")))
+    _check(rc, out, "a copied axisym.in")
+    import tylmp
+    packaged = os.path.join(os.path.dirname(tylmp.__file__), "inputs", "common")
+    assert f"deck fragments: {packaged}" in out
+    assert f"reusing specimen {store / 'cache' / 'dense_quick.restart'}" in out
+    assert (alone / "axisym.csv").is_file()
+
+
+@pytest.mark.parametrize("name,value,message", [
+    ("tylmp_common", "/nonexistent", "ERROR: tylmp_common = /nonexistent: the deck fragments "
+                                     "(specimen.in, prepare.in, numerics.in) are not there"),
+    ("specimen_dir", "/proc/tylmp", "ERROR: specimen_dir /proc/tylmp: cannot prepare the "
+                                    "specimen there")])
+def test_bad_directories_are_errors(tmp_path, name, value, message):
+    os.symlink(os.path.join(REPO, "inputs"), tmp_path / "inputs")
+    rc, out = _run("inputs/axisym.in", tmp_path, {name: value})
+    assert rc != 0 and message in out
+
+
+def test_specimen_that_cannot_be_stored_is_an_error(tmp_path):
+    """A failed write of the specimen's record stops the deck with an error naming the file,
+    and nothing is put under the final name."""
+    variables = dict(SHORT, **QUICK_PREP)
+    path, _ = _prepared_variant(tmp_path, variables)
+    os.remove(path)
+    os.remove(str(path) + ".json")
+    os.mkdir(str(path) + ".json.tmp")           # the record's temporary name is taken
+    rc, out = _run("inputs/axisym.in", tmp_path, variables)
+    assert rc != 0
+    assert (f"ERROR: cannot store the specimen {path.relative_to(tmp_path)} ([Errno 21] Is a "
+            "directory") in out
+    assert not path.exists() and not os.path.exists(str(path) + ".json")

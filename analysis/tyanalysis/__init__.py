@@ -2,6 +2,6 @@
 
 Modules: io (readers), invariants (p, q, b, sin phi, Lode angle, eta, Pi plane, failure
 surfaces), metrics (derived histories, key numbers), figures (PNG, Agg), compare (paper values,
-markdown table), cli (`python3 -m tyanalysis <subcommand>`).
+markdown table), cli (the `tyanalysis <subcommand>` command).
 """
 __all__ = ["io", "invariants", "metrics", "figures", "compare", "cli"]

@@ -1,4 +1,5 @@
-"""Command line: python3 -m tyanalysis <subcommand> ...  (see --help of each subcommand)."""
+"""Command line: tyanalysis <subcommand> ... (installed by CMake; or python3 -m tyanalysis with
+the interpreter that has the packages); see --help of each subcommand."""
 import argparse
 import json
 import math
@@ -10,7 +11,7 @@ import numpy as np
 
 from . import compare, figures
 from . import invariants as inv
-from . import io, metrics
+from . import io, metrics, paper
 from . import micromechanics as micro
 
 
@@ -46,7 +47,21 @@ def _wrote(out):
 
 # ---- subcommands ---------------------------------------------------------------------------------
 
+def _by_parameter(files):
+    """Files named by a parameter (friction_mu0.3.csv, radial_b0.5.csv): their legend labels
+    ('μ = 0.3', 'b = 0.5') and the files in increasing parameter; else (None, files)."""
+    for symbol, pattern in (("μ", r"mu[_=-]?([0-9]+(?:\.[0-9]+)?)"), ("b", r"_b([0-9]+(?:\.[0-9]+)?)")):
+        found = [re.search(pattern, os.path.basename(os.path.splitext(f)[0])) for f in files]
+        if all(found):
+            values = [float(m.group(1)) for m in found]
+            order = sorted(range(len(files)), key=values.__getitem__)
+            return [f"{symbol} = {values[k]:g}" for k in order], [files[k] for k in order]
+    return None, files
+
+
 def cmd_axisym(a):
+    if not a.labels:
+        a.labels, a.files = _by_parameter(a.files)
     tables = _read_all(a.files)
     labels = _labels(a.files, a.labels)
     for t, lab in zip(tables, labels):
@@ -56,7 +71,7 @@ def cmd_axisym(a):
                   ("sinphi_end", s["sinphi_end"]), ("void_ratio_end", s.get("void_ratio_end")),
                   ("void_ratio_at_30pct", s.get("void_ratio_at_30pct")),
                   ("eps_v_end_pct", s["eps_v_end_pct"]), ("eps_d13_end_pct", s["eps_d13_end_pct"])])
-    _wrote(figures.axisym(tables, labels, a.out, void_ratio=a.void_ratio))
+    _wrote(figures.axisym(tables, labels, a.out))
 
 
 def _mu_of(path):
@@ -90,8 +105,9 @@ def _peak(table):
 
 def cmd_radial(a):
     tables = _read_all(a.files)
-    labels = _labels(a.files, a.labels)
     peaks = [_peak(t) for t in tables]
+    # curves labelled by their parameter: b as held by the record (median while loaded)
+    labels = _labels(a.files, a.labels or [f"b = {round(pk['b'], 2):g}" for pk in peaks])
     sinphi_tc, source = a.sinphi_tc, "--sinphi-tc"
     if sinphi_tc is None:
         i0 = int(np.argmin([abs(pk["b"]) for pk in peaks]))
@@ -131,17 +147,23 @@ def cmd_radial(a):
 def cmd_pi_plane(a):
     tables = _read_all(a.files)
     labels = _labels(a.files, a.labels)
-    surfaces, guides = [], []
+    surfaces, guides, marks = [], [], []
+    drawn = set()
     for idx, (t, lab) in enumerate(zip(tables, labels)):
         d = metrics.derived(t)
         i0 = compare.prestrain_end(t)
         re_ = np.hypot(d["pi_ex"], d["pi_ey"])
-        pairs = [("p_min_kPa", float(np.min(d["p"])) * 1e-3), ("p_max_kPa", float(np.max(d["p"])) * 1e-3)]
+        kind, radius = compare.path_kind(t)
+        pairs = [("p_min_kPa", float(np.min(d["p"])) * 1e-3), ("p_max_kPa", float(np.max(d["p"])) * 1e-3),
+                 ("path", kind or "other")]
+        rot = None
         if i0 is not None:
             pairs += [("prestrain_row", i0), ("prestrain_eps_q_pct", float(d["eps_q"][i0]) * 100),
                       ("prestrain_strain_radius_pct", float(re_[i0]) * 100),
                       ("prestrain_q_kPa", float(d["q"][i0]) * 1e-3)]
-            rot = compare.stress_rotation(t)
+            # the paper's rotation (79 deg of stress over 60 deg of strain) is a measure of the
+            # plane-strain triangle's first leg only
+            rot = compare.stress_rotation(t) if kind == "triangle" else None
             if rot is not None:
                 pairs += [("stress_rotation_deg", rot[0]), ("strain_rotation_deg", rot[1])]
         _kv(lab, pairs)
@@ -150,23 +172,39 @@ def cmd_pi_plane(a):
         p_ref = float(np.median(d["p"]))
         if a.sinphi_tc is not None:
             consts = {c: float(inv.criterion_constant(c, a.sinphi_tc)) for c in inv.CRITERIA}
+            through = f"sin φ_TC = {a.sinphi_tc:g}"
         else:
             consts = {c: float(inv.criterion_value(c, d["sigma"][k])) for c in inv.CRITERIA}
+            through = f"{lab} at the end of the prestrain" if i0 is not None else f"{lab} at its peak"
         for crit, const in consts.items():
             if const > float(inv.criterion_value(crit, np.ones(3))) + 1e-12:
                 x, y = inv.failure_surface_pi(crit, p=p_ref, constant=const)
-                surfaces.append((idx, f"{lab}: {crit} ({const:.4g})", x, y))
-        # strain guides
-        r0 = a.strain_radius if a.strain_radius is not None else (float(re_[i0]) if i0 is not None else None)
-        guide = a.guide
-        if guide == "auto" and r0:
-            after = re_[i0:] if i0 is not None else re_
-            guide = "triangle" if float(np.max(after)) > 1.2 * r0 else "circle"
+                surfaces.append((idx, figures.criterion_label(crit, const, through), x, y))
+        # strain guides: only the path this record followed (or the one asked for)
+        r0 = a.strain_radius if a.strain_radius is not None else radius
+        guide = kind if a.guide == "auto" else a.guide
         if r0 and guide in ("circle", "both"):
-            guides.append((f"circle r = {100 * r0:.3g} %", *inv.circle_pi(r0)))
+            guides.append((f"{lab}: circle r = {100 * r0:.3g} %", *inv.circle_pi(r0)))
         if r0 and guide in ("triangle", "both"):
-            guides.append(("plane-strain triangle", *inv.plane_strain_triangle_pi(r0)))
-    _wrote(figures.pi_plane(tables, labels, a.out, surfaces, guides))
+            guides.append((f"{lab}: plane-strain triangle", *inv.plane_strain_triangle_pi(r0)))
+        # the paper's values (tyanalysis/paper.py)
+        if i0 is not None and "q0" not in drawn:
+            drawn.add("q0")
+            marks.append(("stress", paper.label("prestrain_q_kPa",
+                          f"q = {paper.value('prestrain_q_kPa'):g} kPa after the prestrain"),
+                          [0.0], [paper.prestrain_q_pi_radius()], "o"))
+        if rot is not None:
+            sign = compare.turn_direction(t)
+            rs = 1.05 * float(np.nanmax(np.hypot(d["pi_x"], d["pi_y"])))
+            turn = paper.value("ps_stress_rotation_deg")
+            x, y = inv.pi_point(np.array([0.0, rs]), sign * turn)
+            marks.append(("stress", paper.label("ps_stress_rotation_deg",
+                          f"{lab}: stress turns {turn:g}° while the strain turns "
+                          f"{paper.PS_STRAIN_ROTATION_DEG:g}°"), x, y, "-."))
+            x, y = inv.pi_point(np.array([0.0, 2.0 * radius]), sign * paper.PS_STRAIN_ROTATION_DEG)
+            marks.append(("strain", f"{lab}: strain turned {paper.PS_STRAIN_ROTATION_DEG:g}° (paper §5)",
+                          x, y, "-."))
+    _wrote(figures.pi_plane(tables, labels, a.out, surfaces, guides, marks))
 
 
 def cmd_prestrain(a):
@@ -320,7 +358,7 @@ def _finite(obj):
 # ---- parser --------------------------------------------------------------------------------------
 
 def build_parser():
-    ap = argparse.ArgumentParser(prog="python3 -m tyanalysis",
+    ap = argparse.ArgumentParser(prog="tyanalysis",
                                  description="Figures and tables for the periodic-cell tests "
                                              "(CSV of fix cell/servo).")
     sub = ap.add_subparsers(dest="command", required=True)
@@ -334,8 +372,9 @@ def build_parser():
         p.set_defaults(func=func)
         return p
 
-    p = files_cmd("axisym", cmd_axisym, "Figs 1-2: deviator stress and volumetric strain vs ε1 − ε3")
-    p.add_argument("--void-ratio", action="store_true", help="second panel: void ratio instead of εv")
+    p = files_cmd("axisym", cmd_axisym, "Figs 1-2: deviator stress, void ratio and volumetric strain vs ε1 − ε3")
+    p.add_argument("--void-ratio", action="store_true",
+                   help="accepted for old commands: the void ratio (Fig. 2) and εv panels are both drawn")
     p = files_cmd("friction", cmd_friction, "Fig. 3: sinφ_max and sinφ_cv against μ")
     p.add_argument("--mu", type=float, nargs="+", help="μ of each file (default: from names like mu0.3)")
     p = files_cmd("radial", cmd_radial, "Figs 4-6: radial b tests, peak states on the Π plane")

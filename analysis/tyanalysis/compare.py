@@ -1,41 +1,14 @@
-"""Paper values and the markdown comparison table (quantity | paper | ours | difference).
-
-Paper: Thornton & Sun, "DEM simulations of quasi-static shear deformation of granular media"
-(the reference paper of docs/validation.md); sections and figures cited per entry. The paper
-gives most results only as curves; the numbers below are the ones stated in its text (plus
-e = 1/nu_s - 1 derived from the stated solid fractions).
-"""
+"""The markdown comparison table (quantity | paper | ours | difference) of our records against
+the paper's numbers (tyanalysis/paper.py)."""
 import json
 import math
 
 import numpy as np
 
-from . import metrics
+from . import invariants as inv
+from . import metrics, paper
 
-# key: (value, unit, source, note)
-PAPER = {
-    "n_particles": (3620, "", "§2", "five sizes, 0.135-0.4 mm, mean 0.26 mm, cell 4.3 mm"),
-    "p_kPa": (100.0, "kPa", "§2-§5", "constant mean stress of all shear tests"),
-    "solid_fraction_dense": (0.660, "", "§2", "start of shear, prepared with μ = 0"),
-    "solid_fraction_loose": (0.618, "", "§2", "start of shear, prepared with μ = 0.3"),
-    "void_ratio_start_dense": (1 / 0.660 - 1, "", "§2 (derived)", "e = 1/ν_s − 1"),
-    "void_ratio_start_loose": (1 / 0.618 - 1, "", "§2 (derived)", "e = 1/ν_s − 1"),
-    "coordination_dense": (6.07, "", "§2", "average coordination number, end of isotropic compression; "
-                           "compared with Zm, rattlers excluded (docs/fidelity.md)"),
-    "coordination_loose": (5.02, "", "§2", "average coordination number, end of isotropic compression; "
-                           "compared with Zm, rattlers excluded (docs/fidelity.md)"),
-    "eps_d13_at_peak_dense_pct": (5.0, "%", "§3, Fig. 1", "'peak ... at about 5% strain' (approx.)"),
-    "eps_d13_steady_loose_pct": (15.0, "%", "§3, Fig. 1", "loose: constant deviator stress from about 15% (approx.)"),
-    "void_ratio_30pct_dense": (0.598, "", "§3, Fig. 2", "at 30% deviator strain"),
-    "void_ratio_30pct_loose": (0.606, "", "§3, Fig. 2", "at 30% deviator strain"),
-    "b_at_max_sinphi": (0.5, "", "§4, Fig. 4", "largest sinφ_max of the radial b tests"),
-    "eta_normalisation_limit": (7.0, "", "§4, Fig. 5", "η–ε_d curves of b = 0, 0.5, 1 coincide for η < 7"),
-    "prestrain_eps_d_pct": (0.285, "%", "§5, Figs 7-9", "axisymmetric-compression prestrain (deviatoric strain)"),
-    "prestrain_q_kPa": (51.4, "kPa", "§5, Figs 7-9", "deviatoric stress after the prestrain"),
-    "cdst_p_deviation_kPa": (0.8, "kPa", "§5, Fig. 7", "constant deviatoric strain test: p within 100 ± 0.8 kPa"),
-    "ps_stress_rotation_deg": (79.0, "deg", "§5, Fig. 9",
-                               "multi-axial plane-strain test: stress rotation while the strain rotates the first 60°"),
-}
+PAPER = paper.VALUES          # the paper's numbers: one table, tyanalysis/paper.py
 
 
 def _num(x):
@@ -130,9 +103,10 @@ def prestrain_end(table, tol_deg=1e-6):
     return int(idx[0]) - 1
 
 
-def stress_rotation(table, strain_rotation_deg=60.0):
+def stress_rotation(table, strain_rotation_deg=paper.PS_STRAIN_ROTATION_DEG):
     """(stress rotation, strain rotation) in degrees from the end of the prestrain to the first
-    row where the strain Lode angle has turned by strain_rotation_deg; None if never reached."""
+    row where the strain Lode angle has turned by strain_rotation_deg; None if never reached.
+    Both are magnitudes; turn_direction tells which way the strain turned."""
     i0 = prestrain_end(table)
     if i0 is None:
         return None
@@ -145,6 +119,53 @@ def stress_rotation(table, strain_rotation_deg=60.0):
         return None
     k = int(hit[0])
     return float(abs(ts[k] - ts[0])), float(turned[k])
+
+
+def turn_direction(table):
+    """+1 if the strain Lode angle increases after the prestrain (the decks' cw), -1 if it
+    decreases (ccw), 0 without a prestrain."""
+    i0 = prestrain_end(table)
+    if i0 is None:
+        return 0
+    te = np.unwrap(np.radians(metrics.derived(table)["lode_strain_deg"][i0:]))
+    return 1 if te[-1] >= te[0] else -1
+
+
+def path_kind(table, tol=0.1):
+    """What the strain path did after the prestrain: ('circle', radius) when, once the strain
+    Lode angle has turned by 10 deg, the Pi radius stays within tol of its median (paper
+    Fig. 7); else ('triangle', r0) when it reaches 1.5 r0 (r0: the radius at the end of the
+    prestrain) and stays near the plane-strain triangle through that state (Fig. 8; within
+    2 tol r0 on average: dilatancy moves a true plane-strain path off the nominal triangle);
+    (None, None) otherwise, or without a prestrain."""
+    i0 = prestrain_end(table)
+    if i0 is None:
+        return None, None
+    d = metrics.derived(table)
+    ex, ey = d["pi_ex"][i0:], d["pi_ey"][i0:]
+    r = np.hypot(ex, ey)
+    r0 = float(r[0])
+    te = np.degrees(np.unwrap(np.radians(d["lode_strain_deg"][i0:])))
+    turned = np.abs(te - te[0])
+    on = turned >= 10.0
+    if r0 <= 0 or on.sum() < 3:
+        return None, None
+    rm = float(np.median(r[on]))
+    if float(np.max(np.abs(r[on] - rm))) < tol * rm:
+        return "circle", rm
+    if float(np.max(r)) > 1.5 * r0:
+        tx, ty = inv.plane_strain_triangle_pi(r0)
+        dist = np.min([_segment_distance(ex, ey, tx[k], ty[k], tx[k + 1], ty[k + 1])
+                       for k in range(len(tx) - 1)], axis=0)
+        if float(np.mean(dist)) < 2 * tol * r0:
+            return "triangle", r0
+    return None, None
+
+
+def _segment_distance(x, y, x0, y0, x1, y1):
+    dx, dy = x1 - x0, y1 - y0
+    u = np.clip(((x - x0) * dx + (y - y0) * dy) / (dx * dx + dy * dy), 0.0, 1.0)
+    return np.hypot(x - (x0 + u * dx), y - (y0 + u * dy))
 
 
 def from_nonradial(table, kind, p_target_kPa=100.0):

@@ -8,6 +8,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from . import invariants as inv  # noqa: E402
+from . import paper  # noqa: E402
 from .metrics import derived, dilation_rate  # noqa: E402
 
 KPA = 1e-3
@@ -43,64 +44,90 @@ def _axis_rays(ax, radius):
         ax.annotate(str(k + 1), (x, y), color="0.4", fontsize=8, ha="center", va="center")
 
 
-def axisym(tables, labels, out, void_ratio=False):
-    """Figs 1-2: deviator stress sigma1 - sigma3 and volumetric strain (or void ratio) against
-    the deviator strain eps1 - eps3."""
-    fig, (a1, a2) = plt.subplots(1, 2, figsize=(10, 4))
+PAPER_STYLE = dict(color="k", mfc="none", ms=7, mew=1.2, ls="none")
+
+
+def criterion_label(criterion, constant, through):
+    """Legend text of a failure surface: the criterion's formula and parameter value."""
+    if criterion == inv.LADE_DUNCAN:
+        formula = f"Lade–Duncan: η = I1³/I3 − 27 = {constant:.3g}"
+    else:
+        formula = f"Matsuoka–Nakai: I1·I2/I3 = {constant:.4g} (9 isotropic)"
+    return f"{formula}, through {through}"
+
+
+def axisym(tables, labels, out):
+    """Figs 1-2: deviator stress sigma1 - sigma3, void ratio and volumetric strain against the
+    deviator strain eps1 - eps3, with the paper's numbers (§3: dense peak at about 5 %; void
+    ratios at the start and at 30 %)."""
+    fig, (a1, a2, a3) = plt.subplots(1, 3, figsize=(15, 4.6))
     for t, lab in zip(tables, labels):
         d = derived(t)
         a1.plot(d["eps_d13"] * PCT, d["dev_stress"] * KPA, label=lab)
-        if void_ratio:
-            a2.plot(d["eps_d13"] * PCT, t["void_ratio"], label=lab)
-        else:
-            a2.plot(d["eps_d13"] * PCT, d["eps_v"] * PCT, label=lab)
-    a1.set_xlabel("deviator strain ε1 − ε3 [%]")
-    a1.set_ylabel("deviator stress σ1 − σ3 [kPa]")
-    a1.set_title("Axisymmetric compression (Fig. 1)")
-    a2.set_xlabel("deviator strain ε1 − ε3 [%]")
-    if void_ratio:
-        a2.set_ylabel("void ratio e")
-        a2.set_title("Void ratio (Fig. 2)")
-    else:
-        a2.set_ylabel("volumetric strain εv [%] (compression +)")
-        a2.set_title("Volumetric strain (Fig. 2)")
-    for a in (a1, a2):
+        a2.plot(d["eps_d13"] * PCT, t["void_ratio"], label=lab)
+        a3.plot(d["eps_d13"] * PCT, d["eps_v"] * PCT, label=lab)
+    a1.axvline(paper.value("eps_d13_at_peak_dense_pct"), color="0.5", ls=":", lw=1,
+               label=paper.label("eps_d13_at_peak_dense_pct", "dense peak at about 5 %"))
+    for role, marker in (("dense", "o"), ("loose", "s")):
+        e0, e30 = paper.value(f"void_ratio_start_{role}"), paper.value(f"void_ratio_30pct_{role}")
+        a2.plot([0.0], [e0], marker, **dict(PAPER_STYLE, color="0.45"),
+                label=paper.label(f"void_ratio_start_{role}", f"{role} start, e = {e0:.3f}"))
+        a2.plot([30.0], [e30], marker, **PAPER_STYLE,
+                label=paper.label(f"void_ratio_30pct_{role}", f"{role} at 30 %, e = {e30:.3f}"))
+    a1.set(xlabel="deviator strain ε1 − ε3 [%]", ylabel="deviator stress σ1 − σ3 [kPa]",
+           title="Axisymmetric compression (Fig. 1)")
+    a2.set(xlabel="deviator strain ε1 − ε3 [%]", ylabel="void ratio e", title="Void ratio (Fig. 2)")
+    a3.set(xlabel="deviator strain ε1 − ε3 [%]", ylabel="volumetric strain εv [%] (compression +)",
+           title="Volumetric strain")
+    for a in (a1, a2, a3):
         a.grid(alpha=0.3)
-        a.legend(fontsize=8)
+        a.legend(fontsize=7)
     return save_figure(fig, out)
 
 
 def friction(mus, sinphi_max, sinphi_cv, out):
-    """Fig. 3: peak and critical-state sin(phi) against interparticle friction."""
+    """Fig. 3: peak and critical-state sin(phi) against interparticle friction, points in
+    increasing mu. The paper's Skinner data and Horne curve have no numbers in its text
+    (tyanalysis/paper.py): the figure says so instead of drawing them."""
     order = np.argsort(mus)
     mus = np.asarray(mus, float)[order]
-    fig, ax = plt.subplots(figsize=(5, 4))
-    ax.plot(mus, np.asarray(sinphi_max)[order], "o-", label="sin φ_max")
-    ax.plot(mus, np.asarray(sinphi_cv)[order], "s--", label="sin φ_cv (last 10 %)")
+    fig, ax = plt.subplots(figsize=(5.5, 4.5))
+    ax.plot(mus, np.asarray(sinphi_max)[order], "o-", label="sin φ_max (peak)")
+    ax.plot(mus, np.asarray(sinphi_cv)[order], "s--", label="sin φ_cv (mean of the last 10 %)")
+    ax.text(0.98, 0.03, "paper's Skinner data and Horne curve:\nno numbers in its text, not drawn",
+            transform=ax.transAxes, ha="right", va="bottom", fontsize=7, color="0.4")
     ax.set_xlabel("interparticle friction μ")
     ax.set_ylabel("sin φ")
     ax.set_title("Effect of interparticle friction (Fig. 3)")
-    ax.set_xlim(left=0)
+    ax.set_xlim(-0.03, float(np.max(mus)) * 1.05 + 0.03)
     ax.set_ylim(bottom=0)
     ax.grid(alpha=0.3)
-    ax.legend()
+    ax.legend(fontsize=8, loc="upper left")
     return save_figure(fig, out)
 
 
 def radial(tables, labels, out, peaks, sinphi_tc, p_ref, strain="eps_q"):
-    """Figs 4-6: sin(phi) vs eps1 - eps3, eta vs deviatoric strain, dilation rate vs
-    deviatoric strain, and the peak states in the Pi plane with LD and MN surfaces through the
-    compression (b = 0) strength sinphi_tc at mean stress p_ref."""
-    fig, axes = plt.subplots(2, 2, figsize=(10, 9))
+    """Figs 4-6: sin(phi) vs eps1 - eps3, eta vs deviatoric strain (the paper's eta = 7 below
+    which the curves coincide), dilation rate vs deviatoric strain, and the peak states in the Pi
+    plane with the LD and MN surfaces through the compression (b = 0) strength sinphi_tc at mean
+    stress p_ref. Records are drawn in increasing b."""
+    order = np.argsort([pk["b"] for pk in peaks], kind="stable")
+    tables, labels, peaks = ([seq[k] for k in order] for seq in (tables, labels, peaks))
+    fig, axes = plt.subplots(2, 2, figsize=(11, 11.5))
     a_s, a_eta, a_dil, a_pi = axes.ravel()
     slabel = "ε_q = √(2/3 e:e)" if strain == "eps_q" else "ε1 − ε3"
+    colors = []
     for t, lab in zip(tables, labels):
         d = derived(t)
         ed = d[strain]
-        a_s.plot(d["eps_d13"] * PCT, d["sinphi"], label=lab)
+        (line,) = a_s.plot(d["eps_d13"] * PCT, d["sinphi"], label=lab)
+        colors.append(line.get_color())
         a_eta.plot(ed * PCT, d["eta_LD"], label=lab)
         x, r = dilation_rate(ed, d["eps_v"])
         a_dil.plot(x * PCT, r, label=lab)
+    eta7 = paper.value("eta_normalisation_limit")
+    a_eta.axhline(eta7, color="k", ls=":", lw=1,
+                  label=paper.label("eta_normalisation_limit", f"curves coincide for η < {eta7:g}"))
     a_s.set(xlabel="deviator strain ε1 − ε3 [%]", ylabel="sin φ", title="Mobilised friction")
     a_eta.set(xlabel=f"deviatoric strain {slabel} [%]", ylabel="η = I1³/I3 − 27",
               title="Lade–Duncan η (Fig. 5)")
@@ -114,24 +141,31 @@ def radial(tables, labels, out, peaks, sinphi_tc, p_ref, strain="eps_q"):
     _pi_axes(a_pi, "Peak states, Π plane (Fig. 4)", "kPa")
     rmax = 0.0
     if sinphi_tc is not None:
+        through = f"sin φ_TC = {sinphi_tc:.3f} (b = 0), p = {p_ref * KPA:.4g} kPa"
         for crit, style in ((inv.LADE_DUNCAN, "-"), (inv.MATSUOKA_NAKAI, "--")):
             x, y = inv.failure_surface_pi(crit, p=p_ref, sinphi_tc=sinphi_tc)
+            const = float(inv.criterion_constant(crit, sinphi_tc))
             a_pi.plot(x * KPA, y * KPA, style, color="0.3", lw=1,
-                      label=f"{crit} (sin φ_TC = {sinphi_tc:.3f})")
+                      label=criterion_label(crit, const, through))
             rmax = max(rmax, float(np.max(np.hypot(x, y))) * KPA)
-    for pk, lab in zip(peaks, labels):
-        a_pi.plot(pk["pi_x"] * KPA, pk["pi_y"] * KPA, "o", label=f"{lab} (b={pk['b']:.2f})")
+    for pk, lab, color in zip(peaks, labels, colors):
+        a_pi.plot(pk["pi_x"] * KPA, pk["pi_y"] * KPA, "o", color=color, label=lab)
         rmax = max(rmax, float(np.hypot(pk["pi_x"], pk["pi_y"])) * KPA)
-    _axis_rays(a_pi, 1.1 * rmax if rmax else 1.0)
-    a_pi.legend(fontsize=6, loc="lower right")
+    R = 1.1 * rmax if rmax else 1.0
+    bx, by = inv.pi_point(R, inv.lode_from_b(paper.value("b_at_max_sinphi")))
+    a_pi.plot([0, bx], [0, by], color="k", ls="-.", lw=0.8,
+              label=paper.label("b_at_max_sinphi", "strongest at b = 0.5"))
+    _axis_rays(a_pi, R)
+    a_pi.legend(fontsize=6.5, loc="upper center", bbox_to_anchor=(0.5, -0.1))
     return save_figure(fig, out)
 
 
-def pi_plane(tables, labels, out, stress_surfaces, strain_guides):
+def pi_plane(tables, labels, out, stress_surfaces, strain_guides, paper_marks=()):
     """Figs 7-9: stress paths (kPa) and strain paths (%) in the Pi plane with failure surfaces
     (list of (record index, label, x, y), Pa; drawn in the record's colour: Lade-Duncan dashed,
-    others dotted) and strain guides (list of (label, x, y), strain units)."""
-    fig, (a_e, a_s) = plt.subplots(1, 2, figsize=(11, 5.5))
+    others dotted), strain guides (list of (label, x, y), strain units) and the paper's values
+    (list of (panel 'strain'|'stress', label, x, y, marker or line style), strain units or Pa)."""
+    fig, (a_e, a_s) = plt.subplots(1, 2, figsize=(12.5, 8))
     _pi_axes(a_e, "Deviatoric strain path (Π plane)", "%")
     _pi_axes(a_s, "Deviatoric stress path (Π plane)", "kPa")
     re, rs = 0.0, 0.0
@@ -147,13 +181,20 @@ def pi_plane(tables, labels, out, stress_surfaces, strain_guides):
         re = max(re, float(np.nanmax(np.hypot(d["pi_ex"], d["pi_ey"]))) * PCT)
         rs = max(rs, float(np.nanmax(np.hypot(d["pi_x"], d["pi_y"]))) * KPA)
     for k, lab, x, y in stress_surfaces:
-        style = "--" if inv.LADE_DUNCAN in lab else ":"
+        style = "--" if inv.LADE_DUNCAN in lab or "Lade" in lab else ":"
         a_s.plot(x * KPA, y * KPA, style, color=colors[k], lw=0.9, alpha=0.8, label=lab)
         rs = max(rs, float(np.max(np.hypot(x, y))) * KPA)
+    for panel, lab, x, y, style in paper_marks:
+        ax, scale = (a_e, PCT) if panel == "strain" else (a_s, KPA)
+        x, y = np.asarray(x, float) * scale, np.asarray(y, float) * scale
+        if style in ("o", "s", "D"):
+            ax.plot(x, y, style, **PAPER_STYLE, label=lab)
+        else:
+            ax.plot(x, y, style, color="k", lw=0.9, label=lab)
     _axis_rays(a_e, 1.1 * re if re else 1.0)
     _axis_rays(a_s, 1.1 * rs if rs else 1.0)
-    a_e.legend(fontsize=7, loc="lower right")
-    a_s.legend(fontsize=7, loc="lower right")
+    for ax in (a_e, a_s):       # below the plane, where no path runs
+        ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.1))
     return save_figure(fig, out)
 
 
