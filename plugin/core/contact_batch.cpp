@@ -13,8 +13,11 @@
 // so that GCC's auto-vectoriser takes them whole (check: -fopt-info-vec). Compiled with
 // -fno-trapping-math (the loops compute divisions whose lanes are then not selected; without
 // it GCC keeps such code in branches), -ffp-contract=off (no fused multiply-add: the scalar
-// kernel's roundings, so that both builds agree to the bit) and -fno-tree-pre;
-// CMakeLists.txt sets them for this file alone.
+// kernel's roundings, so that both builds agree to the bit), -fno-tree-pre and
+// -fno-thread-jumps (both otherwise rewrite comparisons of selected values into selects of
+// masks that GCC 12 does not vectorise); CMakeLists.txt sets them for this file alone. With
+// them every lane loop here vectorises in all three builds; the loops that stay scalar are
+// the rare-case ones named above.
 #include "contact_batch.hpp"
 
 #include "contact_kernel.hpp"
