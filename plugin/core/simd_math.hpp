@@ -4,6 +4,8 @@
 #ifndef TYCORE_SIMD_MATH_HPP
 #define TYCORE_SIMD_MATH_HPP
 
+#include "jkr.hpp"
+
 #include <cstdint>
 #include <cstring>
 
@@ -45,14 +47,10 @@ namespace detail {
   const double xs = subnormal ? x * up : x;
   std::uint64_t bits;
   std::memcpy(&bits, &xs, sizeof bits);
-  bits = detail::divide_by_3(bits) + 0x2A9F76253119D328ULL;
+  bits = detail::divide_by_3(bits) + jkr::cube_root_guess_offset;
   double y;
   std::memcpy(&y, &bits, sizeof y);
-  double y3 = y * y * y;
-  y *= (y3 + 2.0 * xs) / (2.0 * y3 + xs);
-  y3 = y * y * y;
-  y *= (y3 + 2.0 * xs) / (2.0 * y3 + xs);
-  y = y + (xs / (y * y) - y) * (1.0 / 3.0);
+  y = jkr::refine_cube_root(xs, y);
   y = subnormal ? y * down : y;
   constexpr double inf = __builtin_inf();
   return ((x == 0.0) | (x == inf)) ? x : y;
