@@ -33,7 +33,8 @@ namespace tycore {
 
 // Lanes of one batch. The vector loops always run over all of them (a whole number of
 // registers of every width); lanes at and beyond the n given to advance_batch are computed
-// on whatever they hold and never read back.
+// on whatever they hold and never read back (start from a value-initialised batch,
+// ContactBatch b{}, so that they hold numbers).
 inline constexpr int batch_lanes = 16;
 
 // in: what the pair computes per contact (pair_thornton_yin.cpp), out: what it scatters
@@ -51,7 +52,7 @@ struct ContactBatch {
   alignas(64) double rsq[batch_lanes];     // |x_i - x_j|^2 (affine-stiffness tally only)
   bool first_touch[batch_lanes];           // no history yet, delta >= 0: JKR snap-on first
 
-  // ---- history, in and out: ContactHistory as arrays (load_history / store_history) ----
+  // ---- history, in and out: ContactHistory as arrays (load_history / stored_history) ----
   alignas(64) double T[3][batch_lanes];
   alignas(64) double dir[3][batch_lanes];
   alignas(64) double T_star[batch_lanes];
