@@ -11,7 +11,8 @@
 //  * Isa::sse2 / avx2 / avx512: the same law over the lanes of the batch in SIMD registers
 //    (contact_batch.cpp; branch decisions as lane selects, the cube roots and the JKR Halley
 //    iteration lane-wide). Both compile into every build; best_isa() picks the widest the
-//    processor has, once, at run time, so one binary serves every x86-64 processor.
+//    processor has, once, at run time, so one binary serves every x86-64 processor (or the
+//    scalar build, in a build configured with -DTYLMP_VECTOR_LAW=OFF).
 // The vector build does the scalar kernel's arithmetic operation for operation (no fused
 // multiply-add, the same cube root bit for bit: simd_cbrt), so the two agree to the last bit;
 // tests/core/test_contact_batch.cpp checks this on every ISA the machine has, and both against
@@ -141,6 +142,7 @@ inline const char* isa_name(Isa isa)
 // does this processor run `isa` (scalar and sse2: every x86-64)
 inline bool isa_supported(Isa isa)
 {
+  __builtin_cpu_init();    // idempotent; needed where this runs before main (static init)
   switch (isa) {
     case Isa::avx512:
       return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
@@ -150,13 +152,18 @@ inline bool isa_supported(Isa isa)
   }
 }
 
-// the widest vector build this processor runs, determined once
+// the widest vector build this processor runs, determined once; Isa::scalar in a build
+// configured with -DTYLMP_VECTOR_LAW=OFF (TYCORE_SCALAR_LAW), for comparison
 inline Isa best_isa()
 {
+#ifdef TYCORE_SCALAR_LAW
+  return Isa::scalar;
+#else
   static const Isa best = isa_supported(Isa::avx512) ? Isa::avx512
                           : isa_supported(Isa::avx2) ? Isa::avx2
                                                      : Isa::sse2;
   return best;
+#endif
 }
 
 namespace detail {
