@@ -1,8 +1,11 @@
 // Kernel-level benchmark of the staged contact kernel (plugin/core/contact_kernel.hpp): ns per
 // contact-step of tycore::advance_contact called contact after contact, against the same
-// stages run over batches of B contacts (as pair thornton/yin does), and the reference law
-// (rotate_history + evaluate_contact). Pure C++, no LAMMPS, no memory traffic beyond the
-// contacts' own state: it isolates the arithmetic, latency and overlap of the kernel.
+// stages run over batches of B contacts (as pair thornton/yin does), the reference law
+// (rotate_history + evaluate_contact), and the batch entry tycore::advance_batch
+// (plugin/core/contact_batch.hpp) in each build this processor runs (scalar, sse2, avx2,
+// avx512), its structure-of-arrays batch filled from and written back to the contacts'
+// histories as a pair would. Pure C++, no LAMMPS, no memory traffic beyond the contacts' own
+// state: it isolates the arithmetic, latency and overlap of the kernel.
 //
 //   cmake -S . -B build -DTYLMP_BENCH=ON && cmake --build build --target bench_kernel_batch
 //   ./build/bench_kernel_batch
@@ -13,6 +16,7 @@
 // (Gamma = 0, contacts in micro-slip), adhesive in micro-slip, adhesive while peeling
 // (Gamma = 0.6 J/m^2, the state of contacts formed under adhesion in a static packing). Every
 // variant restarts from the same states; median of 15 timings of one sweep over all contacts.
+#include "contact_batch.hpp"
 #include "contact_kernel.hpp"
 #include "thornton_yin.hpp"
 
@@ -121,6 +125,37 @@ void run_scene(const Scene& scene)
       }
     });
     std::printf("   batch %2d %6.1f ns", B, batched);
+  }
+  std::printf("\n%-28s", "");
+  // the batch entry: dt = 2 makes twist = spin_n and ds = -2 vt exact
+  BatchParameters p;
+  p.dt = 2.0;
+  ContactBatch b{};
+  for (Isa isa : {Isa::scalar, Isa::sse2, Isa::avx2, Isa::avx512}) {
+    if (!isa_supported(isa)) continue;
+    const double entry = time_sweep([&] {
+      for (int i0 = 0; i0 < kContacts; i0 += batch_lanes) {
+        for (int l = 0; l < batch_lanes; ++l) {
+          const int i = i0 + l;
+          load_history(b, l, h[i]);
+          for (int d = 0; d < 3; ++d) {
+            b.n[d][l] = n[3 * i + d];
+            b.vt[d][l] = -0.5 * ds[3 * i + d];
+          }
+          b.delta[l] = delta[i];
+          b.R[l] = kR;
+          b.Rinv[l] = 1.0 / kR;
+          b.spin_n[l] = twist[i];
+          b.first_touch[l] = false;
+        }
+        advance_batch<Adhesive, false>(b, batch_lanes, k, p, isa);
+        for (int l = 0; l < batch_lanes; ++l) {
+          h[i0 + l] = stored_history(b, l);
+          sink += b.force[0][l];
+        }
+      }
+    });
+    std::printf("   advance_batch %-6s %6.1f ns", isa_name(isa), entry);
   }
   std::printf("\n");
   if (sink == 42.0) std::printf(" ");

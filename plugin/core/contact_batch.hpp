@@ -1,0 +1,349 @@
+// One step of the Thornton-Yin law for a batch of contacts stored as a structure of arrays
+// (ContactBatch): geometry and velocities at the contact in; forces, the torque's ingredient,
+// the updated history and the per-contact tallies out. Everything the pair style does per
+// contact besides finding it and scattering its force: first touch (JKR snap-on), separation
+// at the break overlap with its energy, the law (contact_kernel.hpp's stages), viscous
+// damping, the servo's affine-stiffness tally (docs/theory.md §6.1) and the stored energy.
+//
+// Two builds of the same entry:
+//  * advance_batch<Adhesive, Damped>(b, n, k, p, Isa::scalar): lane after lane through the
+//    scalar stages of contact_kernel.hpp, in the order the pair runs them;
+//  * Isa::sse2 / avx2 / avx512: the same law over the lanes of the batch in SIMD registers
+//    (contact_batch.cpp; branch decisions as lane selects, the cube roots and the JKR Halley
+//    iteration lane-wide). Both compile into every build; best_isa() picks the widest the
+//    processor has, once, at run time, so one binary serves every x86-64 processor (or the
+//    scalar build, in a build configured with -DTYLMP_VECTOR_LAW=OFF).
+// The vector build does the scalar kernel's arithmetic operation for operation (no fused
+// multiply-add, the same cube root bit for bit: simd_cbrt), so the two agree to the last bit;
+// tests/core/test_contact_batch.cpp checks this on every ISA the machine has, and both against
+// the reference law (thornton_yin.hpp).
+#ifndef TYCORE_CONTACT_BATCH_HPP
+#define TYCORE_CONTACT_BATCH_HPP
+
+#include "contact_kernel.hpp"
+#include "contact_types.hpp"
+#include "jkr.hpp"
+#include "mindlin_deresiewicz.hpp"
+#include "simd_math.hpp"
+#include "thornton_yin.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tycore {
+
+// Lanes of one batch. The vector loops always run over all of them (a whole number of
+// registers of every width); lanes at and beyond the n given to advance_batch are computed
+// on whatever they hold and never read back (start from a value-initialised batch,
+// ContactBatch b{}, so that they hold numbers).
+inline constexpr int batch_lanes = 16;
+
+// in: what the pair computes per contact (pair_thornton_yin.cpp), out: what it scatters
+struct ContactBatch {
+  // ---- in ----
+  alignas(64) double n[3][batch_lanes];    // unit normal, from j to i
+  alignas(64) double delta[batch_lanes];   // overlap r_i + r_j - |x_i - x_j| (< 0: a gap)
+  alignas(64) double R[batch_lanes];       // R* = r_i r_j / (r_i + r_j)
+  alignas(64) double Rinv[batch_lanes];    // 1/R*
+  alignas(64) double vn[batch_lanes];      // normal relative velocity of i to j (v_r . n)
+  alignas(64) double vt[3][batch_lanes];   // tangential relative velocity of i to j at the
+                                           // contact point, spins included (docs/theory.md §5.1)
+  alignas(64) double spin_n[batch_lanes];  // (w_i + w_j) . n: the history twists by dt/2 of it
+  alignas(64) double m_star[batch_lanes];  // m_i m_j / (m_i + m_j) (Damped only)
+  alignas(64) double rsq[batch_lanes];     // |x_i - x_j|^2 (affine-stiffness tally only)
+  bool first_touch[batch_lanes];           // no history yet, delta >= 0: JKR snap-on first
+
+  // ---- history, in and out: ContactHistory as arrays (load_history / stored_history) ----
+  alignas(64) double T[3][batch_lanes];
+  alignas(64) double dir[3][batch_lanes];
+  alignas(64) double T_star[batch_lanes];
+  alignas(64) double T_star2[batch_lanes];
+  alignas(64) double P_prev[batch_lanes];
+  alignas(64) double mode[batch_lanes];
+  alignas(64) double peeling[batch_lanes];
+  alignas(64) double sliding[batch_lanes];
+  alignas(64) double stored_energy[batch_lanes];
+  alignas(64) double radius[batch_lanes];
+
+  // ---- out ----
+  alignas(64) double P[batch_lanes];               // elastic normal force, > 0 repulsive
+  alignas(64) double contact_radius[batch_lanes];  // JKR radius a(delta)
+  alignas(64) double force[3][batch_lanes];        // total force on i (damping included)
+  alignas(64) double moment[3][batch_lanes];       // n x F_t: torque on i is -(r_i - delta/2)
+                                                   // times it, on j -(r_j - delta/2) times it
+  alignas(64) double dissipation[batch_lanes];     // frictional dissipation of the step
+  alignas(64) double damping_dissipation[batch_lanes];    // dt (eta_n vn^2 + eta_t |vt|^2)
+  alignas(64) double broken[batch_lanes];          // 1: separated at the break overlap this
+                                                   // step (history cleared, forces 0)
+  alignas(64) double break_energy[batch_lanes];    // elastic energy lost at that separation
+  // with BatchParameters::tally: the servo's affine stiffness l^2 [k_N n_a^2 n_b^2 +
+  // k_T (d_ab n_a^2 - n_a^2 n_b^2)], ab = xx yy zz xy xz yz (docs/theory.md §6.1), and |F|
+  alignas(64) double affine_stiffness[6][batch_lanes];
+  alignas(64) double force_magnitude[batch_lanes];
+  alignas(64) double energy[batch_lanes];          // with BatchParameters::energy: stored
+                                                   // elastic energy (contact_stored_energy)
+};
+
+struct BatchParameters {
+  double dt;               // timestep: ds = -vt dt, twist = dt (w_i + w_j).n / 2
+  double beta_n = 0.0;     // viscous damping ratios of the material pair (Damped only):
+  double beta_t = 0.0;     // eta = 2 beta sqrt(m* k), k = 2E*a normal, 8G*a tangential
+  bool tally = false;      // fill affine_stiffness and force_magnitude
+  bool energy = false;     // fill energy
+};
+
+inline void load_history(ContactBatch& b, int lane, const ContactHistory& h)
+{
+  for (int d = 0; d < 3; ++d) {
+    b.T[d][lane] = h.T[d];
+    b.dir[d][lane] = h.load_dir[d];
+  }
+  b.T_star[lane] = h.T_star;
+  b.T_star2[lane] = h.T_star2;
+  b.P_prev[lane] = h.P_prev;
+  b.mode[lane] = h.mode;
+  b.peeling[lane] = h.peeling;
+  b.sliding[lane] = h.sliding;
+  b.stored_energy[lane] = h.stored_energy;
+  b.radius[lane] = h.radius;
+}
+
+inline ContactHistory stored_history(const ContactBatch& b, int lane)
+{
+  ContactHistory h;
+  for (int d = 0; d < 3; ++d) {
+    h.T[d] = b.T[d][lane];
+    h.load_dir[d] = b.dir[d][lane];
+  }
+  h.T_star = b.T_star[lane];
+  h.T_star2 = b.T_star2[lane];
+  h.P_prev = b.P_prev[lane];
+  h.mode = b.mode[lane];
+  h.peeling = b.peeling[lane];
+  h.sliding = b.sliding[lane];
+  h.stored_energy = b.stored_energy[lane];
+  h.radius = b.radius[lane];
+  return h;
+}
+
+// instruction sets of the batch entry, narrowest first
+enum class Isa { scalar, sse2, avx2, avx512 };
+
+inline const char* isa_name(Isa isa)
+{
+  switch (isa) {
+    case Isa::sse2: return "sse2";
+    case Isa::avx2: return "avx2";
+    case Isa::avx512: return "avx512";
+    default: return "scalar";
+  }
+}
+
+// does this processor run `isa` (scalar and sse2: every x86-64)
+inline bool isa_supported(Isa isa)
+{
+  __builtin_cpu_init();    // idempotent; needed where this runs before main (static init)
+  switch (isa) {
+    case Isa::avx512:
+      return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+             __builtin_cpu_supports("avx512vl");
+    case Isa::avx2: return __builtin_cpu_supports("avx2");
+    default: return true;
+  }
+}
+
+// the widest vector build this processor runs, determined once; Isa::scalar in a build
+// configured with -DTYLMP_VECTOR_LAW=OFF (TYCORE_SCALAR_LAW), for comparison
+inline Isa best_isa()
+{
+#ifdef TYCORE_SCALAR_LAW
+  return Isa::scalar;
+#else
+  static const Isa best = isa_supported(Isa::avx512) ? Isa::avx512
+                          : isa_supported(Isa::avx2) ? Isa::avx2
+                                                     : Isa::sse2;
+  return best;
+#endif
+}
+
+namespace detail {
+
+// the parts of the step outside the law, shared by both builds
+
+// First touch (JKR snap-on at delta >= 0, no work done: begin_contact, docs/theory.md §1.3)
+// and separation at the break overlap delta_f (Thornton & Yin 1991, docs/theory.md §1.2):
+// the tangential energy and the JKR energy at a_f are lost. Lanes in neither state are left
+// alone; this runs lane by lane, both are rare.
+template <bool Adhesive>
+inline void touch_or_break(ContactBatch& b, int n, const PairConstants& k)
+{
+  const PairCoefficients& c = k.c;
+  for (int i = 0; i < n; ++i) {
+    b.broken[i] = 0.0;
+    b.break_energy[i] = 0.0;
+    const double R = b.R[i], delta = b.delta[i];
+    if (b.first_touch[i]) {
+      const double a = Adhesive ? jkr::contact_radius(delta, R, c.E_star, c.Gamma)
+                                : std::sqrt(R * delta);
+      ContactHistory h;
+      begin_contact(h, jkr::normal_force(a, R, c.E_star, c.Gamma), Adhesive);
+      h.radius = a;    // warm start of this step's radius
+      load_history(b, i, h);
+    } else if (delta < 0.0) {    // delta_f <= 0: only tensile contacts can break
+      const double delta_break = Adhesive ? jkr::break_overlap(R, c.E_star, c.Gamma) : 0.0;
+      if (delta < delta_break) {
+        const ContactHistory h = stored_history(b, i);
+        double stored = tangential_energy(c, R, h.P_prev, h);
+        if (Adhesive) {
+          const double a_break = jkr::contact_radius(delta_break, R, c.E_star, c.Gamma);
+          stored += jkr::stored_energy(a_break, R, c.E_star, c.Gamma);
+        }
+        b.broken[i] = 1.0;
+        b.break_energy[i] = stored;
+        load_history(b, i, ContactHistory{});
+      }
+    }
+  }
+}
+
+// energy stored in each contact after the step (lane by lane: only when LAMMPS asks)
+inline void stored_energies(ContactBatch& b, int n, const PairConstants& k)
+{
+  for (int i = 0; i < n; ++i)
+    b.energy[i] = b.broken[i] != 0.0 ? 0.0
+                                     : contact_stored_energy(k.c, b.R[i], b.contact_radius[i],
+                                                             b.P[i], stored_history(b, i));
+}
+
+// Everything after the law for lane i: viscous damping outside the elastic history, the force
+// on i and the torque's ingredient, with Tally the affine-stiffness tally; a broken lane gets
+// zeros. k_T_law: the tangential stiffness the law used this step, or < 0 where it used none
+// (frictionless or peeled step). Branch-free and reading every input unconditionally, so that
+// it inlines into the vector loop.
+template <bool Adhesive, bool Damped, bool Tally>
+[[gnu::always_inline]] inline void lane_outputs(ContactBatch& b, int i, const PairCoefficients c,
+                                                const BatchParameters p, double k_T_law)
+{
+  const bool gone = b.broken[i] != 0.0;
+  const double nx = b.n[0][i], ny = b.n[1][i], nz = b.n[2][i];
+  const double a = b.contact_radius[i], R = b.R[i], P = b.P[i];
+  double Fn = P;
+  double fs1 = b.T[0][i], fs2 = b.T[1][i], fs3 = b.T[2][i];
+  if (Damped) {    // eta = 2 beta sqrt(m* k), k = 2E*a normal, 8G*a tangential
+    const double vn = b.vn[i], vt1 = b.vt[0][i], vt2 = b.vt[1][i], vt3 = b.vt[2][i];
+    const double m_star = b.m_star[i];
+    const double eta_n = 2.0 * p.beta_n * std::sqrt(m_star * 2.0 * c.E_star * a);
+    const double eta_t = 2.0 * p.beta_t * std::sqrt(m_star * 8.0 * c.G_star * a);
+    Fn -= eta_n * vn;
+    fs1 -= eta_t * vt1;
+    fs2 -= eta_t * vt2;
+    fs3 -= eta_t * vt3;
+    const double lost = p.dt * (eta_n * vn * vn + eta_t * (vt1 * vt1 + vt2 * vt2 + vt3 * vt3));
+    b.damping_dissipation[i] = gone ? 0.0 : lost;
+  } else {
+    b.damping_dissipation[i] = 0.0;
+  }
+  const double fx = nx * Fn + fs1, fy = ny * Fn + fs2, fz = nz * Fn + fs3;
+  b.force[0][i] = gone ? 0.0 : fx;
+  b.force[1][i] = gone ? 0.0 : fy;
+  b.force[2][i] = gone ? 0.0 : fz;
+  b.moment[0][i] = gone ? 0.0 : ny * fs3 - nz * fs2;
+  b.moment[1][i] = gone ? 0.0 : nz * fs1 - nx * fs3;
+  b.moment[2][i] = gone ? 0.0 : nx * fs2 - ny * fs1;
+  if (Tally) {
+    // k_N = dP/d(delta) (jkr::normal_stiffness, docs/theory.md §1.5); k_T = 8 G* a_T(P + 2Pc),
+    // a_T the Hertz radius itself without adhesion (as evaluate_contact)
+    const double rsq = b.rsq[i];
+    const double s = std::sqrt(9.0 * jkr::pi * c.Gamma * R * R / (c.E_star * a * a * a));
+    const double k_N = c.Gamma == 0.0 ? 2.0 * c.E_star * a
+                                      : 2.0 * c.E_star * a * 3.0 * (2.0 - s) / (6.0 - s);
+    const double Pc = jkr::pull_off_force(c.Gamma, R);
+    const double a_T = Adhesive ? simd_cbrt(3.0 * R * lane_max(P + 2.0 * Pc, 0.0) / (4.0 * c.E_star))
+                                : a;
+    const double k_T = k_T_law >= 0.0 ? k_T_law : 8.0 * c.G_star * a_T;
+    const double n2[3] = {nx * nx, ny * ny, nz * nz};
+    constexpr int a_of[6] = {0, 1, 2, 0, 0, 1}, b_of[6] = {0, 1, 2, 1, 2, 2};
+#pragma GCC unroll 6
+    for (int m = 0; m < 6; ++m) {
+      const double nn = n2[a_of[m]] * n2[b_of[m]];
+      const double entry = rsq * (k_N * nn + k_T * ((m < 3 ? n2[a_of[m]] : 0.0) - nn));
+      b.affine_stiffness[m][i] = gone ? 0.0 : entry;
+    }
+    b.force_magnitude[i] = gone ? 0.0 : std::sqrt(fx * fx + fy * fy + fz * fz);
+  }
+}
+
+// the scalar build of the law: the stages of contact_kernel.hpp lane after lane, in the
+// pair's order; returns the k_T the law used, or -1
+template <bool Adhesive>
+inline double scalar_lane(ContactBatch& b, int i, const PairConstants& k, double dt)
+{
+  ContactHistory h = stored_history(b, i);
+  const double n[3] = {b.n[0][i], b.n[1][i], b.n[2][i]};
+  const double twist = 0.5 * dt * b.spin_n[i];
+  const double ds[3] = {-b.vt[0][i] * dt, -b.vt[1][i] * dt, -b.vt[2][i] * dt};
+  StepState st;
+  carry_history(n, twist, h, st);
+  normal_force_step<Adhesive>(k, b.R[i], b.Rinv[i], b.delta[i], h, st);
+  begin_tangential<Adhesive>(k, b.R[i], ds, h, st);
+  stiffness_of(k, st);
+  slip_decision(k, h, st);
+  theta_of(st);
+  double dissipation = 0.0;
+  finish_step(h, st, dissipation);
+  const bool gone = b.broken[i] != 0.0;
+  load_history(b, i, gone ? ContactHistory{} : h);
+  b.P[i] = gone ? 0.0 : st.P;
+  b.contact_radius[i] = gone ? 0.0 : st.contact_radius;
+  b.dissipation[i] = gone ? 0.0 : dissipation;
+  return (st.frictionless || st.peeled_step) ? -1.0 : st.stiffness;
+}
+
+// the vector builds, contact_batch.cpp (declared with the instruction set they are built for)
+#define TYCORE_AVX512 "avx512f,avx512dq,avx512vl"
+template <bool Adhesive, bool Damped>    // the x86-64 baseline, SSE2
+void advance_batch_sse2(ContactBatch&, int, const PairConstants&, const BatchParameters&);
+template <bool Adhesive, bool Damped>
+__attribute__((target("avx2"))) void advance_batch_avx2(ContactBatch&, int, const PairConstants&,
+                                                        const BatchParameters&);
+template <bool Adhesive, bool Damped>
+__attribute__((target(TYCORE_AVX512))) void advance_batch_avx512(ContactBatch&, int,
+                                                                 const PairConstants&,
+                                                                 const BatchParameters&);
+void cube_roots_sse2(const double*, double*, int);
+__attribute__((target("avx2"))) void cube_roots_avx2(const double*, double*, int);
+__attribute__((target(TYCORE_AVX512))) void cube_roots_avx512(const double*, double*, int);
+
+}    // namespace detail
+
+// One step of contacts 0 .. n-1 of the batch (n <= batch_lanes), all of the material pair k:
+// inputs and history as documented in ContactBatch, outputs filled. Lanes with first_touch
+// start their history here; lanes that separate come back with broken = 1 and a cleared
+// history (the caller forgets the contact). `isa` chooses the build (default: the widest this
+// processor runs).
+template <bool Adhesive, bool Damped>
+inline void advance_batch(ContactBatch& b, int n, const PairConstants& k, const BatchParameters& p,
+                          Isa isa = best_isa())
+{
+  switch (isa) {
+    case Isa::avx512: detail::advance_batch_avx512<Adhesive, Damped>(b, n, k, p); return;
+    case Isa::avx2: detail::advance_batch_avx2<Adhesive, Damped>(b, n, k, p); return;
+    case Isa::sse2: detail::advance_batch_sse2<Adhesive, Damped>(b, n, k, p); return;
+    case Isa::scalar: break;
+  }
+  detail::touch_or_break<Adhesive>(b, n, k);
+  for (int i = 0; i < n; ++i) {
+    const double k_T = detail::scalar_lane<Adhesive>(b, i, k, p.dt);
+    if (p.tally) detail::lane_outputs<Adhesive, Damped, true>(b, i, k.c, p, k_T);
+    else detail::lane_outputs<Adhesive, Damped, false>(b, i, k.c, p, k_T);
+  }
+  if (p.energy) detail::stored_energies(b, n, k);
+}
+
+// Cube roots y_i = cbrt(x_i), i < n, lane-wide in the build `isa` (simd_cbrt). For tests and
+// benchmarks of the vector cube root; the batch entry inlines it.
+void cube_roots(const double* x, double* y, int n, Isa isa = best_isa());
+
+}    // namespace tycore
+
+#endif

@@ -1,0 +1,410 @@
+// The batch entry tycore::advance_batch (contact_batch.hpp) in every build this processor runs
+// (scalar, SSE2, AVX2, AVX-512; each forced in turn, those the processor lacks not
+// instantiated):
+//  * the law: the 13 random contact paths of test_contact_kernel.cpp (contact_paths.hpp), each a
+//    lane of a batch whose other lanes follow further paths (contacts in different states in one
+//    batch), every step against the reference law at that test's tolerances, and against the
+//    scalar kernel (advance_contact) from the same state to the last bit;
+//  * the rest of the step: viscous damping, the servo's affine-stiffness tally
+//    (docs/theory.md §6.1), stored energy, first touch (§1.3) and separation (§1.2, §3.2),
+//    against their formulas, and the vector builds against the scalar build to the last bit;
+//  * the lane-wide cube root against jkr::fast_cbrt (bit for bit) and std::cbrt.
+#include "contact_batch.hpp"
+#include "contact_kernel.hpp"
+#include "contact_types.hpp"
+#include "jkr.hpp"
+#include "mindlin_deresiewicz.hpp"
+#include "simd_math.hpp"
+#include "thornton_yin.hpp"
+
+#include "contact_paths.hpp"
+#include "glass_pair.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <random>
+#include <vector>
+
+namespace {
+
+using contact_paths::RandomPath;
+using contact_paths::Visits;
+using tycore::ContactBatch;
+using tycore::Isa;
+using tycore::batch_lanes;
+
+std::vector<Isa> supported_isas()
+{
+  std::vector<Isa> isas;
+  for (Isa isa : {Isa::scalar, Isa::sse2, Isa::avx2, Isa::avx512})
+    if (tycore::isa_supported(isa)) isas.push_back(isa);
+  return isas;
+}
+
+// the dt of the batches below: twist = dt spin_n / 2 and ds = -vt dt are then exact
+constexpr double kDt = 2.0;
+
+// lane `lane` of b takes step s of a contact with history h (no damping inputs)
+void set_lane(ContactBatch& b, int lane, const contact_paths::Step& s, double R,
+              const tycore::ContactHistory& h)
+{
+  tycore::load_history(b, lane, h);
+  for (int d = 0; d < 3; ++d) {
+    b.n[d][lane] = s.n[d];
+    b.vt[d][lane] = -0.5 * s.ds[d];
+  }
+  b.delta[lane] = s.delta;
+  b.R[lane] = R;
+  b.Rinv[lane] = 1.0 / R;
+  b.vn[lane] = 0.0;
+  b.spin_n[lane] = s.twist;
+  b.m_star[lane] = 0.0;
+  b.rsq[lane] = 0.0;
+  b.first_touch[lane] = false;
+}
+
+template <bool Adhesive>
+void advance(ContactBatch& b, int n, const tycore::PairConstants& k,
+             const tycore::BatchParameters& p, Isa isa)
+{
+  tycore::advance_batch<Adhesive, false>(b, n, k, p, isa);
+}
+
+// the scalar kernel's step from the same state, to the last bit
+void expect_bitwise_scalar_kernel(const tycore::PairConstants& k, const RandomPath& path,
+                                  const contact_paths::Step& s, tycore::ContactHistory h,
+                                  const ContactBatch& b, int lane)
+{
+  const double nv[3] = {s.n.x(), s.n.y(), s.n.z()}, dsv[3] = {s.ds.x(), s.ds.y(), s.ds.z()};
+  double lost = 0.0;
+  const tycore::KernelResult f =
+      path.adhesive ? tycore::advance_contact<true>(k, path.R, s.delta, nv, s.twist, dsv, h, lost)
+                    : tycore::advance_contact<false>(k, path.R, s.delta, nv, s.twist, dsv, h, lost);
+  ASSERT_EQ(b.P[lane], f.P);
+  ASSERT_EQ(b.contact_radius[lane], f.contact_radius);
+  ASSERT_EQ(b.dissipation[lane], lost);
+  const tycore::ContactHistory g = tycore::stored_history(b, lane);
+  const double* x = &g.T[0];
+  const double* y = &h.T[0];
+  for (int m = 0; m < tycore::history_size; ++m) ASSERT_EQ(x[m], y[m]) << "history value " << m;
+  // force on i and the torque's ingredient n x T (no damping here)
+  for (int d = 0; d < 3; ++d) ASSERT_EQ(b.force[d][lane], nv[d] * f.P + h.T[d]);
+  ASSERT_EQ(b.moment[0][lane], nv[1] * h.T[2] - nv[2] * h.T[1]);
+  ASSERT_EQ(b.moment[1][lane], nv[2] * h.T[0] - nv[0] * h.T[2]);
+  ASSERT_EQ(b.moment[2][lane], nv[0] * h.T[1] - nv[1] * h.T[0]);
+}
+
+// Lane i follows the path of seeds[i] (mu, Gamma) for `steps` steps by the reference law; at
+// every step the whole batch takes the step from the reference states in build `isa`, and each
+// lane must agree with the reference law and, bit for bit, with the scalar kernel.
+void compare_batch_on_paths(Isa isa, double mu, double Gamma, const std::vector<unsigned>& seeds,
+                            int steps, std::vector<Visits>& seen)
+{
+  const int n = static_cast<int>(seeds.size());
+  ASSERT_LE(n, batch_lanes);
+  std::vector<RandomPath> paths;
+  paths.reserve(n);
+  for (unsigned seed : seeds) paths.emplace_back(mu, Gamma, seed);
+  const tycore::PairConstants k = tycore::pair_constants(paths[0].c);
+  tycore::BatchParameters p;
+  p.dt = kDt;
+  auto b = std::make_unique<ContactBatch>();
+  std::vector<tycore::ContactHistory> ref(n), before(n);
+  std::vector<contact_paths::Step> s(n);
+  for (int i = 0; i < n; ++i) ref[i] = paths[i].first_touch();
+  seen.assign(n, Visits{});
+  int separations = 0;
+  for (int step = 0; step < steps; ++step) {
+    for (int i = 0; i < n; ++i) {
+      s[i] = paths[i].next();
+      before[i] = ref[i];
+      set_lane(*b, i, s[i], paths[i].R, ref[i]);
+    }
+    if (Gamma > 0.0) advance<true>(*b, n, k, p, isa);
+    else advance<false>(*b, n, k, p, isa);
+    for (int i = 0; i < n; ++i) {
+      SCOPED_TRACE(::testing::Message() << tycore::isa_name(isa) << " lane " << i << " seed "
+                                        << seeds[i] << " step " << step);
+      const tycore::ContactResult r = paths[i].reference_step(s[i], ref[i]);
+      if (!paths[i].adhesive && s[i].delta < 0.0) {
+        // a Hertz contact separates at delta < 0 (delta_f = 0), as in the pair, where the law
+        // alone would go on at zero force: the contact is forgotten, its stored energy lost
+        ASSERT_EQ(b->broken[i], 1.0);
+        ASSERT_EQ(b->break_energy[i], before[i].stored_energy);
+        const tycore::ContactHistory gone = tycore::stored_history(*b, i);
+        for (int m = 0; m < tycore::history_size; ++m) ASSERT_EQ((&gone.T[0])[m], 0.0);
+        for (int d = 0; d < 3; ++d) ASSERT_EQ(b->force[d][i], 0.0);
+        ++separations;
+        continue;
+      }
+      ASSERT_EQ(b->broken[i], 0.0);
+      contact_paths::expect_same_step(paths[i], r, ref[i], r.dissipation, b->P[i],
+                                      b->contact_radius[i], tycore::stored_history(*b, i),
+                                      b->dissipation[i], seen[i]);
+      if (::testing::Test::HasFatalFailure()) return;
+      expect_bitwise_scalar_kernel(k, paths[i], s[i], before[i], *b, i);
+      if (::testing::Test::HasFatalFailure()) return;
+    }
+  }
+  if (Gamma == 0.0) {
+    EXPECT_GT(separations, 100);
+  }
+}
+
+// the six paths of test_contact_kernel.cpp (seeds first .. first + 5) in lanes 0-5, ten more
+// paths (seeds first + 100 ...) in lanes 6-15
+std::vector<unsigned> six_paths_and_ten_more(unsigned first)
+{
+  std::vector<unsigned> seeds;
+  for (unsigned s = first; s < first + 6; ++s) seeds.push_back(s);
+  for (unsigned s = first + 100; s < first + 110; ++s) seeds.push_back(s);
+  return seeds;
+}
+
+class BatchLaw : public ::testing::TestWithParam<Isa> {};
+
+TEST_P(BatchLaw, MatchesReferenceAndScalarKernelWithAdhesion)
+{
+  std::vector<Visits> seen;
+  compare_batch_on_paths(GetParam(), 0.3, 0.6, six_paths_and_ten_more(1), 20000, seen);
+  if (HasFatalFailure()) return;
+  for (int i = 0; i < 6; ++i) contact_paths::expect_every_branch(seen[i], true);
+}
+
+TEST_P(BatchLaw, MatchesReferenceAndScalarKernelHertzMindlin)
+{
+  std::vector<Visits> seen;
+  compare_batch_on_paths(GetParam(), 0.3, 0.0, six_paths_and_ten_more(11), 20000, seen);
+  if (HasFatalFailure()) return;
+  for (int i = 0; i < 6; ++i) contact_paths::expect_every_branch(seen[i], false);
+}
+
+TEST_P(BatchLaw, MatchesReferenceAndScalarKernelFrictionless)
+{
+  std::vector<unsigned> seeds = {21};
+  for (unsigned s = 121; s < 128; ++s) seeds.push_back(s);    // 8 lanes, one partial register
+  std::vector<Visits> seen;
+  compare_batch_on_paths(GetParam(), 0.0, 0.6, seeds, 5000, seen);
+  if (HasFatalFailure()) return;
+  EXPECT_EQ(seen[0].sliding, 5000);
+}
+
+// Damping, tallies and energy on the adhesive paths, with relative velocities: the scalar
+// build against the formulas, every vector build against the scalar build to the bit.
+TEST_P(BatchLaw, DampingTalliesAndEnergyAsTheirFormulas)
+{
+  const Isa isa = GetParam();
+  const std::vector<unsigned> seeds = six_paths_and_ten_more(31);
+  const int n = static_cast<int>(seeds.size());
+  std::vector<RandomPath> paths;
+  paths.reserve(n);
+  for (unsigned seed : seeds) paths.emplace_back(0.3, 0.6, seed);
+  const tycore::PairCoefficients& c = paths[0].c;
+  const tycore::PairConstants k = tycore::pair_constants(c);
+  tycore::BatchParameters p;
+  p.dt = kDt;
+  p.beta_n = 0.3;
+  p.beta_t = 0.2;
+  p.tally = p.energy = true;
+  auto b = std::make_unique<ContactBatch>(), scalar = std::make_unique<ContactBatch>();
+  std::vector<tycore::ContactHistory> h(n);
+  for (int i = 0; i < n; ++i) h[i] = paths[i].first_touch();
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  const double m_star = 0.5 * 2500.0 * 4.0 / 3.0 * glass_pair::kPi * std::pow(1e-4, 3);
+  int micro_slip_lanes = 0;
+  for (int step = 0; step < 3000; ++step) {
+    for (int i = 0; i < n; ++i) {
+      const contact_paths::Step s = paths[i].next();
+      set_lane(*b, i, s, paths[i].R, h[i]);
+      b->vn[i] = 1e-3 * gauss(rng);
+      b->m_star[i] = m_star;
+      b->rsq[i] = std::pow(2e-4 - s.delta, 2);
+    }
+    *scalar = *b;
+    tycore::advance_batch<true, true>(*scalar, n, k, p, Isa::scalar);
+    tycore::advance_batch<true, true>(*b, n, k, p, isa);
+    for (int i = 0; i < n; ++i) {
+      SCOPED_TRACE(::testing::Message() << tycore::isa_name(isa) << " lane " << i << " step "
+                                        << step);
+      const double a = scalar->contact_radius[i], P = scalar->P[i], R = scalar->R[i];
+      const double n_[3] = {scalar->n[0][i], scalar->n[1][i], scalar->n[2][i]};
+      const double vt[3] = {scalar->vt[0][i], scalar->vt[1][i], scalar->vt[2][i]};
+      const double vn = scalar->vn[i];
+      const tycore::ContactHistory g = tycore::stored_history(*scalar, i);
+      // eta = 2 beta sqrt(m* k), k = 2E*a normal, 8G*a tangential
+      const double eta_n = 2.0 * p.beta_n * std::sqrt(m_star * 2.0 * c.E_star * a);
+      const double eta_t = 2.0 * p.beta_t * std::sqrt(m_star * 8.0 * c.G_star * a);
+      const double Fn = P - eta_n * vn;
+      double F[3], Ft[3], F2 = 0.0;
+      for (int d = 0; d < 3; ++d) {
+        Ft[d] = g.T[d] - eta_t * vt[d];
+        F[d] = n_[d] * Fn + Ft[d];
+        F2 += F[d] * F[d];
+        ASSERT_NEAR(scalar->force[d][i], F[d], 1e-13 * std::sqrt(F2) + 1e-30);
+      }
+      const double tol = 1e-13 * (std::abs(P) + paths[i].Pc);
+      ASSERT_NEAR(scalar->moment[0][i], n_[1] * Ft[2] - n_[2] * Ft[1], tol);
+      const double vt2 = vt[0] * vt[0] + vt[1] * vt[1] + vt[2] * vt[2];
+      const double damping = kDt * (eta_n * vn * vn + eta_t * vt2);
+      ASSERT_NEAR(scalar->damping_dissipation[i], damping, 1e-13 * damping);
+      ASSERT_NEAR(scalar->force_magnitude[i], std::sqrt(F2), 1e-13 * std::sqrt(F2));
+      // affine stiffness l^2 [k_N n_a^2 n_b^2 + k_T (d_ab n_a^2 - n_a^2 n_b^2)] (§6.1),
+      // k_N = dP/d(delta); k_T = 8G* a_T, a_T^3 = 3R*(P + 2Pc)/(4E*), where the contact was
+      // not peeling before the step (a peeled step's k_T has the Savkoor-Briggs radius)
+      const double k_N = tycore::jkr::normal_stiffness(a, R, c.E_star, c.Gamma);
+      const double k_T =
+          8.0 * c.G_star * tycore::micro_slip_radius(R, c.E_star, P + 2.0 * paths[i].Pc);
+      const int ia[6] = {0, 1, 2, 0, 0, 1}, ib[6] = {0, 1, 2, 1, 2, 2};
+      if (h[i].peeling == 0.0) {
+        ++micro_slip_lanes;
+        for (int m = 0; m < 6; ++m) {
+          const double na2 = n_[ia[m]] * n_[ia[m]], nn = na2 * n_[ib[m]] * n_[ib[m]];
+          const double l2 = scalar->rsq[i];
+          ASSERT_NEAR(scalar->affine_stiffness[m][i],
+                      l2 * (k_N * nn + k_T * ((m < 3 ? na2 : 0.0) - nn)),
+                      1e-12 * l2 * (std::abs(k_N) + k_T));
+        }
+      }
+      ASSERT_NEAR(scalar->energy[i], tycore::contact_stored_energy(c, R, a, P, g),
+                  1e-12 * std::abs(scalar->energy[i]) + 1e-30);
+      // the vector build: the same to the last bit
+      ASSERT_EQ(b->P[i], scalar->P[i]);
+      ASSERT_EQ(b->contact_radius[i], scalar->contact_radius[i]);
+      ASSERT_EQ(b->dissipation[i], scalar->dissipation[i]);
+      ASSERT_EQ(b->damping_dissipation[i], scalar->damping_dissipation[i]);
+      ASSERT_EQ(b->force_magnitude[i], scalar->force_magnitude[i]);
+      ASSERT_EQ(b->energy[i], scalar->energy[i]);
+      for (int d = 0; d < 3; ++d) {
+        ASSERT_EQ(b->force[d][i], scalar->force[d][i]);
+        ASSERT_EQ(b->moment[d][i], scalar->moment[d][i]);
+      }
+      for (int m = 0; m < 6; ++m) ASSERT_EQ(b->affine_stiffness[m][i], scalar->affine_stiffness[m][i]);
+      const tycore::ContactHistory v = tycore::stored_history(*b, i);
+      for (int m = 0; m < tycore::history_size; ++m) ASSERT_EQ((&v.T[0])[m], (&g.T[0])[m]);
+      h[i] = g;
+    }
+  }
+  EXPECT_GT(micro_slip_lanes, 1000);
+}
+
+// First touch (JKR snap-on: begin_contact at the closed-form radius, docs/theory.md §1.3) and
+// separation below the break overlap delta_f (§1.2): the contact is forgotten, its tangential
+// energy and the JKR energy at a_f, W = U(a_f) (§3.2), are lost.
+TEST_P(BatchLaw, FirstTouchAndSeparation)
+{
+  using namespace glass_pair;
+  const Isa isa = GetParam();
+  const double Gamma = 0.6, R = kRstar;
+  const tycore::PairCoefficients c = coefficients(0.3, Gamma);
+  const tycore::PairConstants k = tycore::pair_constants(c);
+  const double delta_f = tycore::jkr::break_overlap(R, kEstar, Gamma);
+  tycore::BatchParameters p;
+  p.dt = kDt;
+  auto b = std::make_unique<ContactBatch>();
+  contact_paths::Step s{};
+  s.n = Eigen::Vector3d(0.0, 0.0, 1.0);
+  s.ds = Eigen::Vector3d::Zero();
+  s.twist = 0.0;
+  // lane 0: first touch at delta > 0, no tangential motion
+  s.delta = 1e-3 * R;
+  set_lane(*b, 0, s, R, tycore::ContactHistory{});
+  b->first_touch[0] = true;
+  // lane 1: a contact with stored tangential energy, pulled below delta_f
+  tycore::ContactHistory stretched;
+  tycore::begin_contact(stretched, 0.0, true);
+  stretched.T[0] = 1e-6;
+  stretched.stored_energy = 3e-15;
+  stretched.radius = tycore::jkr::contact_radius(0.5 * delta_f, R, kEstar, Gamma);
+  s.delta = 1.01 * delta_f;
+  set_lane(*b, 1, s, R, stretched);
+  // lane 2: just above delta_f, stays in contact
+  s.delta = 0.99 * delta_f;
+  set_lane(*b, 2, s, R, stretched);
+  tycore::advance_batch<true, false>(*b, 3, k, p, isa);
+
+  const double a_touch = tycore::jkr::contact_radius(1e-3 * R, R, kEstar, Gamma);
+  EXPECT_NEAR(b->contact_radius[0], a_touch, 1e-12 * a_touch);
+  const double P_touch = tycore::jkr::normal_force(a_touch, R, kEstar, Gamma);
+  EXPECT_NEAR(b->P[0], P_touch, 1e-12 * std::abs(P_touch));
+  EXPECT_EQ(b->peeling[0], 1.0);
+  EXPECT_EQ(b->T[0][0], 0.0);
+  EXPECT_EQ(b->dissipation[0], 0.0);
+  EXPECT_EQ(b->broken[0], 0.0);
+
+  EXPECT_EQ(b->broken[1], 1.0);
+  const double W = tycore::jkr::separation_work(R, kEstar, Gamma);
+  EXPECT_NEAR(b->break_energy[1], W + 3e-15, 1e-9 * W);
+  const tycore::ContactHistory gone = tycore::stored_history(*b, 1);
+  for (int m = 0; m < tycore::history_size; ++m) EXPECT_EQ((&gone.T[0])[m], 0.0);
+  for (int d = 0; d < 3; ++d) EXPECT_EQ(b->force[d][1], 0.0);
+  EXPECT_EQ(b->P[1], 0.0);
+
+  EXPECT_EQ(b->broken[2], 0.0);
+  EXPECT_EQ(b->break_energy[2], 0.0);
+  EXPECT_LT(b->P[2], 0.0);    // tensile, near the break
+  EXPECT_GT(b->contact_radius[2], tycore::jkr::break_radius(R, kEstar, Gamma));
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryIsaOfThisProcessor, BatchLaw, ::testing::ValuesIn(supported_isas()),
+                         [](const ::testing::TestParamInfo<Isa>& info) {
+                           return std::string(tycore::isa_name(info.param));
+                         });
+
+TEST(BatchDispatch, ChoosesTheWidestBuildThisProcessorRuns)
+{
+  const std::vector<Isa> isas = supported_isas();
+  EXPECT_TRUE(tycore::isa_supported(tycore::best_isa()));
+#ifdef TYCORE_SCALAR_LAW
+  EXPECT_EQ(tycore::best_isa(), Isa::scalar);    // -DTYLMP_VECTOR_LAW=OFF
+#else
+  EXPECT_EQ(tycore::best_isa(), isas.back());
+#endif
+  std::printf("builds run by this processor:");
+  for (Isa isa : isas) std::printf(" %s", tycore::isa_name(isa));
+  std::printf("; advance_batch uses %s\n", tycore::isa_name(tycore::best_isa()));
+}
+
+// the lane-wide cube root: bit for bit jkr::fast_cbrt on zero and positive normal numbers,
+// within 1e-15 of std::cbrt on subnormals, +inf to +inf, in every build
+TEST(SimdCbrt, BitForBitFastCbrtInEveryBuild)
+{
+  std::mt19937_64 gen(12345);
+  std::uniform_real_distribution<double> exponent(-307.0, 307.0), unit(0.0, 1.0);
+  constexpr int n = 1 << 16;
+  std::vector<double> x(n), y(n);
+  for (int i = 0; i < n; ++i) x[i] = i % 2 ? std::pow(10.0, exponent(gen)) : unit(gen);
+  x[0] = 0.0;
+  x[1] = std::numeric_limits<double>::min();
+  x[2] = 1e307;    // (fast_cbrt's y^3 overflows near the largest double)
+  x[3] = 1.0;
+  for (Isa isa : supported_isas()) {
+    tycore::cube_roots(x.data(), y.data(), n, isa);
+    for (int i = 0; i < n; ++i)
+      ASSERT_EQ(y[i], tycore::jkr::fast_cbrt(x[i])) << tycore::isa_name(isa) << " x = " << x[i];
+    std::vector<double> special = {std::numeric_limits<double>::denorm_min(),
+                                   1e3 * std::numeric_limits<double>::denorm_min(), 1e-310,
+                                   std::numeric_limits<double>::infinity()};
+    std::vector<double> root(special.size());
+    tycore::cube_roots(special.data(), root.data(), static_cast<int>(special.size()), isa);
+    for (std::size_t i = 0; i + 1 < special.size(); ++i)
+      EXPECT_NEAR(root[i], std::cbrt(special[i]), 1e-15 * std::cbrt(special[i]));
+    EXPECT_EQ(root.back(), std::numeric_limits<double>::infinity());
+  }
+}
+
+TEST(SimdCbrt, DivisionByThreeOfTheBits)
+{
+  std::mt19937_64 gen(7);
+  for (int i = 0; i < 1000000; ++i) {
+    const std::uint64_t b = gen() >> 1;
+    ASSERT_EQ(tycore::detail::divide_by_3(b), b / 3) << b;
+  }
+  for (std::uint64_t b : {0ull, 1ull, 2ull, 3ull, (1ull << 63) - 1, (1ull << 63) - 2})
+    EXPECT_EQ(tycore::detail::divide_by_3(b), b / 3);
+}
+
+}    // namespace
