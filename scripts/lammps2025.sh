@@ -3,7 +3,8 @@
 # from source with the packages this product uses, our library built against it, and the
 # whole test suite run with that lmp and its Python module.
 #
-#   bash scripts/lammps2025.sh [pytest arguments]     (default: the whole suite, tests/)
+#   bash scripts/lammps2025.sh [pytest arguments]     (the whole suite, tests/, unless the
+#                                                     arguments name test files)
 #   TYLMP_LAMMPS2025_NO_TESTS=1 bash scripts/lammps2025.sh   (build only, no pytest)
 #
 # The LAMMPS build is installed under $TYLMP_CACHE (default ~/.cache/tylmp), in a directory
@@ -107,6 +108,9 @@ install_python_module() {
   rm -rf "$py/lammps"
   mkdir -p "$py" "$meta.tmp"
   cp -r "$SRC/python/lammps" "$py/"
+  # the module loads liblammps.so from its own directory first: no LD_LIBRARY_PATH for Python
+  # (which would hand Debian's /usr/bin/lmp this liblammps.so.0 too: the same soname)
+  ln -s "$PREFIX/lib/liblammps.so" "$py/lammps/liblammps.so"
   printf 'Metadata-Version: 2.1\nName: lammps\nVersion: %s\n' "${meta##*/lammps-}" |
     sed 's/\.dist-info$//' >"$meta.tmp/METADATA"
   rm -rf "$meta"
@@ -146,15 +150,18 @@ write_wrapper
 WRAPPER="$PREFIX/tylmp/bin/lmp"
 log "$("$WRAPPER" -h | sed -n 's/^Large-scale.*- \(.*\)$/\1/p;/^LAMMPS version/p' | head -1)"
 
+selection=(tests)
+for arg in "$@"; do
+  case "$arg" in tests*) selection=() ;; esac
+done
 if [ -z "${TYLMP_LAMMPS2025_NO_TESTS:-}" ]; then
   # the suite as against Debian's lmp: `lmp` from PATH (the wrapper), /usr/bin/python3 with this
   # LAMMPS's Python module and liblammps, and our library from $BUILD (tests/conftest.py)
   log "running the test suite against LAMMPS $LAMMPS_DATE"
   (cd "$repo" &&
-   PATH="$PREFIX/tylmp/bin:$PATH" LD_LIBRARY_PATH="$PREFIX/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
-   PYTHONPATH="$PREFIX/lib/python3/dist-packages${PYTHONPATH:+:$PYTHONPATH}" \
+   PATH="$PREFIX/tylmp/bin:$PATH" PYTHONPATH="$PREFIX/lib/python3/dist-packages${PYTHONPATH:+:$PYTHONPATH}" \
    TYLMP_BUILD_DIR="$BUILD" TYLMP_LAMMPS_PREFIX="$PREFIX" \
-   /usr/bin/python3 -m pytest "${@:-tests}" -q -p no:cacheprovider) || status=$?
+   /usr/bin/python3 -m pytest "${selection[@]}" "$@" -q -p no:cacheprovider) || status=$?
 fi
 echo "$WRAPPER"
 exit "${status:-0}"

@@ -15,6 +15,7 @@ version is refused with an error naming both versions.
 import ctypes
 import os
 import re
+import sys
 
 __all__ = ["load", "library_path", "built_for"]
 
@@ -36,16 +37,18 @@ def _version_name(number):
 
 def library_path(lammps_version=None):
     """Path of the shared library with the styles: $TYLMP_LIBRARY if set, else the build for
-    `lammps_version` (YYYYMMDD, as lammps.version() gives it) next to this file, else the
-    build made last (tylmp.so)."""
+    `lammps_version` (YYYYMMDD, as lammps.version() gives it) next to this file or in another
+    tylmp package directory on sys.path (builds for two LAMMPS versions on one PYTHONPATH),
+    else the build made last next to this file (tylmp.so)."""
     override = os.environ.get("TYLMP_LIBRARY")
     if override:
         return override
     here = os.path.dirname(os.path.abspath(__file__))
     if lammps_version is not None:
-        versioned = os.path.join(here, _VERSIONED_NAME.format(int(lammps_version)))
-        if os.path.exists(versioned):
-            return versioned
+        name = _VERSIONED_NAME.format(int(lammps_version))
+        for directory in [here] + [os.path.join(p or ".", "tylmp") for p in sys.path]:
+            if os.path.exists(os.path.join(directory, name)):
+                return os.path.join(directory, name)
     return os.path.join(here, _LIBRARY_NAME)
 
 
