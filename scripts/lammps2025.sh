@@ -143,6 +143,7 @@ WRAP
 }
 
 BUILD="${TYLMP_LAMMPS2025_BUILD_DIR:-$repo/build-lammps2025}"
+bash "$repo/scripts/setup.sh" --packages          # compilers, MPI, python3-dev, Eigen, GoogleTest
 build_lammps
 install_python_module
 build_tylmp
@@ -160,7 +161,7 @@ if [ -z "${TYLMP_LAMMPS2025_NO_TESTS:-}" ]; then
   log "running the test suite against LAMMPS $LAMMPS_DATE"
   (cd "$repo" &&
    PATH="$PREFIX/tylmp/bin:$PATH" PYTHONPATH="$PREFIX/lib/python3/dist-packages${PYTHONPATH:+:$PYTHONPATH}" \
-   TYLMP_BUILD_DIR="$BUILD" TYLMP_LAMMPS_PREFIX="$PREFIX" \
+   TYLMP_BUILD_DIR="$BUILD" TYLMP_LAMMPS2025_WRAPPER="$PREFIX/tylmp/bin/lmp" \
    /usr/bin/python3 -m pytest "${selection[@]}" "$@" -q -p no:cacheprovider) || status=$?
 fi
 echo "$WRAPPER"
