@@ -18,8 +18,8 @@ repo="$(cd "$(dirname "$0")/.." && pwd)"
 
 LAMMPS_DATE=20250204                         # LAMMPS "4 Feb 2025"
 DEB_SOURCE=lammps
-DEB_VERSION=20250204+dfsg.1-2                # Debian 13 (trixie)
-DEB_ORIG="lammps_20250204+dfsg.1.orig.tar.xz"
+DEB_UPSTREAM=20250204+dfsg.1                 # Debian 13 (trixie): lammps 20250204+dfsg.1-N
+DEB_ORIG="lammps_$DEB_UPSTREAM.orig.tar.xz"
 CACHE="${TYLMP_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/tylmp}"
 JOBS="${TYLMP_JOBS:-$(nproc)}"
 
@@ -33,7 +33,7 @@ LAMMPS_CONFIG=(
   -DPython_EXECUTABLE=/usr/bin/python3
   -DWITH_JPEG=OFF -DWITH_PNG=OFF -DWITH_FFMPEG=OFF -DWITH_CURL=OFF
 )
-key="$(printf '%s\n' "$DEB_VERSION" "${LAMMPS_CONFIG[@]}" | sha256sum | cut -c1-10)"
+key="$(printf '%s\n' "$DEB_UPSTREAM" "${LAMMPS_CONFIG[@]}" | sha256sum | cut -c1-10)"
 PREFIX="$CACHE/lammps-$LAMMPS_DATE-$key"
 SRC="$CACHE/lammps-$LAMMPS_DATE-src"
 log() { echo "lammps2025: $*" >&2; }
@@ -50,19 +50,26 @@ SRC
               -o "Dir::State::Lists=$apt/lists" -o "Dir::Cache=$apt/cache"
               -o APT::Sandbox::User=root)
   if [ ! -f "$apt/download/$DEB_ORIG" ]; then
-    log "fetching the Debian source package $DEB_SOURCE=$DEB_VERSION"
     apt-get "${opts[@]}" -qq update
+    # any Debian revision of this upstream version: they share the orig tarball
+    local version
+    version="$(apt-cache "${opts[@]}" showsrc "$DEB_SOURCE" |
+               awk -v u="$DEB_UPSTREAM" '/^Version: /{ if (index($2, u "-") == 1) { print $2; exit } }')"
+    if [ -z "$version" ]; then
+      log "trixie has no source package $DEB_SOURCE $DEB_UPSTREAM-* any more"; exit 1
+    fi
+    log "fetching the Debian source package $DEB_SOURCE=$version"
     # a mirror may lack the .dsc (then apt-get reports an error after fetching the tarballs):
     # the orig tarball is checked against the SHA-256 of the signed Sources index below
     (cd "$apt/download" && apt-get "${opts[@]}" -qq source --download-only \
-       "$DEB_SOURCE=$DEB_VERSION" >/dev/null 2>&1) || true
+       "$DEB_SOURCE=$version" >/dev/null 2>&1) || true
     local want
-    want="$(apt-cache "${opts[@]}" showsrc "$DEB_SOURCE=$DEB_VERSION" |
+    want="$(apt-cache "${opts[@]}" showsrc "$DEB_SOURCE=$version" |
             awk -v f="$DEB_ORIG" '/^Checksums-Sha256:/{s=1;next} /^[^ ]/{s=0} s && $3==f {print $1; exit}')"
     if [ ! -f "$apt/download/$DEB_ORIG" ] || [ -z "$want" ] ||
        [ "$(sha256sum "$apt/download/$DEB_ORIG" | cut -d' ' -f1)" != "$want" ]; then
       rm -f "$apt/download/$DEB_ORIG"
-      log "could not fetch and verify $DEB_ORIG (network, or $DEB_VERSION left trixie?)"
+      log "could not fetch and verify $DEB_ORIG"
       exit 1
     fi
   fi
@@ -90,24 +97,24 @@ build_lammps() {
     { tail -30 "$PREFIX.build.log" >&2; exit 1; }
   cmake --install "$bld" >/dev/null
   # the full source headers a plugin needs beyond the installed public ones (neigh_request.h,
-  # fix_neigh_history.h, GRANULAR, EXTRA-FIX)
+  # fix_neigh_history.h, GRANULAR, EXTRA-FIX), and the Python module
   mkdir -p "$PREFIX/share/lammps-src"
-  (cd "$SRC" && cp --parents src/*.h src/fmt/* src/GRANULAR/*.h src/EXTRA-FIX/*.h \
+  (cd "$SRC" && cp -r --parents src/*.h src/fmt src/GRANULAR/*.h src/EXTRA-FIX/*.h python/lammps \
      "$PREFIX/share/lammps-src/")
-  printf '%s\n' "$DEB_VERSION" "${LAMMPS_CONFIG[@]}" >"$PREFIX/tylmp-lammps-config.txt"
+  printf '%s\n' "$DEB_UPSTREAM" "${LAMMPS_CONFIG[@]}" >"$PREFIX/tylmp-lammps-config.txt"
   touch "$PREFIX/.complete"
+  rm -rf "$bld" "$SRC"         # the install holds all later runs need (headers included)
 }
 
 install_python_module() {
-  # the Python module of this LAMMPS (it finds liblammps.so through LD_LIBRARY_PATH), with the
-  # package metadata it checks its version against: without it, importlib finds the metadata
+  # the Python module of this LAMMPS, with the package metadata it checks its version against: without it, importlib finds the metadata
   # of Debian's python3-lammps (29 Sep 2021) and the module refuses this liblammps
   local py="$PREFIX/lib/python3/dist-packages"
   local meta="$py/lammps-${LAMMPS_DATE:0:4}.$((10#${LAMMPS_DATE:4:2})).$((10#${LAMMPS_DATE:6:2})).dist-info"
   [ -f "$meta/METADATA" ] && return 0
   rm -rf "$py/lammps"
   mkdir -p "$py" "$meta.tmp"
-  cp -r "$SRC/python/lammps" "$py/"
+  cp -r "$PREFIX/share/lammps-src/python/lammps" "$py/"
   # the module loads liblammps.so from its own directory first: no LD_LIBRARY_PATH for Python
   # (which would hand Debian's /usr/bin/lmp this liblammps.so.0 too: the same soname)
   ln -s "$PREFIX/lib/liblammps.so" "$py/lammps/liblammps.so"
@@ -121,7 +128,7 @@ build_tylmp() {
   # our library against that LAMMPS, in its own build tree, installed into the LAMMPS prefix
   # (not into the system's Python site directory, which holds the 29 Sep 2021 build)
   cmake -S "$repo" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release \
-    -DLAMMPS_SOURCE_DIR="$PREFIX/share/lammps-src" -DCMAKE_PREFIX_PATH="$PREFIX" \
+    -DLAMMPS_SOURCE_DIR="$PREFIX/share/lammps-src" -DLAMMPS_DIR="$PREFIX/lib/cmake/LAMMPS" \
     -DCMAKE_INSTALL_PREFIX="$PREFIX/tylmp" -DTYLMP_PYTHON_SITE=python >/dev/null
   nice cmake --build "$BUILD" -j "$JOBS" >/dev/null
   cmake --install "$BUILD" >/dev/null

@@ -12,12 +12,14 @@
      tylmp_compat::request_history_list(neighbor, pair, instance_me)
      tylmp_compat::reverse_comm(comm, pair)
      tylmp_compat::PairWithHistory (base class: transfer_history with either signature)
+     tylmp_compat::restart_partner_tag(raw) (partner IDs of contact histories in restart files)
 ------------------------------------------------------------------------- */
 
 #ifndef TYLMP_LAMMPS_COMPAT_H
 #define TYLMP_LAMMPS_COMPAT_H
 
 #include "comm.h"
+#include "lmptype.h"
 #include "neigh_request.h"
 #include "neighbor.h"
 #include "pair.h"
@@ -86,6 +88,19 @@ class PairWithHistory : public LAMMPS_NS::Pair {
   // the history of a contact as seen from its partner atom
   virtual void transfer_contact_history(const double *source, double *target) = 0;
 };
+
+// The atom ID of a contact partner as FixNeighHistory stores it in restart files: 29 Sep 2021
+// writes it as a numeric double (buf = tag), 4 Feb 2025 as a bit pattern (buf = ubuf(tag).d),
+// and each reads only its own encoding, so 4 Feb 2025 reading a restart file of 29 Sep 2021
+// lost every contact history (docs/lammps_versions.md). The two cannot be confused: with
+// smallbig (32-bit tagint) the bit pattern of every double >= 1 exceeds MAXTAGINT, and a
+// valid ID as a bit pattern is a double below 1e-300.
+inline LAMMPS_NS::tagint restart_partner_tag(double raw)
+{
+  const int64_t bits = LAMMPS_NS::ubuf(raw).i;
+  if (bits >= 1 && bits <= MAXTAGINT) return static_cast<LAMMPS_NS::tagint>(bits);
+  return static_cast<LAMMPS_NS::tagint>(raw);
+}
 
 }    // namespace tylmp_compat
 
