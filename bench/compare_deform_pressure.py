@@ -117,9 +117,10 @@ def summary(r):
     sinphi = (r["sig1"] - r["sig3"]) / (r["sig1"] + r["sig3"])
     past = d13 > 0.01
     k = int(np.argmax(np.where(past, sinphi, -np.inf)))
-    first = int(np.argmax(r["eps1"] > 0))
+    first = int(np.argmax(r["eps1"] > 1e-5))           # the first record after the start
+    q0 = q[0] if abs(r["eps1"][0]) < 1e-12 else 0.0     # the record at the start, if any
     return {"rows": int(len(p)), "d13_end": float(d13[-1]),
-            "initial_q_over_eps1_MPa": float(q[first] / r["eps1"][first] / 1e6),
+            "initial_q_over_eps1_MPa": float((q[first] - q0) / r["eps1"][first] / 1e6),
             "eps1_of_initial": float(r["eps1"][first]),
             "p_mean_error_rel": float(np.mean(p[past] / P0 - 1)),
             "p_max_error_rel": float(np.max(np.abs(p[past] / P0 - 1))),
