@@ -55,7 +55,8 @@ R, GAMMA, RHO = 1.0e-4, 0.6, 2650.0
 R_STAR, E_STAR = R / 2, ref.effective_modulus(E, NU)
 
 
-def static_contact_deck(load_lines, overlap):
+def two_spheres(load_lines, x2):
+    """Two spheres of radius R, one at the origin, one at (x2, 0, 0), under thornton/yin."""
     return f"""{load_lines}
 units si
 atom_style sphere
@@ -65,12 +66,16 @@ comm_modify vel yes
 region box block -1e-3 1e-3 -1e-3 1e-3 -1e-3 1e-3
 create_box 1 box
 create_atoms 1 single 0 0 0
-create_atoms 1 single {2 * R - overlap!r} 0 0
+create_atoms 1 single {x2!r} 0 0
 set atom * diameter {2 * R} density {RHO}
 pair_style thornton/yin
 pair_coeff * * {E} {NU} 0.3 {GAMMA}
 neighbor 2e-6 bin
-run 0
+"""
+
+
+def static_contact_deck(load_lines, overlap):
+    return two_spheres(load_lines, 2 * R - overlap) + """run 0
 print "FX2 $(fx[2]:%.17g)"
 """
 
@@ -188,22 +193,8 @@ def cycle_deck():
     """Atom 2 approaches atom 1, is sheared sideways back and forth (peeling, Mindlin, sliding),
     and pulled off past the JKR break: every branch of the contact law."""
     speed, dt = 0.05, 2e-9
-    return f"""{LOAD_TYLMP}
-units si
-atom_style sphere
-atom_modify map array
-boundary f f f
-comm_modify vel yes
-region box block -1e-3 1e-3 -1e-3 1e-3 -1e-3 1e-3
-create_box 1 box
-create_atoms 1 single 0 0 0
-create_atoms 1 single {2 * R + 1e-8} 0 0
-set atom * diameter {2 * R} density {RHO}
-group one id 1
+    return two_spheres(LOAD_TYLMP, 2 * R + 1e-8) + f"""group one id 1
 group two id 2
-pair_style thornton/yin
-pair_coeff * * {E} {NU} 0.3 {GAMMA}
-neighbor 2e-6 bin
 neigh_modify every 1 delay 0 check yes
 timestep {dt}
 variable t equal step*dt

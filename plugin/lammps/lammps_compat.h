@@ -31,8 +31,8 @@
 // 24 Mar 2022: Neighbor::add_request(requestor, flags) replaces request() + requests[],
 // Comm::forward_comm/reverse_comm(Pair *) replace forward_comm_pair/reverse_comm_pair
 #define TYLMP_LAMMPS_NEW_REQUEST_AND_COMM (TYLMP_LAMMPS_VERSION >= 20220324)
-// 8 Feb 2023 (GRANULAR refactor, lammps/lammps PR #3512): Pair::transfer_history gained the
-// types of the pair, (double *source, double *target, int itype, int jtype)
+// GRANULAR refactor (lammps/lammps PR #3512, keyed on its first feature release, 8 Feb 2023):
+// Pair::transfer_history gained the types of the pair, (source, target, itype, jtype)
 #define TYLMP_LAMMPS_TYPED_TRANSFER_HISTORY (TYLMP_LAMMPS_VERSION >= 20230208)
 
 namespace tylmp_compat {
