@@ -143,6 +143,25 @@ def test_loader_refuses_a_build_for_another_lammps(tmp_path):
     assert f"the running LAMMPS is" in out and f"({LMP_VERSION})" in out
 
 
+def test_loader_takes_the_build_for_the_version_from_any_tylmp_directory(tmp_path, monkeypatch):
+    """Builds for two LAMMPS versions in two tylmp package directories on one sys.path: each
+    version gets its own; the version tag is read from the file, not from its name."""
+    import sys
+
+    import tylmp
+    versions = (20990101, 20990202)                   # versions no real build has
+    for v in versions:
+        d = tmp_path / str(v) / "tylmp"
+        d.mkdir(parents=True)
+        (d / f"tylmp-{v}.so").write_bytes(b"\0ELF...tylmp-lammps-version=%d\0" % v)
+    monkeypatch.delenv("TYLMP_LIBRARY", raising=False)
+    monkeypatch.setattr(sys, "path", [str(tmp_path / str(v)) for v in versions] + sys.path)
+    for v in versions:
+        path = tylmp.library_path(v)
+        assert path == str(tmp_path / str(v) / "tylmp" / f"tylmp-{v}.so")
+        assert tylmp.built_for(path) == v
+
+
 # ---- the same numbers from both versions -------------------------------------------------------
 
 def lammps2025_wrapper():
