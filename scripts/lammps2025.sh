@@ -156,7 +156,7 @@ install_python_module
 build_tylmp
 write_wrapper
 WRAPPER="$PREFIX/tylmp/bin/lmp"
-log "$("$WRAPPER" -h | sed -n 's/^Large-scale.*- \(.*\)$/\1/p;/^LAMMPS version/p' | head -1)"
+log "LAMMPS $("$WRAPPER" -h | sed -n 's/^Large-scale.*Simulator - \(.*\)$/\1/p') with tylmp: $WRAPPER"
 
 selection=(tests)
 for arg in "$@"; do
@@ -164,7 +164,7 @@ for arg in "$@"; do
 done
 if [ -z "${TYLMP_LAMMPS2025_NO_TESTS:-}" ]; then
   # the suite as against Debian's lmp: `lmp` from PATH (the wrapper), /usr/bin/python3 with this
-  # LAMMPS's Python module and liblammps, and our library from $BUILD (tests/conftest.py)
+  # LAMMPS's Python module (and its liblammps), and our library from $BUILD (tests/conftest.py)
   log "running the test suite against LAMMPS $LAMMPS_DATE"
   (cd "$repo" &&
    PATH="$PREFIX/tylmp/bin:$PATH" PYTHONPATH="$PREFIX/lib/python3/dist-packages${PYTHONPATH:+:$PYTHONPATH}" \

@@ -105,7 +105,11 @@ def load(lmp):
     handle = handle.value if isinstance(handle, ctypes.c_void_p) else handle
     if not handle:
         raise ValueError("tylmp.load: got a null LAMMPS handle")
-    count = _open_library(int(lammps.version())).tylmp_register(ctypes.c_void_p(handle))
-    if count <= 0:
+    version = int(lammps.version())
+    count = _open_library(version).tylmp_register(ctypes.c_void_p(handle))
+    if count < 0:       # the library checks the version it was compiled for itself too
+        raise RuntimeError(f"tylmp.load: {library_path(version)} was compiled for another "
+                           f"LAMMPS than the running {_version_name(version)}")
+    if count == 0:
         raise RuntimeError("tylmp.load: no style was registered")
     return count
