@@ -10,7 +10,6 @@ scripts/test.sh and skip with the reason otherwise.
 import glob
 import os
 import re
-import shutil
 import subprocess
 import time
 
@@ -140,7 +139,7 @@ def test_loader_refuses_a_build_for_another_lammps(tmp_path):
     assert rc != 0
     names = {V2021: "29 Sep 2021", V2025: "4 Feb 2025"}
     assert f"was built for LAMMPS {names[other]} ({other})" in out, out[-2000:]
-    assert f"the running LAMMPS is" in out and f"({LMP_VERSION})" in out
+    assert "the running LAMMPS is" in out and f"({LMP_VERSION})" in out
 
 
 def test_loader_takes_the_build_for_the_version_from_any_tylmp_directory(tmp_path, monkeypatch):
@@ -290,7 +289,7 @@ def test_assembly_agrees_across_versions(tmp_path):
     assert thermo[V2025] == pytest.approx(thermo[V2021], rel=1e-12)
 
 
-CONTINUE = LOAD_TYLMP + f"""read_restart {{restart}}
+CONTINUE = LOAD_TYLMP + """read_restart {restart}
 comm_modify vel yes
 neighbor 2e-5 bin
 fix nve all nve/sphere
