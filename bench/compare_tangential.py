@@ -161,8 +161,11 @@ def deck(style, c, A, steps_per_slide):
     columns = "step x2 y2 fx2 fy2"
     values = "${step} ${x2} ${y2} ${fx2} ${fy2}"
     if style == "thornton/yin":
-        peel = "compute pl all pair/local p6 p5\ncompute flags all reduce max c_pl[1] c_pl[2]\n" \
-               "variable peel equal c_flags[1]\nvariable slide equal c_flags[2]\n"
+        # LAMMPS 21 Nov 2023 and later reduce local values only when told ("inputs local")
+        reduce = "compute flags all reduce max c_pl[1] c_pl[2]"
+        peel = (f"compute pl all pair/local p6 p5\nif \"$(version) >= 20231121\" then "
+                f"\"{reduce} inputs local\" else \"{reduce}\"\n"
+                "variable peel equal c_flags[1]\nvariable slide equal c_flags[2]\n")
         columns += " peel slide"
         values += " ${peel} ${slide}"
     return f"""units si

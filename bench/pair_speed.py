@@ -6,7 +6,7 @@ settings, timestep and step counts.
     /usr/bin/python3 bench/pair_speed.py [--data bench/data/dense_paper_100kPa.data |
         --specimen RESTART] [--steps 2000] [--repeats 5] [--ranks 1]
         [--out bench/results/pair_speed] [--cases NAME ...] [--variant NAME=PATH/tylmp.so ...]
-        [--liggghts liggghts]
+        [--liggghts liggghts] [--lmp2025 WRAPPER]
 
 Specimen: every case starts from the same LAMMPS data file, by default the committed
 bench/data/dense_paper_100kPa.data (3620 spheres of the paper's size distribution, dense,
@@ -41,6 +41,17 @@ LIGGGHTS (Debian 12: LIGGGHTS-PUBLIC 3.8.0, binary /usr/bin/liggghts, MPI-enable
 Without the binary (or --liggghts PATH) the LIGGGHTS case is skipped with a message; the
 others run. With --ranks N > 1 every case, LIGGGHTS's included, runs under
 `mpirun --allow-run-as-root --oversubscribe -np N`.
+
+With --lmp2025 WRAPPER (the lmp of LAMMPS 4 Feb 2025 that `bash scripts/lammps2025.sh` builds
+and names on its last line) every LAMMPS case also runs under that LAMMPS, labelled
+"CASE @4Feb2025", in the same alternation and on the same data file: thornton/yin with the
+build of tylmp for it, and the 2025 built-ins (`granular jkr ... tangential mindlin`,
+`granular hertz/material ...`, `gran/hertz/history`) in the same syntax. The timed comparison:
+
+    W=$(TYLMP_LAMMPS2025_NO_TESTS=1 bash scripts/lammps2025.sh | tail -1)
+    /usr/bin/python3 bench/pair_speed.py --lmp2025 "$W" --cases "thornton/yin G=0.6" \
+        "thornton/yin G=0" "granular jkr+mindlin" "granular hertz/material+mindlin" \
+        "gran/hertz/history" --out bench/results/pair_speed_lammps2025
 
 Every case runs `repeats` times, the cases taken in alternation so that drifts of the
 machine's speed hit all of them alike; the figure is the median of the loop time ("Loop time
@@ -109,6 +120,7 @@ CASES = {
         "pair_style gran model hertz tangential history\npair_coeff * *\n"),
 }
 LIGGGHTS_CASES = {"liggghts hertz+history"}
+LMP2025_SUFFIX = " @4Feb2025"       # label of a case run with the lmp of --lmp2025
 LIGGGHTS_MISSING = ("no LIGGGHTS binary '{}' on PATH: skipping the case 'liggghts hertz+history' "
                     "(install it with 'apt-get install liggghts'; Debian 12: LIGGGHTS-PUBLIC "
                     "3.8.0)")
@@ -158,12 +170,12 @@ def restart_to_data(restart, workdir):
     return path
 
 
-def run_deck(name, text, ranks, workdir, library=None, liggghts="liggghts"):
-    """Run one deck (LIGGGHTS for the LIGGGHTS cases, lmp otherwise); returns its stdout."""
+def run_deck(name, text, ranks, workdir, library=None, liggghts="liggghts", lmp="lmp"):
+    """Run one deck (LIGGGHTS for the LIGGGHTS cases, `lmp` otherwise); returns its stdout."""
     path = os.path.join(workdir, "in.bench")
     with open(path, "w") as fh:
         fh.write(text)
-    exe = liggghts if name in LIGGGHTS_CASES else "lmp"
+    exe = liggghts if name in LIGGGHTS_CASES else lmp
     cmd = [exe, "-in", path, "-log", "none", "-nocite"]
     if ranks > 1:
         cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(ranks)] + cmd
@@ -182,8 +194,8 @@ def case_deck(name, data, steps, measure=None):
     return build(data, CASES[name], steps, measure)
 
 
-def run_case(data, name, steps, ranks, workdir, library=None, liggghts="liggghts"):
-    out = run_deck(name, case_deck(name, data, steps), ranks, workdir, library, liggghts)
+def run_case(data, name, steps, ranks, workdir, library=None, liggghts="liggghts", lmp="lmp"):
+    out = run_deck(name, case_deck(name, data, steps), ranks, workdir, library, liggghts, lmp)
     # LAMMPS and LIGGGHTS 3.8 ("..., finish time ...") both print this line
     m = re.search(r"Loop time of ([0-9.eE+-]+) on \d+ procs for (\d+) steps with (\d+) atoms", out)
     if not m:
@@ -250,6 +262,10 @@ def main(argv=None):
     ap.add_argument("--variant", action="append", default=[],
                     help="NAME=PATH of a tylmp.so build; thornton/yin cases run once per variant")
     ap.add_argument("--liggghts", default="liggghts", help="LIGGGHTS executable")
+    ap.add_argument("--lmp2025", metavar="WRAPPER",
+                    help="also run every LAMMPS case with this lmp of LAMMPS 4 Feb 2025 (the "
+                         "last line of 'bash scripts/lammps2025.sh'), labelled 'CASE "
+                         f"{LMP2025_SUFFIX.strip()}'")
     ap.add_argument("--plot", nargs="+", metavar="CSV",
                     help="only redraw the figure from these CSV files (see --png)")
     ap.add_argument("--png", help="the figure of --plot")
@@ -260,20 +276,27 @@ def main(argv=None):
         print("wrote", plot(args.plot, args.png))
         return
     variants = [tuple(v.split("=", 1)) for v in args.variant]
+    if args.lmp2025 and variants:
+        ap.error("--variant builds are for one LAMMPS: run --lmp2025 without --variant")
+    if args.lmp2025 and not (os.path.isfile(args.lmp2025) and os.access(args.lmp2025, os.X_OK)):
+        ap.error(f"--lmp2025 {args.lmp2025}: no such executable (bash scripts/lammps2025.sh "
+                 "prints its path on its last line)")
     skipped = []
     if any(name in LIGGGHTS_CASES for name in args.cases) and not shutil.which(args.liggghts):
         print(LIGGGHTS_MISSING.format(args.liggghts), flush=True)
         skipped = [name for name in args.cases if name in LIGGGHTS_CASES]
-    runs = []    # (label, case, library)
+    runs = []    # (label, case, library, lmp)
     for name in args.cases:
         if name in skipped:
             continue
         if variants and name.startswith("thornton/yin"):
-            runs += [(f"{name} [{vn}]", name, os.path.abspath(lib)) for vn, lib in variants]
+            runs += [(f"{name} [{vn}]", name, os.path.abspath(lib), "lmp") for vn, lib in variants]
         elif name in LIGGGHTS_CASES:
-            runs.append((name, name, None))
+            runs.append((name, name, None, "lmp"))
         else:
-            runs.append((name, name, os.path.abspath(variants[0][1]) if variants else None))
+            runs.append((name, name, os.path.abspath(variants[0][1]) if variants else None, "lmp"))
+        if args.lmp2025 and name not in LIGGGHTS_CASES:
+            runs.append((name + LMP2025_SUFFIX, name, None, os.path.abspath(args.lmp2025)))
     source = os.path.abspath(args.specimen or args.data)
     if not os.path.exists(source):
         sys.exit(f"no specimen {source}" + (
@@ -284,9 +307,9 @@ def main(argv=None):
     with tempfile.TemporaryDirectory() as work:
         data = restart_to_data(source, work) if args.specimen else source
         for rep in range(args.repeats):
-            for label, name, library in runs:
+            for label, name, library, lmp in runs:
                 loop, rate, pair = run_case(data, name, args.steps, args.ranks, work, library,
-                                            args.liggghts)
+                                            args.liggghts, lmp)
                 rows.append({"case": label, "repeat": rep, "ranks": args.ranks,
                              "loop_s": loop, "atom_steps_per_s": rate, "pair_s": pair})
                 print(f"  {label:44s} run {rep}: {rate:.4g} atom-steps/s", flush=True)
@@ -297,7 +320,7 @@ def main(argv=None):
                      f"{r['atom_steps_per_s']},{r['pair_s']}\n")
     os.replace(args.out + ".csv.tmp", args.out + ".csv")
     medians = {label: statistics.median(r["atom_steps_per_s"] for r in rows if r["case"] == label)
-               for label, _, _ in runs}
+               for label, _, _, _ in runs}
     base = medians.get("thornton/yin G=0.6") or medians.get(
         f"thornton/yin G=0.6 [{variants[0][0]}]" if variants else "")
     speedups = {}
@@ -314,7 +337,7 @@ def main(argv=None):
                 speedups[label] = statistics.median(ratios)
     summary = {"data": None if args.specimen else source, "specimen": args.specimen and source,
                "timestep": DT, "skipped": skipped, "steps": args.steps, "repeats": args.repeats,
-               "ranks": args.ranks, "median_atom_steps_per_s": medians,
+               "ranks": args.ranks, "lmp2025": args.lmp2025, "median_atom_steps_per_s": medians,
                "ratio_to_thornton_yin_G0.6": {k: v / base for k, v in medians.items()} if base else {},
                "speedup_vs_first_variant": speedups}
     write_json(args.out + ".json", summary, indent=2)

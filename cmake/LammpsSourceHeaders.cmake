@@ -4,11 +4,12 @@
 #
 # Result: LAMMPS_SOURCE_INCLUDE_DIRS (src/ and src/GRANULAR of that version).
 
+# (liblammps-dev, which holds LAMMPSConfig.cmake: Debian 13 renamed liblammps0 liblammps0t64)
 execute_process(
-  COMMAND dpkg-query -W [=[-f=${source:Version}]=] liblammps0
+  COMMAND dpkg-query -W [=[-f=${source:Version}]=] liblammps-dev
   OUTPUT_VARIABLE _lmp_src_version RESULT_VARIABLE _rc ERROR_QUIET)
 if(NOT _rc EQUAL 0 OR _lmp_src_version STREQUAL "")
-  message(FATAL_ERROR "tylmp: cannot find the Debian package liblammps0 "
+  message(FATAL_ERROR "tylmp: cannot find the Debian package liblammps-dev "
     "(apt-get install lammps liblammps-dev python3-lammps)")
 endif()
 
@@ -28,8 +29,8 @@ if(NOT EXISTS "${_hdr_root}/neigh_request.h" OR NOT EXISTS "${_hdr_root}/fmt/for
     file(GLOB _orig "${_dl}/lammps_*.orig.tar.*")
     if(NOT _rc EQUAL 0 OR NOT _orig)
       message(FATAL_ERROR "tylmp: 'apt-get source --download-only lammps=${_lmp_src_version}' "
-        "failed:\n${_err}\nAdd a deb-src entry for bookworm (scripts/setup.sh does it) and "
-        "run 'apt-get update'.")
+        "failed:\n${_err}\nAdd a deb-src entry for this Debian release (scripts/setup.sh "
+        "does it) and run 'apt-get update'.")
     endif()
   endif()
   list(GET _orig 0 _orig)

@@ -47,7 +47,7 @@ compute diss all pair thornton/yin
 compute spin all property/atom omegaz
 variable d equal {R1 + R2}-(x[2]-x[1])
 thermo 100000
-fix out all print {every} "$(step*dt) ${{d}} $(fx[2]) $(vx[1]) $(vx[2]) $(vy[1]) $(vy[2]) $(c_spin[1]) $(c_spin[2]) $(c_diss) $(c_diss[2]) $(ke)" file out.txt screen no title "# t d fx vx1 vx2 vy1 vy2 wz1 wz2 U Dbreak ke"
+fix out all print {every} "$(step*dt) ${{d}} $(fx[2]) $(vx[1]) $(vx[2]) $(vy[1]) $(vy[2]) $(C_spin[1]) $(C_spin[2]) $(c_diss) $(c_diss[2]) $(ke)" file out.txt screen no title "# t d fx vx1 vx2 vy1 vy2 wz1 wz2 U Dbreak ke"
 run {nsteps}
 """
 

@@ -136,7 +136,7 @@ def tangential_cycle(tmp_path, Gamma, mu, delta, amplitudes, speed, dt):
              "compute torque all property/atom tqz")
     motion = "move variable v_zero v_py v_zero v_zero v_vy v_zero"    # x, z held: constant overlap
     cols = {"t": "step*dt", "y": "y[2]", "fx": "fx[2]", "fy": "fy[2]", "f1y": "fy[1]",
-            "tz1": "c_torque[1]", "tz2": "c_torque[2]"}
+            "tz1": "C_torque[1]", "tz2": "C_torque[2]"}
     nsteps = int(times[-1] / dt)
     deck = two_sphere_deck(f"pair_style thornton/yin\npair_coeff * * {E} {NU} {mu} {Gamma}",
                            motion, nsteps, dt, cols, extra=extra)

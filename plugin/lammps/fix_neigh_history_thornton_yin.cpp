@@ -1,5 +1,8 @@
 #include "fix_neigh_history_thornton_yin.h"
 
+#include "lammps_compat.h"
+
+#include "atom.h"
 #include "comm.h"
 #include "update.h"
 
@@ -18,4 +21,18 @@ void FixNeighHistoryThorntonYin::write_restart(FILE *fp)
     int size = 0;
     fwrite(&size, sizeof(int), 1, fp);
   }
+}
+
+void FixNeighHistoryThorntonYin::unpack_restart(int nlocal, int nth)
+{
+  FixNeighHistory::unpack_restart(nlocal, nth);
+  // the same walk through this atom's restart values as the base class (the sizes of the
+  // fixes before this one, then ours: size, count, count x (partner ID, dnum values)), to
+  // read the partner IDs again in whichever encoding the file has
+  const double *values = atom->extra[nlocal];
+  int m = 0;
+  for (int i = 0; i < nth; ++i) m += static_cast<int>(values[m]);
+  m += 2;
+  for (int n = 0; n < npartner[nlocal]; ++n, m += dnum + 1)
+    partner[nlocal][n] = tylmp_compat::restart_partner_tag(values[m]);
 }

@@ -9,6 +9,9 @@
    history under the wrong atom. The copy made by post_run() at the end of the run, while
    list and ghosts still agreed, is what must be written; only restart files written
    during a run (the `restart` command) need a fresh copy.
+
+   unpack_restart() reads the partner IDs of restart files of either LAMMPS version
+   (tylmp_compat::restart_partner_tag; docs/lammps_versions.md).
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_FIX_NEIGH_HISTORY_THORNTON_YIN_H
@@ -22,6 +25,7 @@ class FixNeighHistoryThorntonYin : public FixNeighHistory {
  public:
   FixNeighHistoryThorntonYin(class LAMMPS *, int, char **);
   void write_restart(FILE *) override;
+  void unpack_restart(int, int) override;
 };
 
 }    // namespace LAMMPS_NS

@@ -52,7 +52,7 @@ inline tycore::ContactHistory load_history(const double *slot)
 
 /* ---------------------------------------------------------------------- */
 
-PairThorntonYin::PairThorntonYin(LAMMPS *lmp) : Pair(lmp)
+PairThorntonYin::PairThorntonYin(LAMMPS *lmp) : PairWithHistory(lmp)
 {
   single_enable = 1;
   no_virial_fdotr_compute = 1;
@@ -295,9 +295,7 @@ void PairThorntonYin::init_style()
     error->all(FLERR, "pair thornton/yin needs a mechanically consistent unit system "
                "(units si, cgs, micro or nano), got 'units {}'", units);
 
-  const int irequest = neighbor->request(this, instance_me);
-  neighbor->requests[irequest]->size = 1;
-  neighbor->requests[irequest]->history = 1;
+  tylmp_compat::request_history_list(neighbor, this, instance_me);
 
   dt = update->dt;
 
@@ -894,7 +892,7 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
     }
   }
   flush_batch();
-  if (tally && newton_pair) comm->reverse_comm_pair(this);
+  if (tally && newton_pair) tylmp_compat::reverse_comm(comm, this);
 
   pvector[DISSIPATION_FRICTION] += dissipated_friction;
   pvector[DISSIPATION_BREAK] += dissipated_break;
@@ -937,7 +935,7 @@ void PairThorntonYin::record_contact(const Contact &ct, double Fn, double fs1, d
    history seen from the partner: vectors flip sign, scalars do not
 ------------------------------------------------------------------------- */
 
-void PairThorntonYin::transfer_history(double *source, double *target)
+void PairThorntonYin::transfer_contact_history(const double *source, double *target)
 {
   for (int k = 0; k < HISTORY_SIZE; ++k)
     target[k] = tycore::history_transfer_sign[k] * source[k];

@@ -8,7 +8,7 @@
 #ifndef LMP_PAIR_THORNTON_YIN_H
 #define LMP_PAIR_THORNTON_YIN_H
 
-#include "pair.h"
+#include "lammps_compat.h"
 
 #include "contact_kernel.hpp"
 
@@ -16,7 +16,7 @@
 
 namespace LAMMPS_NS {
 
-class PairThorntonYin : public Pair {
+class PairThorntonYin : public tylmp_compat::PairWithHistory {
  public:
   PairThorntonYin(class LAMMPS *);
   ~PairThorntonYin() override;
@@ -31,7 +31,7 @@ class PairThorntonYin : public Pair {
   void write_restart_settings(FILE *) override;
   void read_restart_settings(FILE *) override;
   double single(int, int, int, int, double, double, double, double &) override;
-  void transfer_history(double *, double *) override;
+  void transfer_contact_history(const double *, double *) override;
   double memory_usage() override;
   void *extract(const char *, int &) override;
   int pack_reverse_comm(int, int, double *) override;

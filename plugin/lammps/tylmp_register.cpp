@@ -7,13 +7,34 @@
 
 #include "tylmp_styles.h"
 
+#include "error.h"
 #include "force.h"
 #include "lammps.h"
 #include "lammpsplugin.h"
 #include "modify.h"
 #include "version.h"
 
+#include <string>
+
 using namespace LAMMPS_NS;
+
+// Only the entry points below leave the library (CMake builds it with hidden visibility):
+// LAMMPS 4 Feb 2025 has a built-in LAMMPS_NS::FixDampingCundall, and an exported class of the
+// same name would be bound to the other library's constructor and virtual table.
+#define TYLMP_EXPORT __attribute__((visibility("default")))
+#define TYLMP_STRINGIFY2(x) #x
+#define TYLMP_STRINGIFY(x) TYLMP_STRINGIFY2(x)
+
+// The LAMMPS version (YYYYMMDD) this library is compiled against: a build runs only in that
+// LAMMPS (class layouts and virtual tables differ between versions). The tag is also a string
+// in the file, which python/tylmp/__init__.py reads before loading the library.
+extern "C" TYLMP_EXPORT const char tylmp_lammps_version_tag[] =
+    "tylmp-lammps-version=" TYLMP_STRINGIFY(TYLMP_LAMMPS_VERSION);
+
+extern "C" TYLMP_EXPORT int tylmp_lammps_version()
+{
+  return TYLMP_LAMMPS_VERSION;
+}
 
 namespace {
 
@@ -34,9 +55,11 @@ template <typename T> void *plugin_with_args(void *lmp, int narg, char **arg)
 
 }    // namespace
 
-extern "C" int tylmp_register(void *handle)
+extern "C" TYLMP_EXPORT int tylmp_register(void *handle)
 {
   auto lmp = static_cast<LAMMPS *>(handle);
+  // (num_ver sits at the same place in the LAMMPS class of every supported version)
+  if (lmp->num_ver != TYLMP_LAMMPS_VERSION) return -1;
   int count = 0;
 #define TYLMP_PAIR(style_name, Class) \
   (*lmp->force->pair_map)[style_name] = &create_pair<Class>; \
@@ -54,9 +77,15 @@ extern "C" int tylmp_register(void *handle)
   return count;
 }
 
-extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
+extern "C" TYLMP_EXPORT void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
 {
   auto reg = (lammpsplugin_regfunc) regfunc;
+  auto host = static_cast<LAMMPS *>(lmp);
+  if (host->num_ver != TYLMP_LAMMPS_VERSION)
+    host->error->all(FLERR, std::string("plugin load: this tylmp library was built for LAMMPS ") +
+                                LAMMPS_VERSION + " (" TYLMP_STRINGIFY(TYLMP_LAMMPS_VERSION) "), " +
+                                "not for this LAMMPS " + host->version + ": build tylmp " +
+                                "against this LAMMPS (README, Install) and load that build");
   lammpsplugin_t plugin;
   plugin.version = LAMMPS_VERSION;
   plugin.author = "tylmp developers";

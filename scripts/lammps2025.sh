@@ -1,0 +1,175 @@
+#!/usr/bin/env bash
+# The modern test target on Debian 12: LAMMPS 4 Feb 2025 (Debian 13's source package) built
+# from source with the packages this product uses, our library built against it, and the
+# whole test suite run with that lmp and its Python module.
+#
+#   bash scripts/lammps2025.sh [pytest arguments]     (the whole suite, tests/, unless the
+#                                                     arguments name test files)
+#   TYLMP_LAMMPS2025_NO_TESTS=1 bash scripts/lammps2025.sh   (build only, no pytest)
+#
+# The LAMMPS build is installed under $TYLMP_CACHE (default ~/.cache/tylmp), in a directory
+# named by the LAMMPS version and a hash of its configuration, and reused by later runs: a
+# changed configuration builds anew. Our library is built in build-lammps2025/ (or
+# $TYLMP_LAMMPS2025_BUILD_DIR) and installed into that LAMMPS prefix.
+# The last line of output is the path of a wrapper that runs this lmp with the library and
+# Python paths set: any deck with the two loader lines runs against 4 Feb 2025 through it.
+set -euo pipefail
+repo="$(cd "$(dirname "$0")/.." && pwd)"
+
+LAMMPS_DATE=20250204                         # LAMMPS "4 Feb 2025"
+DEB_SOURCE=lammps
+DEB_UPSTREAM=20250204+dfsg.1                 # Debian 13 (trixie): lammps 20250204+dfsg.1-N
+DEB_ORIG="lammps_$DEB_UPSTREAM.orig.tar.xz"
+CACHE="${TYLMP_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/tylmp}"
+JOBS="${TYLMP_JOBS:-$(nproc)}"
+
+# the LAMMPS configuration: GRANULAR (pair granular, gran/*, compute contact/atom), PYTHON
+# (the deck loader lines), PLUGIN (plugin load), EXTRA-FIX (fix deform/pressure); MPI,
+# smallbig integers and -O2 like Debian's package; a shared liblammps for the Python module
+LAMMPS_CONFIG=(
+  -DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS_RELEASE=-O2 -DNDEBUG"
+  -DBUILD_SHARED_LIBS=ON -DBUILD_MPI=ON -DBUILD_OMP=OFF -DLAMMPS_SIZES=smallbig
+  -DPKG_GRANULAR=ON -DPKG_PYTHON=ON -DPKG_PLUGIN=ON -DPKG_EXTRA-FIX=ON
+  -DPython_EXECUTABLE=/usr/bin/python3
+  -DWITH_JPEG=OFF -DWITH_PNG=OFF -DWITH_FFMPEG=OFF -DWITH_CURL=OFF
+)
+key="$(printf '%s\n' "$DEB_UPSTREAM" "${LAMMPS_CONFIG[@]}" | sha256sum | cut -c1-10)"
+PREFIX="$CACHE/lammps-$LAMMPS_DATE-$key"
+SRC="$CACHE/lammps-$LAMMPS_DATE-src"
+log() { echo "lammps2025: $*" >&2; }
+
+fetch_source() {
+  # a private apt configuration with only the trixie deb-src entry: the system's sources
+  # stay untouched, and apt checks the tarball against the signed Sources index
+  local apt="$CACHE/apt-trixie"
+  mkdir -p "$apt/lists/partial" "$apt/cache" "$apt/download"
+  cat >"$apt/sources.list" <<'SRC'
+deb-src [signed-by=/usr/share/keyrings/debian-archive-keyring.gpg] http://deb.debian.org/debian trixie main
+SRC
+  local opts=(-o "Dir::Etc::SourceList=$apt/sources.list" -o Dir::Etc::SourceParts=/dev/null
+              -o "Dir::State::Lists=$apt/lists" -o "Dir::Cache=$apt/cache"
+              -o APT::Sandbox::User=root)
+  if [ ! -f "$apt/download/$DEB_ORIG" ]; then
+    apt-get "${opts[@]}" -qq update
+    # any Debian revision of this upstream version: they share the orig tarball
+    local version
+    version="$(apt-cache "${opts[@]}" showsrc "$DEB_SOURCE" |
+               awk -v u="$DEB_UPSTREAM" '/^Version: /{ if (index($2, u "-") == 1) { print $2; exit } }')"
+    if [ -z "$version" ]; then
+      log "trixie has no source package $DEB_SOURCE $DEB_UPSTREAM-* any more"; exit 1
+    fi
+    log "fetching the Debian source package $DEB_SOURCE=$version"
+    # a mirror may lack the .dsc (then apt-get reports an error after fetching the tarballs):
+    # the orig tarball is checked against the SHA-256 of the signed Sources index below
+    (cd "$apt/download" && apt-get "${opts[@]}" -qq source --download-only \
+       "$DEB_SOURCE=$version" >/dev/null 2>&1) || true
+    local want
+    want="$(apt-cache "${opts[@]}" showsrc "$DEB_SOURCE=$version" |
+            awk -v f="$DEB_ORIG" '/^Checksums-Sha256:/{s=1;next} /^[^ ]/{s=0} s && $3==f {print $1; exit}')"
+    if [ ! -f "$apt/download/$DEB_ORIG" ] || [ -z "$want" ] ||
+       [ "$(sha256sum "$apt/download/$DEB_ORIG" | cut -d' ' -f1)" != "$want" ]; then
+      rm -f "$apt/download/$DEB_ORIG"
+      log "could not fetch and verify $DEB_ORIG"
+      exit 1
+    fi
+  fi
+  if [ ! -f "$SRC/.complete" ]; then
+    log "extracting $DEB_ORIG"
+    rm -rf "$SRC" "$SRC.tmp"
+    mkdir -p "$SRC.tmp"
+    tar -xf "$apt/download/$DEB_ORIG" -C "$SRC.tmp" --strip-components=1
+    touch "$SRC.tmp/.complete"
+    mv "$SRC.tmp" "$SRC"
+  fi
+}
+
+build_lammps() {
+  [ -f "$PREFIX/.complete" ] && return 0
+  fetch_source
+  # installed in place; the .complete marker, written last, makes a half install count as none
+  local bld="$PREFIX.build"
+  log "building LAMMPS $LAMMPS_DATE into $PREFIX (once; later runs reuse it)"
+  rm -rf "$PREFIX"
+  cmake -S "$SRC/cmake" -B "$bld" "${LAMMPS_CONFIG[@]}" -DCMAKE_INSTALL_PREFIX="$PREFIX" \
+    -DCMAKE_INSTALL_LIBDIR=lib >"$PREFIX.configure.log" 2>&1 ||
+    { tail -30 "$PREFIX.configure.log" >&2; exit 1; }
+  nice cmake --build "$bld" -j "$JOBS" >"$PREFIX.build.log" 2>&1 ||
+    { tail -30 "$PREFIX.build.log" >&2; exit 1; }
+  cmake --install "$bld" >/dev/null
+  # the full source headers a plugin needs beyond the installed public ones (neigh_request.h,
+  # fix_neigh_history.h, GRANULAR, EXTRA-FIX), and the Python module
+  mkdir -p "$PREFIX/share/lammps-src"
+  (cd "$SRC" && cp -r --parents src/*.h src/fmt src/GRANULAR/*.h src/EXTRA-FIX/*.h python/lammps \
+     "$PREFIX/share/lammps-src/")
+  printf '%s\n' "$DEB_UPSTREAM" "${LAMMPS_CONFIG[@]}" >"$PREFIX/tylmp-lammps-config.txt"
+  touch "$PREFIX/.complete"
+  rm -rf "$bld" "$SRC"         # the install holds all later runs need (headers included)
+}
+
+install_python_module() {
+  # the Python module of this LAMMPS, with the package metadata it checks its version against: without it, importlib finds the metadata
+  # of Debian's python3-lammps (29 Sep 2021) and the module refuses this liblammps
+  local py="$PREFIX/lib/python3/dist-packages"
+  local meta="$py/lammps-${LAMMPS_DATE:0:4}.$((10#${LAMMPS_DATE:4:2})).$((10#${LAMMPS_DATE:6:2})).dist-info"
+  [ -f "$meta/METADATA" ] && return 0
+  rm -rf "$py/lammps"
+  mkdir -p "$py" "$meta.tmp"
+  cp -r "$PREFIX/share/lammps-src/python/lammps" "$py/"
+  # the module loads liblammps.so from its own directory first: no LD_LIBRARY_PATH for Python
+  # (which would hand Debian's /usr/bin/lmp this liblammps.so.0 too: the same soname)
+  ln -s "$PREFIX/lib/liblammps.so" "$py/lammps/liblammps.so"
+  printf 'Metadata-Version: 2.1\nName: lammps\nVersion: %s\n' "${meta##*/lammps-}" |
+    sed 's/\.dist-info$//' >"$meta.tmp/METADATA"
+  rm -rf "$meta"
+  mv "$meta.tmp" "$meta"
+}
+
+build_tylmp() {
+  # our library against that LAMMPS, in its own build tree, installed into the LAMMPS prefix
+  # (not into the system's Python site directory, which holds the 29 Sep 2021 build)
+  cmake -S "$repo" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release \
+    -DLAMMPS_SOURCE_DIR="$PREFIX/share/lammps-src" -DLAMMPS_DIR="$PREFIX/lib/cmake/LAMMPS" \
+    -DCMAKE_INSTALL_PREFIX="$PREFIX/tylmp" -DTYLMP_PYTHON_SITE=python >/dev/null
+  nice cmake --build "$BUILD" -j "$JOBS" >/dev/null
+  cmake --install "$BUILD" >/dev/null
+}
+
+write_wrapper() {
+  # lmp of this build with its liblammps, its Python module and the tylmp installed beside it
+  # (after any PYTHONPATH of the caller, so a development build on PYTHONPATH comes first)
+  mkdir -p "$PREFIX/tylmp/bin"
+  cat >"$PREFIX/tylmp/bin/lmp.tmp" <<WRAP
+#!/bin/sh
+# LAMMPS $LAMMPS_DATE with tylmp, written by $repo/scripts/lammps2025.sh
+export LD_LIBRARY_PATH="$PREFIX/lib\${LD_LIBRARY_PATH:+:\$LD_LIBRARY_PATH}"
+export PYTHONPATH="\${PYTHONPATH:+\$PYTHONPATH:}$PREFIX/tylmp/python:$PREFIX/lib/python3/dist-packages"
+exec "$PREFIX/bin/lmp" "\$@"
+WRAP
+  chmod +x "$PREFIX/tylmp/bin/lmp.tmp"
+  mv "$PREFIX/tylmp/bin/lmp.tmp" "$PREFIX/tylmp/bin/lmp"
+}
+
+BUILD="${TYLMP_LAMMPS2025_BUILD_DIR:-$repo/build-lammps2025}"
+bash "$repo/scripts/setup.sh" --packages          # compilers, MPI, python3-dev, Eigen, GoogleTest
+build_lammps
+install_python_module
+build_tylmp
+write_wrapper
+WRAPPER="$PREFIX/tylmp/bin/lmp"
+log "LAMMPS $("$WRAPPER" -h | sed -n 's/^Large-scale.*Simulator - \(.*\)$/\1/p') with tylmp: $WRAPPER"
+
+selection=(tests)
+for arg in "$@"; do
+  case "$arg" in tests*) selection=() ;; esac
+done
+if [ -z "${TYLMP_LAMMPS2025_NO_TESTS:-}" ]; then
+  # the suite as against Debian's lmp: `lmp` from PATH (the wrapper), /usr/bin/python3 with this
+  # LAMMPS's Python module (and its liblammps), and our library from $BUILD (tests/conftest.py)
+  log "running the test suite against LAMMPS $LAMMPS_DATE"
+  (cd "$repo" &&
+   PATH="$PREFIX/tylmp/bin:$PATH" PYTHONPATH="$PREFIX/lib/python3/dist-packages${PYTHONPATH:+:$PYTHONPATH}" \
+   TYLMP_BUILD_DIR="$BUILD" TYLMP_LAMMPS2025_WRAPPER="$PREFIX/tylmp/bin/lmp" \
+   /usr/bin/python3 -m pytest "${selection[@]}" "$@" -q -p no:cacheprovider) || status=$?
+fi
+echo "$WRAPPER"
+exit "${status:-0}"
