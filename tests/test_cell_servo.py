@@ -594,6 +594,43 @@ def test_bad_input(tmp_path, deck, message):
     assert message in error_line, error_line
 
 
+def documented_bad_inputs(section="fix cell/servo"):
+    """(commands, message) of every table row of `## {section}` in docs/bad_inputs.md."""
+    import os
+    import re
+    path = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "docs",
+                        "bad_inputs.md")
+    with open(path) as fh:
+        text = fh.read()
+    body = text.split(f"## {section}\n", 1)[1].split("\n## ", 1)[0]
+    rows = []
+    for line in body.splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) != 2 or not cells[0].startswith("`"):
+            continue
+        commands = re.findall(r"`([^`]+)`", cells[0])
+        message = re.findall(r"`([^`]+)`", cells[1])[0]
+        rows.append((commands, message))
+    return rows
+
+
+DOCUMENTED_BAD_INPUT = documented_bad_inputs()
+
+
+def test_documented_bad_inputs_are_listed():
+    assert len(DOCUMENTED_BAD_INPUT) >= 20
+
+
+@pytest.mark.parametrize("commands,message", DOCUMENTED_BAD_INPUT,
+                         ids=[" ; ".join(c) for c, _ in DOCUMENTED_BAD_INPUT])
+def test_documented_bad_input(tmp_path, commands, message):
+    """docs/bad_inputs.md: each bad input stops with the message the page gives."""
+    rc, out = run_deck(small_deck("\n".join(commands)), tmp_path)
+    assert rc != 0 or "ERROR" in out, out[-2000:]
+    error_line = next(line for line in out.splitlines() if "ERROR" in line)
+    assert message in error_line, error_line
+
+
 def test_good_small_deck_runs(tmp_path):
     """The bad decks differ from this one only in the item under test."""
     run_ok(small_deck(f"fix c all cell/servo iso {P0}"), tmp_path)

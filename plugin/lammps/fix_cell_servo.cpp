@@ -33,6 +33,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <set>
 #include <vector>
 
 using namespace LAMMPS_NS;
@@ -56,6 +57,29 @@ const char *const OUTPUT_NAMES[] = {
     "p_kinetic", "volume"};
 static_assert(sizeof(OUTPUT_NAMES) / sizeof(OUTPUT_NAMES[0]) == FixCellServo::N_OUTPUT,
               "one name per output");
+
+// a finite floating-point argument: utils::numeric takes 1e400 (it overflows to inf in strtod)
+// and its message does not say which argument was wrong
+double finite_number(LAMMPS *lmp, const char *text, const std::string &what)
+{
+  char *end = nullptr;
+  const double value = strtod(text, &end);
+  if (end == text || *end != '\0')
+    lmp->error->all(FLERR, "fix cell/servo: {} must be a number, got '{}'", what, text);
+  if (!std::isfinite(value))
+    lmp->error->all(FLERR, "fix cell/servo: {} = '{}' is not a finite number (inf, nan or a "
+                    "value that overflows)", what, text);
+  return value;
+}
+
+int positive_integer(LAMMPS *lmp, const char *text, const std::string &what)
+{
+  char *end = nullptr;
+  const long value = strtol(text, &end, 10);
+  if (end == text || *end != '\0' || value <= 0 || value > std::numeric_limits<int>::max())
+    lmp->error->all(FLERR, "fix cell/servo: {} must be a positive integer, got '{}'", what, text);
+  return static_cast<int>(value);
+}
 
 int axis_index(const char *name)
 {
@@ -97,7 +121,7 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
   extvector = 0;
   nevery = 1;
 
-  for (auto &a : axis_input) a = {tycore::AxisControl::STRAIN_RATE, 0.0, "", -1};
+  for (auto &a : axis_input) a = {tycore::AxisControl::STRAIN_RATE, 0.0, "", -1, ""};
   for (double &s : stress) s = 0.0;
   for (double &s : kinetic_stress) s = 0.0;
   for (double &s : stiffness_sums) s = 0.0;
@@ -147,11 +171,12 @@ int FixCellServo::setmask()
    MODE args: see the header of docs/fix_cell_servo.md
 ------------------------------------------------------------------------- */
 
-FixCellServo::AxisInput FixCellServo::parse_value(const char *text, tycore::AxisControl control)
+FixCellServo::AxisInput FixCellServo::parse_value(const char *text, tycore::AxisControl control,
+                                                   const std::string &what)
 {
-  AxisInput in{control, 0.0, "", -1};
+  AxisInput in{control, 0.0, "", -1, what};
   if (strncmp(text, "v_", 2) == 0) in.variable = text + 2;
-  else in.value = utils::numeric(FLERR, text, false, lmp);
+  else in.value = finite_number(lmp, text, what);
   return in;
 }
 
@@ -164,7 +189,7 @@ void FixCellServo::parse_mode(int narg, char **arg, int &iarg)
                  n);
   };
   auto stress_arg = [&](const char *what) {
-    const double value = utils::numeric(FLERR, arg[iarg++], false, lmp);
+    const double value = finite_number(lmp, arg[iarg++], name + " " + what);
     if (!(value > 0.0))
       error->all(FLERR, "fix cell/servo {}: target {} = {} must be positive (a granular cell "
                  "carries no tension)", name, what, value);
@@ -185,7 +210,7 @@ void FixCellServo::parse_mode(int narg, char **arg, int &iarg)
     mode = Mode::AXISYM;
     need(3);
     major_axis = axis_arg();
-    major_rate = utils::numeric(FLERR, arg[iarg++], false, lmp);
+    major_rate = finite_number(lmp, arg[iarg++], "axisym axial strain rate");
     if (major_rate == 0.0)
       error->all(FLERR, "fix cell/servo axisym: axial strain rate must be non-zero (> 0 "
                  "compression, < 0 extension)");
@@ -193,11 +218,11 @@ void FixCellServo::parse_mode(int narg, char **arg, int &iarg)
   } else if (name == "constant_b") {
     mode = Mode::CONSTANT_B;
     need(4);
-    b_target = utils::numeric(FLERR, arg[iarg++], false, lmp);
+    b_target = finite_number(lmp, arg[iarg++], "constant_b b");
     if (!(b_target >= 0.0 && b_target <= 1.0))
       error->all(FLERR, "fix cell/servo constant_b: b = {} is outside [0, 1]", b_target);
     major_axis = axis_arg();
-    major_rate = utils::numeric(FLERR, arg[iarg++], false, lmp);
+    major_rate = finite_number(lmp, arg[iarg++], "constant_b major-axis strain rate");
     if (!(major_rate > 0.0))
       error->all(FLERR, "fix cell/servo constant_b: the major-axis strain rate must be positive "
                  "(compression of the major axis)");
@@ -205,13 +230,17 @@ void FixCellServo::parse_mode(int narg, char **arg, int &iarg)
   } else if (name == "deviatoric") {
     mode = Mode::DEVIATORIC;
     need(4);
-    for (auto &a : axis_input) a = parse_value(arg[iarg++], tycore::AxisControl::STRAIN_RATE);
+    for (int k = 0; k < 3; ++k)
+      axis_input[k] = parse_value(arg[iarg++], tycore::AxisControl::STRAIN_RATE,
+                                  fmt::format("deviatoric strain rate R{}", k + 1));
     target_p = stress_arg("mean stress p");
   } else if (name == "axes") {
     mode = Mode::AXES;
     bool given[3] = {false, false, false};
     while (iarg < narg && axis_index(arg[iarg]) >= 0) {
       const int axis = axis_index(arg[iarg]);
+      if (given[axis])
+        error->all(FLERR, "fix cell/servo axes: axis {} is given twice", arg[iarg]);
       if (iarg + 3 > narg)
         error->all(FLERR, "fix cell/servo axes: axis {} needs 'stress VALUE' or 'rate VALUE'",
                    arg[iarg]);
@@ -222,7 +251,8 @@ void FixCellServo::parse_mode(int narg, char **arg, int &iarg)
       else
         error->all(FLERR, "fix cell/servo axes: control '{}' of axis {} is neither 'stress' nor "
                    "'rate'", kind, arg[iarg]);
-      axis_input[axis] = parse_value(arg[iarg + 2], control);
+      axis_input[axis] = parse_value(arg[iarg + 2], control,
+                                     fmt::format("axes {} {}", arg[iarg], kind));
       if (control == tycore::AxisControl::STRESS && axis_input[axis].variable.empty() &&
           !(axis_input[axis].value > 0.0))
         error->all(FLERR, "fix cell/servo axes: target stress of axis {} = {} must be positive",
@@ -237,7 +267,7 @@ void FixCellServo::parse_mode(int narg, char **arg, int &iarg)
   } else if (name == "circle" || name == "triangle") {
     mode = Mode::PATH;
     need(2);
-    prestrain = utils::numeric(FLERR, arg[iarg++], false, lmp);
+    prestrain = finite_number(lmp, arg[iarg++], name + " pre-strain");
     if (!(prestrain > 0.0))
       error->all(FLERR, "fix cell/servo {}: pre-strain {} must be positive", name, prestrain);
     target_p = stress_arg("mean stress p");
@@ -245,13 +275,14 @@ void FixCellServo::parse_mode(int narg, char **arg, int &iarg)
   } else if (name == "polygon") {
     mode = Mode::PATH;
     need(1);
-    const int n = utils::inumeric(FLERR, arg[iarg++], false, lmp);
+    const int n = positive_integer(lmp, arg[iarg++], "polygon vertex count N");
     if (n < 2) error->all(FLERR, "fix cell/servo polygon: needs at least 2 vertices, got {}", n);
     need(2 * n + 1);
     std::vector<Eigen::Vector2d> vertices;
     for (int k = 0; k < n; ++k, iarg += 2)
-      vertices.emplace_back(utils::numeric(FLERR, arg[iarg], false, lmp),
-                            utils::numeric(FLERR, arg[iarg + 1], false, lmp));
+      vertices.emplace_back(finite_number(lmp, arg[iarg], fmt::format("polygon vertex {} x", k + 1)),
+                            finite_number(lmp, arg[iarg + 1],
+                                          fmt::format("polygon vertex {} y", k + 1)));
     target_p = stress_arg("mean stress p");
     try {
       path = tycore::PiPath::polygon(vertices);
@@ -271,8 +302,17 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
   auto measure = tycore::DeviatoricStrainMeasure::STRAIN_DIFFERENCE_13;
   bool with_prestrain = true;
   double sweep = 360.0;
+  std::set<std::string> seen;
+  auto positive_number = [&](const char *text, const std::string &what) {
+    const double v = finite_number(lmp, text, what);
+    if (!(v > 0.0))
+      error->all(FLERR, "fix cell/servo: {} must be positive, got {}", what, v);
+    return v;
+  };
   while (iarg < narg) {
     const std::string key = arg[iarg];
+    if (!seen.insert(key).second)
+      error->all(FLERR, "fix cell/servo: keyword '{}' is given twice", key);
     auto value = [&](int k = 1) {
       if (iarg + k >= narg)
         error->all(FLERR, "fix cell/servo: keyword '{}' needs a value", key);
@@ -307,7 +347,7 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
     } else if (key == "sweep") {
       if (path_kind != "circle")
         error->all(FLERR, "fix cell/servo: keyword 'sweep' applies only to the circle path");
-      sweep = utils::numeric(FLERR, value(), false, lmp);
+      sweep = finite_number(lmp, value(), "sweep");
       if (!(sweep > 0.0)) error->all(FLERR, "fix cell/servo circle: sweep must be positive");
       iarg += 2;
     } else if (key == "plane_strain") {
@@ -318,55 +358,51 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
       else error->all(FLERR, "fix cell/servo: plane_strain must be total or deviatoric, got '{}'", v);
       iarg += 2;
     } else if (key == "speed") {
-      path_speed = utils::numeric(FLERR, value(), false, lmp);
+      path_speed = finite_number(lmp, value(), "speed");
       if (!(path_speed > 0.0))
         error->all(FLERR, "fix cell/servo: path speed must be positive, got {}", path_speed);
       iarg += 2;
     } else if (key == "gain") {
-      settings.gain = utils::numeric(FLERR, value(), false, lmp);
+      settings.gain = finite_number(lmp, value(), "gain");
       iarg += 2;
     } else if (key == "integral_gain") {
-      settings.integral_gain = utils::numeric(FLERR, value(), false, lmp);
+      settings.integral_gain = finite_number(lmp, value(), "integral_gain");
       iarg += 2;
     } else if (key == "integral_band") {
-      settings.integral_band = utils::numeric(FLERR, value(), false, lmp);
+      settings.integral_band = finite_number(lmp, value(), "integral_band");
       iarg += 2;
     } else if (key == "max_rate") {
-      settings.max_strain_rate = utils::numeric(FLERR, value(), false, lmp);
+      settings.max_strain_rate = finite_number(lmp, value(), "max_rate");
       if (!(settings.max_strain_rate > 0.0))
         error->all(FLERR, "fix cell/servo: max_rate must be positive, got {}",
                    settings.max_strain_rate);
       iarg += 2;
     } else if (key == "max_inertial") {
-      inertial_cap = utils::numeric(FLERR, value(), false, lmp);
+      inertial_cap = finite_number(lmp, value(), "max_inertial");
       if (!(inertial_cap > 0.0))
         error->all(FLERR, "fix cell/servo: max_inertial must be positive, got {}", inertial_cap);
       iarg += 2;
     } else if (key == "csv") {
       csv_path = value(1);
-      csv_every = utils::inumeric(FLERR, value(2), false, lmp);
-      if (csv_every <= 0) error->all(FLERR, "fix cell/servo: csv interval must be positive");
+      csv_every = positive_integer(lmp, value(2), "csv interval N");
       iarg += 3;
     } else if (key == "equilibrium") {
-      equilibrium_every = utils::inumeric(FLERR, value(), false, lmp);
-      if (equilibrium_every <= 0)
-        error->all(FLERR, "fix cell/servo: equilibrium check interval must be positive");
+      equilibrium_every = positive_integer(lmp, value(), "equilibrium interval N");
       iarg += 2;
     } else if (key == "eq_stress") {
-      criteria.stress_tolerance = utils::numeric(FLERR, value(), false, lmp);
+      criteria.stress_tolerance = positive_number(value(), key);
       iarg += 2;
     } else if (key == "eq_unbalanced") {
-      criteria.max_unbalanced_force_ratio = utils::numeric(FLERR, value(), false, lmp);
+      criteria.max_unbalanced_force_ratio = positive_number(value(), key);
       iarg += 2;
     } else if (key == "eq_kinetic") {
-      criteria.max_kinetic_energy_ratio = utils::numeric(FLERR, value(), false, lmp);
+      criteria.max_kinetic_energy_ratio = positive_number(value(), key);
       iarg += 2;
     } else if (key == "eq_coordination") {
-      criteria.coordination_tolerance = utils::numeric(FLERR, value(), false, lmp);
+      criteria.coordination_tolerance = positive_number(value(), key);
       iarg += 2;
     } else if (key == "eq_window") {
-      criteria.window = utils::inumeric(FLERR, value(), false, lmp);
-      if (criteria.window < 1) error->all(FLERR, "fix cell/servo: eq_window must be >= 1");
+      criteria.window = positive_integer(lmp, value(), "eq_window");
       iarg += 2;
     } else {
       error->all(FLERR, "fix cell/servo: unknown keyword '{}'", key);
@@ -399,6 +435,12 @@ double FixCellServo::evaluate(AxisInput &in)
   modify->clearstep_compute();
   const double value = input->variable->compute_equal(in.ivar);
   modify->addstep_compute(update->ntimestep + 1);
+  if (!std::isfinite(value))
+    error->all(FLERR, "fix cell/servo: variable {} ({}) evaluated to {} at step {}: not a "
+               "finite number", in.variable, in.what, value, update->ntimestep);
+  if (in.control == tycore::AxisControl::STRESS && !(value > 0.0))
+    error->all(FLERR, "fix cell/servo: variable {} ({}) evaluated to {} at step {}: a target "
+               "stress must be positive", in.variable, in.what, value, update->ntimestep);
   return value;
 }
 

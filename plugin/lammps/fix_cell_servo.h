@@ -54,6 +54,7 @@ class FixCellServo : public Fix {
     double value;
     std::string variable;
     int ivar;
+    std::string what;              // the argument, for error messages
   };
   AxisInput axis_input[3];
   tycore::PiPath path;
@@ -103,7 +104,7 @@ class FixCellServo : public Fix {
 
   void parse_mode(int narg, char **arg, int &iarg);
   void parse_keywords(int narg, char **arg, int iarg);
-  AxisInput parse_value(const char *text, tycore::AxisControl control);
+  AxisInput parse_value(const char *text, tycore::AxisControl control, const std::string &what);
   double evaluate(AxisInput &in);
   tycore::MixedControl current_control();
 
