@@ -634,3 +634,33 @@ def test_documented_bad_input(tmp_path, commands, message):
 def test_good_small_deck_runs(tmp_path):
     """The bad decks differ from this one only in the item under test."""
     run_ok(small_deck(f"fix c all cell/servo iso {P0}"), tmp_path)
+
+
+# ---------------------------------------------------------------------------------------------
+# 13. programmes that read the fix's own outputs; minimize
+
+
+def test_minimize_is_refused(tmp_path):
+    deck = small_deck(f"fix nve all nve/sphere\nfix c all cell/servo iso {P0}", run=0)
+    deck = deck.replace("run 0\n", "minimize 1e-10 1e-10 100 1000\n")
+    rc, out = run_deck(deck, tmp_path)
+    error_line = next((line for line in out.splitlines() if "ERROR" in line), "")
+    assert "fix cell/servo cannot be used with minimize" in error_line, out[-2000:]
+
+
+def test_stress_target_reading_the_fix_itself(specimen, tmp_path):
+    """sigma_z* = 1.5e5 - 0.5 sigma_x read from f_sh[7] every step: the servo settles on the
+    line sigma_z = 1.5e5 - 0.5 sigma_x while sigma_x grows under the prescribed rate (issue
+    14; it used to stop with "Virial was not tallied on needed timestep")."""
+    extra = "variable s equal 1.5e5-0.5*f_sh[7]\n"
+    shear_run(specimen, tmp_path,
+              f"fix sh all cell/servo axes x rate {AXIAL_RATE} y stress {P0} z stress v_s "
+              "csv sh.csv 10", 4000, extra=extra)
+    record = read_csv(tmp_path / "sh.csv")
+    rows = settled(record, 1000)
+    target = 1.5e5 - 0.5 * rows["sig1"]
+    assert np.max(np.abs(rows["sig3"] / target - 1.0)) < 0.01
+    assert np.max(np.abs(rows["sig2"] / P0 - 1.0)) < 0.01
+    # the target moved: sigma_x grew under compression, sigma_z fell with it
+    assert record["sig1"][-1] - record["sig1"][0] > 0.3 * P0
+    assert record["sig3"][-1] < record["sig3"][0] - 0.1 * P0

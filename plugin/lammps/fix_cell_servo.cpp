@@ -471,6 +471,11 @@ tycore::MixedControl FixCellServo::current_control()
 
 void FixCellServo::init()
 {
+  if (update->whichflag == 2)
+    error->all(FLERR, "fix cell/servo cannot be used with minimize: it deforms the cell by "
+               "strain rates in time and holds stresses by a servo, neither of which a "
+               "minimizer steps through (use fix box/relax to minimize with a stress-controlled "
+               "box, and unfix the cell/servo first)");
   if (utils::strmatch(update->integrate_style, "^respa"))
     error->all(FLERR, "fix cell/servo does not support run_style respa");
   for (int i = 0; i < modify->nfix; ++i)
@@ -516,6 +521,14 @@ void FixCellServo::init()
   mean_density = total[2] / total[0];
   solid_volume = total[3];
 
+  saturated_steps = 0;
+}
+
+// the default cap and the check of the servo settings need the stress-held targets, which may
+// be variables that read this fix's own outputs: they are evaluated only after the first
+// measurement (in setup), not in init where no stress has been tallied yet
+void FixCellServo::choose_rate_cap()
+{
   if (settings.max_strain_rate == 0.0) {
     settings.max_strain_rate = default_max_rate();
     if (mode == Mode::AXES) {
@@ -541,7 +554,6 @@ void FixCellServo::init()
     error->warning(FLERR, "fix cell/servo: max_rate {:.3g} is below the prescribed strain rate "
                    "{:.3g}; the servo cannot keep up and the stress will drift (raise max_rate)",
                    settings.max_strain_rate, prescribed_rate());
-  saturated_steps = 0;
 }
 
 // largest prescribed principal strain rate (or path speed) of the programme [1/s]
@@ -575,6 +587,7 @@ void FixCellServo::setup(int)
   measure();
   compute_outputs();
   compute_particle_outputs();
+  choose_rate_cap();
   wall_start = MPI_Wtime();
   step_start = update->ntimestep;
 

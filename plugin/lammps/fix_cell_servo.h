@@ -116,6 +116,7 @@ class FixCellServo : public Fix {
   static bool is_particle_output(int);
   void write_csv_row();
   double default_max_rate() const;
+  void choose_rate_cap();
   double prescribed_rate() const;
   bigint saturated_steps;
   static constexpr int SATURATION_WARN_STEPS = 1000;
