@@ -125,6 +125,11 @@ struct CellMeasurement {
   Eigen::Vector3d strain;      // natural strains from the reference cell, compression positive
 };
 
+// A principal strain of 1 % in one step is no laboratory test: at a quasi-static inertial
+// number (I < 1e-3, docs/theory.md) a step strains a packing by ~1e-6; beyond this the contacts
+// of one step overlap by a sizeable fraction of a radius and the cell edges may collapse
+constexpr double MAX_STRAIN_PER_STEP = 0.01;
+
 struct ServoSettings {
   // fraction of the stress error removed per step; the error keeps its sign as long as the
   // instantaneous stiffness is below 1/gain = 4 times the estimate

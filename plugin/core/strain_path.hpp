@@ -189,6 +189,12 @@ class PiPath {
   }
 
   double length() const { return cumulative_.empty() ? 0.0 : cumulative_.back(); }
+  double shortest_leg() const
+  {
+    double shortest = length();
+    for (const PiSegment& s : segments_) shortest = std::min(shortest, s.length());
+    return shortest;
+  }
   int segment_count() const { return static_cast<int>(segments_.size()); }
   const std::vector<PiSegment>& segments() const { return segments_; }
   double segment_start(int i) const { return i == 0 ? 0.0 : cumulative_[i - 1]; }
@@ -324,6 +330,18 @@ inline PiPath multiaxial_plane_strain_path(double prestrain, DeviatoricStrainMea
 
 // ---------------------------------------------------------------------------------------------
 // Following a path
+
+// A leg travelled in fewer steps than this cannot be followed: the follower's pull back onto
+// the path is limited to speed*dt per step and the p servo removes a fraction `gain` (0.25) of
+// its error per step, so both need several steps per leg (at speed*dt above a whole leg the
+// target jumps to its end in one step and the progress runs ahead of the strain)
+constexpr int MIN_STEPS_PER_LEG = 10;
+
+// the largest Pi-plane speed at which every leg takes at least MIN_STEPS_PER_LEG steps
+inline double max_followable_speed(const PiPath& path, double dt)
+{
+  return path.shortest_leg() / (MIN_STEPS_PER_LEG * dt);
+}
 
 struct PathStep {
   Eigen::Vector3d deviatoric_strain_rate;   // traceless, 1/s

@@ -588,6 +588,12 @@ void FixCellServo::setup(int)
   compute_outputs();
   compute_particle_outputs();
   choose_rate_cap();
+  if (mode == Mode::PATH && path_speed > tycore::max_followable_speed(path, update->dt))
+    error->all(FLERR, "fix cell/servo: at speed {:.4g} the shortest leg of the Pi-plane path "
+               "(length {:.4g}) takes {:.3g} steps, and the cell cannot follow a leg in fewer "
+               "than {}: use speed <= {:.4g} (or a smaller timestep)", path_speed,
+               path.shortest_leg(), path.shortest_leg() / (path_speed * update->dt),
+               tycore::MIN_STEPS_PER_LEG, tycore::max_followable_speed(path, update->dt));
   wall_start = MPI_Wtime();
   step_start = update->ntimestep;
 
@@ -691,6 +697,13 @@ void FixCellServo::end_of_step()
                    SATURATION_WARN_STEPS, output[P], target_p);
 
   const double rate[3] = {command.strain_rate(0), command.strain_rate(1), command.strain_rate(2)};
+  const double fastest = command.strain_rate.cwiseAbs().maxCoeff();
+  if (fastest * update->dt > tycore::MAX_STRAIN_PER_STEP)
+    error->all(FLERR, "fix cell/servo: at step {} the strain rate {:.4g} 1/s strains the cell by "
+               "{:.3g} in one step; the cell cannot follow more than {} per step: use rates "
+               "<= {:.4g} 1/s (or a smaller timestep)", update->ntimestep,
+               fastest, fastest * update->dt, tycore::MAX_STRAIN_PER_STEP,
+               tycore::MAX_STRAIN_PER_STEP / update->dt);
   const double volume = domain->xprd * domain->yprd * domain->zprd;
   // boundary work V sigma : deps over this step (contact stress; physics.md §7.1)
   for (int k = 0; k < 3; ++k) boundary_work += volume * stress[k] * rate[k] * update->dt;

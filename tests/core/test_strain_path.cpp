@@ -283,3 +283,23 @@ TEST(StrainPathPolygon, HoldsEndPoint)
   EXPECT_EQ(step.deviatoric_strain_rate.norm(), 0.0);
   EXPECT_EQ(step.path_length, path.length());
 }
+
+// a speed that crosses the shortest leg in fewer than MIN_STEPS_PER_LEG steps cannot be
+// followed; at the limit the follower reaches every vertex (issue 15: circle ... speed 1e3)
+TEST(StrainPathPolygon, MaxFollowableSpeedIsSetByTheShortestLeg)
+{
+  const PiPath path = PiPath::polygon({{0.0, 0.0}, {0.0, 3e-3}, {1e-3, 3e-3}});
+  const double dt = 0.02;
+  EXPECT_DOUBLE_EQ(path.shortest_leg(), 1e-3);
+  const double v = tycore::max_followable_speed(path, dt);
+  EXPECT_DOUBLE_EQ(v, 1e-3 / (tycore::MIN_STEPS_PER_LEG * dt));
+  const Trace t = run_path(path, Vector3d::Zero(), v, dt, 1000);
+  // the whole path in length/(v dt) steps (each leg may end on a round-off sliver of a step),
+  // the shortest leg in MIN_STEPS_PER_LEG
+  const int steps = static_cast<int>(t.progress.size());
+  EXPECT_GE(steps, 4 * tycore::MIN_STEPS_PER_LEG);
+  EXPECT_LE(steps, 4 * tycore::MIN_STEPS_PER_LEG + 2);
+  const Vector2d end = tycore::pi_coordinates(t.strain.back());
+  EXPECT_NEAR(end.x(), 1e-3, 1e-15);
+  EXPECT_NEAR(end.y(), 3e-3, 1e-15);
+}
