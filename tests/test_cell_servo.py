@@ -464,9 +464,11 @@ def test_restart_continues_exactly(specimen, tmp_path, mu):
     out = run_ok(second, split, name="in.second")
     assert "restoring pair style thornton/yin" in out
     a, b = read_csv(one / "sh.csv"), read_csv(split / "sh.csv")
-    # the record continues: no duplicated row at the split, same steps (the time column
-    # restarts, as LAMMPS' own `time` does after read_restart in 29Sep2021)
+    # the record continues: no duplicated row at the split, same steps, and the fix's own
+    # `time` (from the start of the test) continues, although LAMMPS' own `time` restarts
+    # after read_restart in 29Sep2021
     assert np.array_equal(a["step"], b["step"])
+    assert np.allclose(b["time"], (b["step"] - b["step"][0]) * DT, rtol=1e-12, atol=0)
     after = a["step"] > a["step"][0] + 500
     a_after, b_after = ({k: v[after] for k, v in r.items()} for r in (a, b))
     record = [k for k in COMPARED if not k.startswith("rate")]
@@ -664,3 +666,112 @@ def test_stress_target_reading_the_fix_itself(specimen, tmp_path):
     # the target moved: sigma_x grew under compression, sigma_z fell with it
     assert record["sig1"][-1] - record["sig1"][0] > 0.3 * P0
     assert record["sig3"][-1] < record["sig3"][0] - 0.1 * P0
+
+
+# ---------------------------------------------------------------------------------------------
+# 14. multi-stage tests: a redefined fix continues the test; resuming after a crash
+
+
+def test_redefined_fix_continues_the_test(specimen, tmp_path):
+    """Compression, then the same fix ID redefined for extension: one record, one strain
+    reference, one clock (issue 14: the first segment used to be truncated away and the
+    strains and time to restart)."""
+    r = AXIAL_RATE
+    deck = (restart_deck(specimen) + f"fix sh all cell/servo axisym x {r} {P0} csv sh.csv 10\n"
+            "run 500\n"
+            f"fix sh all cell/servo axisym x {-r} {P0} csv sh.csv 10\nrun 500\n")
+    run_ok(deck, tmp_path)
+    rows = read_csv(tmp_path / "sh.csv")
+    n = rows["step"] - rows["step"][0]
+    # every row once, in order, from the start of the first segment
+    assert np.array_equal(n, np.arange(0, 1001, 10))
+    assert np.allclose(rows["time"], n * DT, rtol=1e-12, atol=0)
+    # eps1 = integral of the applied axial rate from the first definition: +r for steps
+    # 2..501 (the rate decided at the end of a step deforms the next one), -r after
+    expected = np.where(n <= 501, np.maximum(n - 1, 0), 500 - (n - 501)) * r * DT
+    assert np.max(np.abs(rows["eps1"] - expected)) < 1e-9 * r * DT * 500
+    # the boundary work continues too: no jump back to zero at the redefinition
+    w = rows["boundary_work"]
+    at = np.searchsorted(n, 500)
+    assert abs(w[at + 1] - w[at]) < 0.1 * abs(w[at] - w[at - 10])
+
+
+def test_continue_no_starts_a_new_test(specimen, tmp_path):
+    r = AXIAL_RATE
+    deck = (restart_deck(specimen) + f"fix sh all cell/servo axisym x {r} {P0} csv a.csv 10\n"
+            "run 300\n"
+            f"fix sh all cell/servo axisym x {r} {P0} continue no csv b.csv 10\nrun 300\n")
+    run_ok(deck, tmp_path)
+    b = read_csv(tmp_path / "b.csv")
+    assert b["time"][0] == 0.0 and b["eps1"][0] == 0.0
+    # a fresh fix starts from rest: the first step applies no rate
+    assert b["eps1"][-1] == pytest.approx(r * DT * 299, rel=1e-9)
+    # and it may not overwrite the record of the test it replaces
+    rc, out = run_deck(restart_deck(specimen)
+                       + f"fix sh all cell/servo axisym x {r} {P0} csv a.csv 10\nrun 10\n"
+                       f"fix sh all cell/servo axisym x {r} {P0} continue no csv a.csv 10\n",
+                       tmp_path, name="in.overwrite")
+    assert "would overwrite a.csv, the record of the test it replaces" in out, out[-2000:]
+
+
+def test_resume_after_crash_appends_without_repeated_steps(specimen, tmp_path):
+    """A run writes a restart file at step 300 and goes on to 500 before it dies; resumed from
+    the restart file, the record is the one of a run that never stopped: rows 310-500 of the
+    dead run are replaced, not repeated (issue 15: five duplicated steps and a jump back)."""
+    one, crash = tmp_path / "one", tmp_path / "crash"
+    one.mkdir(), crash.mkdir()
+    shear_run(specimen, one, SHEAR_FIX, 500, mu=0.0)
+    run_ok(restart_deck(specimen, 0.0) + SHEAR_FIX + "\nrun 300\nwrite_restart r300.restart\n"
+           "run 200\n", crash, name="in.first")
+    with open(crash / "sh.csv", "a") as fh:     # the line it was writing when it died
+        fh.write("5010,0.0")
+    second = (LOAD_TYLMP + "read_restart r300.restart\ncomm_modify vel yes\n"
+              "neighbor 2e-5 bin\nfix nve all nve/sphere\n" + SHEAR_FIX + "\nrun 200\n")
+    out = run_ok(second, crash, name="in.second")
+    assert "dropped 21 row(s)" in out
+    a, b = read_csv(one / "sh.csv"), read_csv(crash / "sh.csv")
+    assert np.array_equal(a["step"], b["step"])
+    assert np.all(np.diff(b["step"]) > 0)
+    assert np.allclose(b["time"], a["time"], rtol=1e-12, atol=0)
+    assert max_relative_difference(a, b, ["eps1", "eps2", "eps3", "p", "q"]) < 1e-9
+
+
+def restart_record_offset(data, tag=8462.0, version=2.0):
+    import struct
+    at = data.find(struct.pack("<dd", tag, version))
+    assert at >= 0, "no cell/servo record in the restart file"
+    return at
+
+
+@pytest.mark.parametrize("damage", ["path", "version", "size", "old"])
+def test_mismatched_restart_record_is_refused(tmp_path, damage):
+    """The restart record carries tag, version, size and the path; resuming another path, or
+    a record of another version or size, is refused (issue 15)."""
+    import struct
+    first = small_deck(f"fix c all cell/servo circle 0.001 {P0} speed 1e-4\n"
+                       "write_restart c.restart", run=10)
+    first = first.replace("write_restart c.restart\nrun 10\n", "run 10\nwrite_restart c.restart\n")
+    run_ok(first, tmp_path, name="in.first")
+    fix = f"fix c all cell/servo circle 0.001 {P0} speed 1e-4"
+    if damage == "path":
+        fix = f"fix c all cell/servo triangle 0.001 {P0} speed 1e-4"
+    else:
+        data = bytearray((tmp_path / "c.restart").read_bytes())
+        at = restart_record_offset(bytes(data))
+        if damage == "version":
+            data[at + 8:at + 16] = struct.pack("<d", 99.0)
+        elif damage == "size":
+            size = struct.unpack("<d", data[at + 16:at + 24])[0]
+            data[at + 16:at + 24] = struct.pack("<d", size - 1)
+        else:
+            data[at:at + 8] = struct.pack("<d", 8461.0)
+        (tmp_path / "c.restart").write_bytes(bytes(data))
+    second = (LOAD_TYLMP + "read_restart c.restart\ncomm_modify vel yes\nneighbor 2e-5 bin\n"
+              + fix + "\nrun 10\n")
+    rc, out = run_deck(second, tmp_path, name="in.second")
+    expected = {"path": "written by a run on another Pi-plane path",
+                "version": "has version 99, this build reads version 2",
+                "size": "numbers where this programme expects",
+                "old": "a record of an earlier build of fix cell/servo"}[damage]
+    error_line = next((line for line in out.splitlines() if "ERROR" in line), out[-2000:])
+    assert expected in error_line, error_line

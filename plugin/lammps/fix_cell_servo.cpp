@@ -33,6 +33,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <set>
 #include <vector>
 
@@ -42,8 +43,24 @@ using namespace FixConst;
 namespace {
 
 constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
-// written first in the restart record, so that a record of another programme is refused
-constexpr double RESTART_TAG = 8461.0;
+// the restart record starts with a tag, its version and its size (in doubles), so that a
+// record of another programme or of another version of this fix is refused, not misread;
+// 8461 tagged the unversioned record of earlier builds
+constexpr double RESTART_TAG = 8462.0, OLD_RESTART_TAG = 8461.0;
+constexpr int RESTART_VERSION = 2;
+
+// the state a replaced fix leaves to the one that redefines it (same LAMMPS instance and ID):
+// Modify deletes the old fix before it constructs the new one
+std::map<std::string, FixCellServo::Continuation> &continuations()
+{
+  static std::map<std::string, FixCellServo::Continuation> stash;
+  return stash;
+}
+
+std::string continuation_key(LAMMPS *lmp, const char *id)
+{
+  return fmt::format("{}/{}", static_cast<const void *>(lmp), id);
+}
 
 // pair thornton/yin cell tallies (pair_thornton_yin.h)
 constexpr int TALLY_STIFFNESS = 0, TALLY_CONTACTS = 6, TALLY_SLIDING = 7, TALLY_FORCE = 8;
@@ -54,7 +71,19 @@ const char *const OUTPUT_NAMES[] = {
     "lode_deg", "eta_LD", "sinphi", "void_ratio", "solid_fraction", "Z", "Zm",
     "sliding_fraction", "unbalanced", "inertial_number", "pi_x", "pi_y", "pi_ex", "pi_ey",
     "progress", "eta_seconds", "equilibrium", "rate1", "rate2", "rate3", "boundary_work",
-    "p_kinetic", "volume"};
+    "p_kinetic", "volume", "time", "eq_stress_ok", "eq_unbalanced_ok", "eq_kinetic_ok",
+    "eq_coordination_ok", "kinetic_ratio"};
+// the CSV columns after `step` (one list, used for the header and every row)
+const int CSV_COLUMNS[] = {
+    FixCellServo::TIME, FixCellServo::EPS1, FixCellServo::EPS2, FixCellServo::EPS3,
+    FixCellServo::EPS_V, FixCellServo::EPS_Q, FixCellServo::EPS_D13, FixCellServo::SIG1,
+    FixCellServo::SIG2, FixCellServo::SIG3, FixCellServo::P, FixCellServo::Q, FixCellServo::B,
+    FixCellServo::LODE_DEG, FixCellServo::ETA_LD, FixCellServo::SINPHI,
+    FixCellServo::VOID_RATIO, FixCellServo::SOLID_FRACTION, FixCellServo::Z, FixCellServo::ZM,
+    FixCellServo::SLIDING_FRACTION, FixCellServo::UNBALANCED, FixCellServo::INERTIAL_NUMBER,
+    FixCellServo::PI_X, FixCellServo::PI_Y, FixCellServo::PI_EX, FixCellServo::PI_EY,
+    FixCellServo::RATE1, FixCellServo::RATE2, FixCellServo::RATE3, FixCellServo::BOUNDARY_WORK,
+    FixCellServo::P_KINETIC, FixCellServo::VOLUME, FixCellServo::PROGRESS};
 static_assert(sizeof(OUTPUT_NAMES) / sizeof(OUTPUT_NAMES[0]) == FixCellServo::N_OUTPUT,
               "one name per output");
 
@@ -96,10 +125,11 @@ int axis_index(const char *name)
 FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), target_p(0.0), major_axis(0), major_rate(0.0), b_target(0.0),
     path_speed(0.0), prestrain(0.0), inertial_cap(1e-3), equilibrium_every(0), equilibrium_reached(0),
-    boundary_work(0.0), restored(0), contacts(0.0), sliding(0.0), force_sum(0.0),
+    elapsed_time(0.0), clock_step(0), boundary_work(0.0), restored(0), continued(0),
+    continue_previous(1), contacts(0.0), sliding(0.0), force_sum(0.0),
     measured_step(-1), output_step(-1), particle_step(-1), mean_diameter(0.0), mean_density(0.0),
     solid_volume(0.0), pressure(nullptr), pair(nullptr), tally_flag(nullptr), csv_every(0),
-    csv(nullptr), wall_start(0.0), step_start(0), saturated_steps(0)
+    wall_start(0.0), step_start(0), saturated_steps(0)
 {
   if (narg < 5) error->all(FLERR, "Illegal fix cell/servo command: expected 'fix ID all cell/servo MODE ...' (modes: iso axes axisym constant_b deviatoric circle triangle polygon)");
   if (strcmp(arg[1], "all") != 0)
@@ -127,10 +157,38 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
   for (double &s : stiffness_sums) s = 0.0;
   for (double &o : output) o = NaN;
   for (int i = 0; i < 3; ++i) reference_length[i] = domain->prd[i];
+  clock_step = update->ntimestep;
 
   int iarg = 3;
   parse_mode(narg, arg, iarg);
   parse_keywords(narg, arg, iarg);
+  if (mode == Mode::PATH) programme_path = path.to_array();
+
+  // a redefinition (same ID: Modify has just deleted the fix in this slot) continues the test
+  // of the fix it replaces, unless 'continue no'
+  bool replacing = false;
+  for (int i = 0; i < modify->nfix; ++i)
+    if (modify->fix[i] == nullptr) replacing = true;
+  auto &stash = continuations();
+  const auto previous = stash.find(continuation_key(lmp, id));
+  if (replacing && previous != stash.end()) {
+    const Continuation &c = previous->second;
+    if (continue_previous) {
+      for (int k = 0; k < 3; ++k) {
+        reference_length[k] = c.reference_length[k];
+        memory.last_strain_rate(k) = c.last_strain_rate[k];
+      }
+      elapsed_time = c.elapsed_time;
+      clock_step = c.clock_step;
+      boundary_work = c.boundary_work;
+      continued = 1;
+      continued_csv = c.csv_path;
+    } else if (!csv_path.empty() && csv_path == c.csv_path) {
+      error->all(FLERR, "fix cell/servo: 'continue no' starts a new test, whose record would "
+                 "overwrite {}, the record of the test it replaces: name another file", csv_path);
+    }
+  }
+  if (previous != stash.end()) stash.erase(previous);
 
   try {
     // controllability depends on which axes hold a stress, not on the values; equal-style
@@ -154,8 +212,19 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
 
 FixCellServo::~FixCellServo()
 {
+  // left for a fix that redefines this one (see the constructor)
+  Continuation c;
+  for (int k = 0; k < 3; ++k) {
+    c.reference_length[k] = reference_length[k];
+    c.last_strain_rate[k] = memory.last_strain_rate(k);
+  }
+  c.elapsed_time = elapsed_time;
+  c.clock_step = clock_step;
+  c.boundary_work = boundary_work;
+  c.csv_path = csv_path;
+  continuations()[continuation_key(lmp, id)] = c;
+
   if (modify->find_compute(pressure_id) >= 0) modify->delete_compute(pressure_id);
-  if (csv) fclose(csv);
   // (the pair may be gone already: pair thornton/yin clears its tally flag in init_style)
   // the box stops deforming with this fix: pair styles must not add an affine velocity
   for (int i = 0; i < 6; ++i) domain->h_rate[i] = 0.0;
@@ -386,6 +455,12 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
       csv_path = value(1);
       csv_every = positive_integer(lmp, value(2), "csv interval N");
       iarg += 3;
+    } else if (key == "continue") {
+      const std::string v = value();
+      if (v != "yes" && v != "no")
+        error->all(FLERR, "fix cell/servo: continue must be yes or no, got '{}'", v);
+      continue_previous = v == "yes";
+      iarg += 2;
     } else if (key == "equilibrium") {
       equilibrium_every = positive_integer(lmp, value(), "equilibrium interval N");
       iarg += 2;
@@ -584,6 +659,7 @@ void FixCellServo::setup(int)
     domain->h_rate[i] = -memory.last_strain_rate(i) * domain->prd[i];
     domain->h_ratelo[i] = -0.5 * domain->h_rate[i];
   }
+  advance_clock();
   measure();
   compute_outputs();
   compute_particle_outputs();
@@ -597,22 +673,46 @@ void FixCellServo::setup(int)
   wall_start = MPI_Wtime();
   step_start = update->ntimestep;
 
-  if (!csv_path.empty() && comm->me == 0 && !csv) {
-    // a restored programme continues its record; a new one starts it
-    csv = fopen(csv_path.c_str(), restored ? "a" : "w");
-    if (!csv) error->one(FLERR, "fix cell/servo: cannot open {} for writing", csv_path);
-    fseek(csv, 0, SEEK_END);
-    if (ftell(csv) == 0) {
-      fputs("step,time", csv);
-      for (int k = 0; k < N_OUTPUT; ++k)
-        if (k < N_CSV || k >= RATE1) fprintf(csv, ",%s", OUTPUT_NAMES[k]);
-      fputs(",progress\n", csv);
-      fflush(csv);
-    }
-  }
-  if (!restored && update->ntimestep == step_start && csv_every > 0 &&
-      update->ntimestep % csv_every == 0)
+  open_csv();
+  // the state at the start of the run, unless the record holds this step already (a
+  // continued test, or a run resumed at the step of its restart file)
+  if (csv_every > 0 && update->ntimestep % csv_every == 0 &&
+      (comm->me != 0 || csv.last_step() < update->ntimestep))
     write_csv_row();
+}
+
+std::string FixCellServo::csv_header() const
+{
+  std::string header = "step";
+  for (int k : CSV_COLUMNS) header += std::string(",") + OUTPUT_NAMES[k];
+  return header;
+}
+
+// a new test starts its record; a test continued from a restart file or from the fix this
+// one redefines appends to it (tycore::CsvRecord: superseded rows of a crashed run dropped)
+void FixCellServo::open_csv()
+{
+  if (csv_path.empty() || comm->me != 0 || csv.is_open()) return;
+  try {
+    if (restored || (continued && csv_path == continued_csv))
+      csv.resume(csv_path, csv_header(), update->ntimestep);
+    else
+      csv.start(csv_path, csv_header());
+  } catch (std::exception &e) {
+    error->one(FLERR, "fix cell/servo: {}", e.what());
+  }
+  if (csv.dropped_rows() > 0)
+    utils::logmesg(lmp, "fix cell/servo: {} continues at step {}: dropped {} row(s) written "
+                   "after that step by an earlier run\n", csv_path, update->ntimestep,
+                   csv.dropped_rows());
+}
+
+// simulated time since the test started, at the current timestep size of each step
+void FixCellServo::advance_clock()
+{
+  if (update->ntimestep > clock_step)
+    elapsed_time += double(update->ntimestep - clock_step) * update->dt;
+  clock_step = update->ntimestep;
 }
 
 /* ----------------------------------------------------------------------
@@ -657,6 +757,7 @@ tycore::CellMeasurement FixCellServo::cell_measurement() const
 
 void FixCellServo::end_of_step()
 {
+  advance_clock();
   measure();
   compute_outputs();
   if (csv_every > 0 && update->ntimestep % csv_every == 0) {
@@ -796,6 +897,7 @@ void FixCellServo::compute_outputs()
   output[RATE1] = rate(0), output[RATE2] = rate(1), output[RATE3] = rate(2);
   output[BOUNDARY_WORK] = boundary_work;
   output[VOLUME] = volume;
+  output[TIME] = elapsed_time;
   output_step = update->ntimestep;
 }
 
@@ -851,13 +953,14 @@ double FixCellServo::compute_vector(int n)
 
 void FixCellServo::write_csv_row()
 {
-  if (comm->me != 0 || !csv) return;
-  const double time = update->atime + (update->ntimestep - update->atimestep) * update->dt;
-  fprintf(csv, BIGINT_FORMAT ",%.12g", update->ntimestep, time);
-  for (int k = 0; k < N_OUTPUT; ++k)
-    if (k < N_CSV || k >= RATE1) fprintf(csv, ",%.12g", output[k]);
-  fprintf(csv, ",%.12g\n", output[PROGRESS]);
-  fflush(csv);
+  if (comm->me != 0 || !csv.is_open()) return;
+  std::vector<double> row;
+  for (int k : CSV_COLUMNS) row.push_back(output[k]);
+  try {
+    csv.write_row(update->ntimestep, row);
+  } catch (std::exception &e) {
+    error->one(FLERR, "fix cell/servo: {}", e.what());
+  }
 }
 
 /* ----------------------------------------------------------------------
@@ -865,9 +968,14 @@ void FixCellServo::write_csv_row()
    equilibrium state, boundary work
 ------------------------------------------------------------------------- */
 
-void FixCellServo::write_restart(FILE *fp)
+// [tag, version, size, mode, programme path (n, ...), reference cell (3), servo memory,
+//  equilibrium state, equilibrium reached, boundary work, elapsed time, clock step,
+//  followed path (n, ...)]
+std::vector<double> FixCellServo::restart_record() const
 {
-  std::vector<double> list{RESTART_TAG, static_cast<double>(static_cast<int>(mode))};
+  std::vector<double> list{RESTART_TAG, RESTART_VERSION, 0.0, double(static_cast<int>(mode))};
+  list.push_back(double(programme_path.size()));
+  list.insert(list.end(), programme_path.begin(), programme_path.end());
   for (double L : reference_length) list.push_back(L);
   double m[tycore::ServoMemory::size];
   memory.to_array(m);
@@ -877,6 +985,18 @@ void FixCellServo::write_restart(FILE *fp)
   list.insert(list.end(), e, e + tycore::EquilibriumState::size);
   list.push_back(equilibrium_reached);
   list.push_back(boundary_work);
+  list.push_back(elapsed_time);
+  list.push_back(double(clock_step));
+  const std::vector<double> followed = mode == Mode::PATH ? path.to_array() : std::vector<double>{};
+  list.push_back(double(followed.size()));
+  list.insert(list.end(), followed.begin(), followed.end());
+  list[2] = double(list.size());
+  return list;
+}
+
+void FixCellServo::write_restart(FILE *fp)
+{
+  const std::vector<double> list = restart_record();
   if (comm->me == 0) {
     const int size = static_cast<int>(list.size() * sizeof(double));
     fwrite(&size, sizeof(int), 1, fp);
@@ -887,10 +1007,39 @@ void FixCellServo::write_restart(FILE *fp)
 void FixCellServo::restart(char *buf)
 {
   const double *list = reinterpret_cast<double *>(buf);
-  if (list[0] != RESTART_TAG || static_cast<int>(list[1]) != static_cast<int>(mode))
+  if (list[0] == OLD_RESTART_TAG)
+    error->all(FLERR, "fix cell/servo: the restart file holds a record of an earlier build of "
+               "fix cell/servo (unversioned); it cannot be continued by this one: rerun the "
+               "stage that wrote it, or define the fix under a new ID");
+  if (list[0] != RESTART_TAG)
+    error->all(FLERR, "fix cell/servo: the restart file's record for fix {} is not a cell/servo "
+               "record; define the fix under a new ID", id);
+  if (static_cast<int>(list[1]) != RESTART_VERSION)
+    error->all(FLERR, "fix cell/servo: the restart record of fix {} has version {}, this build "
+               "reads version {}", id, list[1], RESTART_VERSION);
+  if (static_cast<int>(list[3]) != static_cast<int>(mode))
     error->all(FLERR, "fix cell/servo: the restart file holds the state of another cell/servo "
                "mode; use the same mode as the run that wrote it, or a new fix ID");
-  int k = 2;
+  // the path: the same kind, pre-strain, rotation, sweep or vertices as the run that wrote it
+  const std::size_t size = static_cast<std::size_t>(list[2]);
+  const std::size_t n_programme = programme_path.size();
+  bool same_path = size >= 5 && static_cast<std::size_t>(list[4]) == n_programme &&
+      size >= 5 + n_programme;
+  for (std::size_t i = 0; same_path && i < n_programme; ++i)
+    same_path = list[5 + i] == programme_path[i];
+  if (!same_path)
+    error->all(FLERR, "fix cell/servo: the restart file was written by a run on another "
+               "Pi-plane path (another path kind, pre-strain, rotation, sweep or vertices); "
+               "resume it with the same path, or define the fix under a new ID");
+  // sizes: the record must be exactly as long as its parts say
+  const std::vector<double> own = restart_record();
+  const std::size_t fixed = own.size() - 1 - (mode == Mode::PATH ? path.to_array().size() : 0);
+  if (size < fixed + 1 || size != fixed + 1 + static_cast<std::size_t>(list[fixed]))
+    error->all(FLERR, "fix cell/servo: the restart record of fix {} has {} numbers where this "
+               "programme expects {} plus its path: the file was written by another programme "
+               "or is damaged", id, list[2], fixed + 1);
+  int k = 5;
+  k += static_cast<int>(n_programme);
   for (double &L : reference_length) L = list[k++];
   memory = tycore::ServoMemory::from_array(list + k);
   k += tycore::ServoMemory::size;
@@ -898,5 +1047,8 @@ void FixCellServo::restart(char *buf)
   k += tycore::EquilibriumState::size;
   equilibrium_reached = static_cast<int>(list[k++]);
   boundary_work = list[k++];
+  elapsed_time = list[k++];
+  clock_step = static_cast<bigint>(list[k++]);
+  if (static_cast<int>(list[k++]) > 0) path = tycore::PiPath::from_array(list + k);
   restored = 1;
 }

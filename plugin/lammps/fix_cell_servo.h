@@ -10,10 +10,12 @@
 #include "fix.h"
 
 #include "cell_servo.hpp"
+#include "csv_record.hpp"
 
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace LAMMPS_NS {
 
@@ -36,9 +38,19 @@ class FixCellServo : public Fix {
     SINPHI, VOID_RATIO, SOLID_FRACTION, Z, ZM, SLIDING_FRACTION, UNBALANCED, INERTIAL_NUMBER,
     PI_X, PI_Y, PI_EX, PI_EY,    // the CSV columns end here
     PROGRESS, ETA_SECONDS, EQUILIBRIUM, RATE1, RATE2, RATE3, BOUNDARY_WORK, P_KINETIC, VOLUME,
+    TIME, EQ_STRESS_OK, EQ_UNBALANCED_OK, EQ_KINETIC_OK, EQ_COORDINATION_OK, KINETIC_RATIO,
     N_OUTPUT
   };
   static constexpr int N_CSV = PI_EY + 1;
+  // what a redefined fix (same ID) takes over from the one it replaces (docs/fix_cell_servo.md)
+  struct Continuation {
+    double reference_length[3];
+    double elapsed_time;
+    bigint clock_step;
+    double boundary_work;
+    double last_strain_rate[3];
+    std::string csv_path;
+  };
 
  protected:
   enum class Mode { ISO, AXES, AXISYM, CONSTANT_B, DEVIATORIC, PATH };
@@ -72,10 +84,15 @@ class FixCellServo : public Fix {
   int equilibrium_reached;
 
   // state (written to restart files)
-  double reference_length[3];      // cell edges when the programme started
+  double reference_length[3];      // cell edges when the test started (strain reference)
+  double elapsed_time;             // simulated time since the test started [s]
+  bigint clock_step;               // step up to which elapsed_time is counted
   tycore::ServoMemory memory;
   double boundary_work;            // int V sigma:deps, compression positive [J]
   int restored;                    // 1 if the state came from a restart file
+  int continued;                   // 1 if it came from the fix this one redefines
+  int continue_previous;           // keyword continue yes|no
+  std::string continued_csv;       // the record that fix wrote
 
   // measurements of the last step
   double stress[3], kinetic_stress[3], stiffness_sums[6];
@@ -96,7 +113,8 @@ class FixCellServo : public Fix {
   // CSV
   std::string csv_path;
   int csv_every;
-  FILE *csv;
+  tycore::CsvRecord csv;
+  std::string csv_header() const;
 
   // progress / ETA
   double wall_start;
@@ -115,6 +133,10 @@ class FixCellServo : public Fix {
   void compute_particle_outputs();
   static bool is_particle_output(int);
   void write_csv_row();
+  void open_csv();
+  void advance_clock();
+  std::vector<double> restart_record() const;
+  std::vector<double> programme_path;   // the user's path, without the lead-in leg
   double default_max_rate() const;
   void choose_rate_cap();
   double prescribed_rate() const;
