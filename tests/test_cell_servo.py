@@ -775,3 +775,32 @@ def test_mismatched_restart_record_is_refused(tmp_path, damage):
                 "old": "a record of an earlier build of fix cell/servo"}[damage]
     error_line = next((line for line in out.splitlines() if "ERROR" in line), out[-2000:])
     assert expected in error_line, error_line
+
+
+# ---------------------------------------------------------------------------------------------
+# 15. polygon: from the current strain, through every vertex, closed on request
+
+
+def test_polygon_starts_from_current_strain_and_closes(specimen, tmp_path):
+    r, speed = 0.001 * np.sqrt(2.0 / 3.0), 4e-5
+    verts = np.array([[0.0, r], [r, r], [r, 0.0]])
+    length = r + r + r + r * np.sqrt(2.0)        # lead-in O-v1, v1-v2, v2-v3, v3-v1
+    steps = int(1.03 * length / (speed * DT)) + 100
+    coords = " ".join(f"{x!r} {y!r}" for x, y in verts)
+    out = shear_run(specimen, tmp_path,
+                    f"fix sh all cell/servo polygon 3 {coords} {P0} speed {speed} close yes "
+                    "plane_strain deviatoric csv sh.csv 10", steps)
+    assert "a leg of length" in out
+    rows = read_csv(tmp_path / "sh.csv")
+    x, y = strain_pi(rows)
+    assert abs(x[0]) < 1e-15 and abs(y[0]) < 1e-15
+    # the lead-in leg O -> v1 is followed (x stays 0 while y grows to r) ...
+    lead = rows["progress"] < (r / length) - 0.01
+    assert lead.sum() > 20 and np.max(np.abs(x[lead])) < 0.01 * r
+    # ... then every vertex is passed, and the polygon closes back on v1
+    for v in verts:
+        assert np.min(np.hypot(x - v[0], y - v[1])) < 0.01 * r, v
+    assert rows["progress"][-1] == pytest.approx(1.0)
+    assert np.hypot(x[-1] - verts[0][0], y[-1] - verts[0][1]) < 0.01 * r
+    late = settled(rows)
+    assert np.max(np.abs(late["p"] / P0 - 1.0)) < 0.01

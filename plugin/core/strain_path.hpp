@@ -128,11 +128,13 @@ class PiPath {
  public:
   PiPath() = default;
 
-  // open polyline through the vertices; repeat the first vertex to close it
-  static PiPath polygon(const std::vector<Eigen::Vector2d>& vertices)
+  // polyline through the vertices; close = true adds the leg from the last vertex back to the
+  // first (as does repeating the first vertex)
+  static PiPath polygon(std::vector<Eigen::Vector2d> vertices, bool close = false)
   {
     if (vertices.size() < 2)
       throw std::invalid_argument("a Pi-plane polygon needs at least two vertices");
+    if (close && vertices.back() != vertices.front()) vertices.push_back(vertices.front());
     PiPath path;
     for (std::size_t i = 0; i + 1 < vertices.size(); ++i) {
       PiSegment leg;
@@ -170,6 +172,17 @@ class PiPath {
   {
     const double signed_sweep = rotation == Rotation::CLOCKWISE ? sweep_deg : -sweep_deg;
     return circle(start.norm(), lode_angle_deg(start), signed_sweep);
+  }
+
+  // the same path entered from the point `from` (the current strain): a straight lead-in leg
+  // from `from` to the first point is put in front, unless it would be shorter than min_leg
+  // (a gap the follower closes by itself, at most speed*dt per step)
+  PiPath starting_from(const Eigen::Vector2d& from, double min_leg) const
+  {
+    if (segments_.empty()) return *this;
+    const Eigen::Vector2d first = segments_.front().start_point();
+    if (!((first - from).norm() >= min_leg)) return *this;
+    return polygon({from, first}).then(*this);
   }
 
   // this path followed by next; next must start where this one ends

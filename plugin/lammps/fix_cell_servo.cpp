@@ -190,6 +190,19 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
   }
   if (previous != stash.end()) stash.erase(previous);
 
+  // every path starts from the current strain (from the reference, kept by a continued test):
+  // a leg to the path's first point goes in front unless the follower can close the gap itself
+  if (mode == Mode::PATH) {
+    const Eigen::Vector3d strain(current_strain(0), current_strain(1), current_strain(2));
+    const Eigen::Vector2d from = tycore::pi_coordinates(strain);
+    const int legs = path.segment_count();
+    path = path.starting_from(from, tycore::MIN_STEPS_PER_LEG * path_speed * update->dt);
+    if (path.segment_count() > legs && comm->me == 0)
+      utils::logmesg(lmp, "fix cell/servo: the path starts at the current strain, Pi point "
+                     "({:.6g}, {:.6g}); a leg of length {:.6g} to its first point goes first\n",
+                     from.x(), from.y(), path.segments().front().length());
+  }
+
   try {
     // controllability depends on which axes hold a stress, not on the values; equal-style
     // variables are looked up only in init(), so they are not evaluated here
@@ -347,17 +360,13 @@ void FixCellServo::parse_mode(int narg, char **arg, int &iarg)
     const int n = positive_integer(lmp, arg[iarg++], "polygon vertex count N");
     if (n < 2) error->all(FLERR, "fix cell/servo polygon: needs at least 2 vertices, got {}", n);
     need(2 * n + 1);
-    std::vector<Eigen::Vector2d> vertices;
+    polygon_vertices.clear();
     for (int k = 0; k < n; ++k, iarg += 2)
-      vertices.emplace_back(finite_number(lmp, arg[iarg], fmt::format("polygon vertex {} x", k + 1)),
+      polygon_vertices.emplace_back(finite_number(lmp, arg[iarg], fmt::format("polygon vertex {} x", k + 1)),
                             finite_number(lmp, arg[iarg + 1],
                                           fmt::format("polygon vertex {} y", k + 1)));
     target_p = stress_arg("mean stress p");
-    try {
-      path = tycore::PiPath::polygon(vertices);
-    } catch (std::exception &e) {
-      error->all(FLERR, "fix cell/servo polygon: {}", e.what());
-    }
+    path_kind = name;
   } else {
     error->all(FLERR, "fix cell/servo: unknown mode '{}' (expected iso, axes, axisym, "
                "constant_b, deviatoric, circle, triangle or polygon)", name);
@@ -418,6 +427,14 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
         error->all(FLERR, "fix cell/servo: keyword 'sweep' applies only to the circle path");
       sweep = finite_number(lmp, value(), "sweep");
       if (!(sweep > 0.0)) error->all(FLERR, "fix cell/servo circle: sweep must be positive");
+      iarg += 2;
+    } else if (key == "close") {
+      if (path_kind != "polygon")
+        error->all(FLERR, "fix cell/servo: keyword 'close' applies only to the polygon path");
+      const std::string v = value();
+      if (v != "yes" && v != "no")
+        error->all(FLERR, "fix cell/servo: close must be yes or no, got '{}'", v);
+      close_polygon = v == "yes";
       iarg += 2;
     } else if (key == "plane_strain") {
       path_only();
@@ -485,10 +502,13 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
   }
   if (!path_kind.empty()) {
     try {
-      path = path_kind == "circle"
-          ? tycore::constant_deviatoric_strain_path(prestrain, measure, rotation, with_prestrain,
-                                                    sweep)
-          : tycore::multiaxial_plane_strain_path(prestrain, measure, rotation, with_prestrain);
+      if (path_kind == "circle")
+        path = tycore::constant_deviatoric_strain_path(prestrain, measure, rotation,
+                                                      with_prestrain, sweep);
+      else if (path_kind == "triangle")
+        path = tycore::multiaxial_plane_strain_path(prestrain, measure, rotation, with_prestrain);
+      else
+        path = tycore::PiPath::polygon(polygon_vertices, close_polygon);
     } catch (std::exception &e) {
       error->all(FLERR, "fix cell/servo {}: {}", path_kind, e.what());
     }

@@ -71,7 +71,9 @@ class FixCellServo : public Fix {
   AxisInput axis_input[3];
   tycore::PiPath path;
   double path_speed;               // Pi-plane speed |de/dt| [1/s]
-  std::string path_kind;           // circle, triangle (built after the keywords) or empty
+  std::string path_kind;           // circle, triangle, polygon (built after the keywords) or empty
+  std::vector<Eigen::Vector2d> polygon_vertices;
+  bool close_polygon = false;
   double prestrain;                // circle, triangle
   tycore::PlaneStrain plane_strain = tycore::PlaneStrain::TOTAL;
   tycore::ServoSettings settings;

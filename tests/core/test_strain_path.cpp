@@ -303,3 +303,31 @@ TEST(StrainPathPolygon, MaxFollowableSpeedIsSetByTheShortestLeg)
   EXPECT_NEAR(end.x(), 1e-3, 1e-15);
   EXPECT_NEAR(end.y(), 3e-3, 1e-15);
 }
+
+// a polygon starts from the current strain: the leg to its first vertex is travelled first,
+// and close = true comes back to the first vertex (issue 14: the first vertex was skipped and
+// the polygon never closed)
+TEST(StrainPathPolygon, StartsFromTheCurrentStrainAndCloses)
+{
+  const Vector2d from(0.0, 0.0), v1(0.0, 1e-3), v2(1e-3, 1e-3), v3(1e-3, 0.0);
+  const PiPath open = PiPath::polygon({v1, v2, v3});
+  const PiPath closed = PiPath::polygon({v1, v2, v3}, true);
+  EXPECT_EQ(open.segment_count(), 2);
+  EXPECT_EQ(closed.segment_count(), 3);
+  EXPECT_NEAR(closed.length(), 2e-3 + std::sqrt(2.0) * 1e-3, 1e-18);
+  const PiPath entered = closed.starting_from(from, 1e-6);
+  ASSERT_EQ(entered.segment_count(), 4);
+  EXPECT_NEAR(entered.length(), 1e-3 + closed.length(), 1e-18);
+  // followed from the origin: the strain passes through every vertex and ends on v1
+  const double speed = 1e-5, dt = 1.0;
+  const Trace t = run_path(entered, Vector3d::Zero(), speed, dt, 100000);
+  for (const Vector2d& v : {v1, v2, v3}) {
+    double closest = 1.0;
+    for (const Vector3d& e : t.strain)
+      closest = std::min(closest, (tycore::pi_coordinates(e) - v).norm());
+    EXPECT_LT(closest, 1e-15) << v.transpose();
+  }
+  EXPECT_LT((tycore::pi_coordinates(t.strain.back()) - v1).norm(), 1e-15);
+  // already there (closer than min_leg): no lead-in
+  EXPECT_EQ(closed.starting_from(v1 + Vector2d(1e-9, 0.0), 1e-6).segment_count(), 3);
+}
