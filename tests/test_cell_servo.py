@@ -804,3 +804,43 @@ def test_polygon_starts_from_current_strain_and_closes(specimen, tmp_path):
     assert np.hypot(x[-1] - verts[0][0], y[-1] - verts[0][1]) < 0.01 * r
     late = settled(rows)
     assert np.max(np.abs(late["p"] / P0 - 1.0)) < 0.01
+
+
+# ---------------------------------------------------------------------------------------------
+# 16. axisym and constant_b rates from variables
+
+
+def test_axisym_rate_from_a_variable_reverses(specimen, tmp_path):
+    """A cyclic axisymmetric test is one fix: the axial rate, a variable of the fix's own time
+    (output 36), turns from compression to extension; p and sigma2 = sigma3 stay held."""
+    r, turn = AXIAL_RATE, 1000
+    extra = f"variable r equal {r}*(1-2*(f_sh[36]>{turn * DT}))\n"
+    shear_run(specimen, tmp_path, f"fix sh all cell/servo axisym x v_r {P0} max_rate {8 * r} "
+              "csv sh.csv 10", 2 * turn, extra=extra)
+    rows = read_csv(tmp_path / "sh.csv")
+    n = rows["step"] - rows["step"][0]
+    # rate1 of a row is the rate decided at its step: +r up to `turn`, -r after
+    assert np.allclose(rows["rate1"][(n > 0) & (n <= turn)], r, rtol=1e-12)
+    assert np.allclose(rows["rate1"][n > turn], -r, rtol=1e-12)
+    expected = np.where(n <= turn + 1, np.maximum(n - 1, 0), turn - (n - turn - 1)) * r * DT
+    assert np.max(np.abs(rows["eps1"] - expected)) < 1e-9 * r * DT * turn
+    late = settled(rows)
+    assert np.max(np.abs(late["p"] / P0 - 1.0)) < 0.01
+    assert np.max(np.abs(late["sig2"] - late["sig3"])) < 0.01 * P0
+    # the deviator falls after the reversal: unloading
+    peak = np.argmax(rows["q"])
+    assert abs(n[peak] - turn) <= 20
+    assert rows["q"][-1] < 0.8 * rows["q"][peak]
+
+
+def test_constant_b_rate_from_a_variable(specimen, tmp_path):
+    extra = f"variable r equal {AXIAL_RATE}*(1+step/1e5)\n"
+    shear_run(specimen, tmp_path, f"fix sh all cell/servo constant_b 0.5 x v_r {P0} "
+              "max_rate 1e-4 csv sh.csv 10", 3000, extra=extra)
+    rows = read_csv(tmp_path / "sh.csv")
+    r = rows["step"] > rows["step"][0]
+    assert np.allclose(rows["rate1"][r], AXIAL_RATE * (1 + rows["step"][r] / 1e5), rtol=1e-11)
+    late = settled(rows, 1000)
+    big = late["q"] > 0.2 * P0
+    assert big.sum() > 10
+    assert np.max(np.abs(late["b"][big] - 0.5)) < 0.02

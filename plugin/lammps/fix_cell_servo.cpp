@@ -152,6 +152,7 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
   nevery = 1;
 
   for (auto &a : axis_input) a = {tycore::AxisControl::STRAIN_RATE, 0.0, "", -1, ""};
+  major_input = {tycore::AxisControl::STRAIN_RATE, 0.0, "", -1, ""};
   for (double &s : stress) s = 0.0;
   for (double &s : kinetic_stress) s = 0.0;
   for (double &s : stiffness_sums) s = 0.0;
@@ -212,9 +213,9 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
         axes[k] = {axis_input[k].control,
                    axis_input[k].variable.empty() ? axis_input[k].value : 1.0};
       tycore::require_controllable(tycore::per_axis_control(axes));
-    } else if (mode != Mode::PATH && mode != Mode::DEVIATORIC) {
-      tycore::require_controllable(current_control());
-    }
+    } else if (mode == Mode::ISO) {
+      tycore::require_controllable(tycore::isotropic_compression_control(target_p));
+    }    // axisym and constant_b always are
   } catch (std::exception &e) {
     error->all(FLERR, "fix cell/servo: {}", e.what());
   }
@@ -292,8 +293,10 @@ void FixCellServo::parse_mode(int narg, char **arg, int &iarg)
     mode = Mode::AXISYM;
     need(3);
     major_axis = axis_arg();
-    major_rate = finite_number(lmp, arg[iarg++], "axisym axial strain rate");
-    if (major_rate == 0.0)
+    major_input = parse_value(arg[iarg++], tycore::AxisControl::STRAIN_RATE,
+                              "axisym axial strain rate");
+    major_rate = major_input.value;
+    if (major_input.variable.empty() && major_rate == 0.0)
       error->all(FLERR, "fix cell/servo axisym: axial strain rate must be non-zero (> 0 "
                  "compression, < 0 extension)");
     target_p = stress_arg("mean stress p");
@@ -304,8 +307,10 @@ void FixCellServo::parse_mode(int narg, char **arg, int &iarg)
     if (!(b_target >= 0.0 && b_target <= 1.0))
       error->all(FLERR, "fix cell/servo constant_b: b = {} is outside [0, 1]", b_target);
     major_axis = axis_arg();
-    major_rate = finite_number(lmp, arg[iarg++], "constant_b major-axis strain rate");
-    if (!(major_rate > 0.0))
+    major_input = parse_value(arg[iarg++], tycore::AxisControl::STRAIN_RATE,
+                              "constant_b major-axis strain rate");
+    major_rate = major_input.value;
+    if (major_input.variable.empty() && !(major_rate > 0.0))
       error->all(FLERR, "fix cell/servo constant_b: the major-axis strain rate must be positive "
                  "(compression of the major axis)");
     target_p = stress_arg("mean stress p");
@@ -539,13 +544,27 @@ double FixCellServo::evaluate(AxisInput &in)
   return value;
 }
 
+// the major-axis rate of axisym and constant_b: a number, or a variable evaluated every step
+double FixCellServo::major_strain_rate()
+{
+  if (major_input.variable.empty()) return major_rate;
+  const double rate = evaluate(major_input);
+  if (mode == Mode::CONSTANT_B && rate < 0.0)
+    error->all(FLERR, "fix cell/servo: variable {} ({}) evaluated to {} at step {}: the major "
+               "axis of a constant-b path is compressed (rate >= 0)", major_input.variable,
+               major_input.what, rate, update->ntimestep);
+  major_rate_now = rate;
+  return rate;
+}
+
 tycore::MixedControl FixCellServo::current_control()
 {
   switch (mode) {
     case Mode::ISO: return tycore::isotropic_compression_control(target_p);
-    case Mode::AXISYM: return tycore::axisymmetric_control(major_axis, major_rate, target_p);
+    case Mode::AXISYM:
+      return tycore::axisymmetric_control(major_axis, major_strain_rate(), target_p);
     case Mode::CONSTANT_B:
-      return tycore::constant_b_control(target_p, b_target, major_rate, major_axis,
+      return tycore::constant_b_control(target_p, b_target, major_strain_rate(), major_axis,
                                         (major_axis + 1) % 3, (major_axis + 2) % 3);
     case Mode::DEVIATORIC: {
       Eigen::Vector3d rate;
@@ -591,7 +610,8 @@ void FixCellServo::init()
   if (icompute < 0) error->all(FLERR, "fix cell/servo: its stress compute was deleted");
   pressure = modify->compute[icompute];
 
-  for (auto &a : axis_input) {
+  for (AxisInput *in : {&axis_input[0], &axis_input[1], &axis_input[2], &major_input}) {
+    AxisInput &a = *in;
     if (a.variable.empty()) continue;
     a.ivar = input->variable->find(a.variable.c_str());
     if (a.ivar < 0)
@@ -624,6 +644,7 @@ void FixCellServo::init()
 // measurement (in setup), not in init where no stress has been tallied yet
 void FixCellServo::choose_rate_cap()
 {
+  if (!major_input.variable.empty()) major_strain_rate();
   if (settings.max_strain_rate == 0.0) {
     settings.max_strain_rate = default_max_rate();
     if (mode == Mode::AXES) {
@@ -654,7 +675,8 @@ void FixCellServo::choose_rate_cap()
 // largest prescribed principal strain rate (or path speed) of the programme [1/s]
 double FixCellServo::prescribed_rate() const
 {
-  double rate = std::max(std::fabs(major_rate), path_speed);
+  double rate = std::max(std::fabs(major_input.variable.empty() ? major_rate : major_rate_now),
+                         path_speed);
   for (const auto &a : axis_input)
     if (a.control == tycore::AxisControl::STRAIN_RATE && a.variable.empty())
       rate = std::max(rate, std::fabs(a.value));

@@ -69,6 +69,9 @@ class FixCellServo : public Fix {
     std::string what;              // the argument, for error messages
   };
   AxisInput axis_input[3];
+  AxisInput major_input;           // axisym, constant_b: the major rate, number or variable
+  double major_rate_now = 0.0;     // its value at the last evaluation
+  double major_strain_rate();
   tycore::PiPath path;
   double path_speed;               // Pi-plane speed |de/dt| [1/s]
   std::string path_kind;           // circle, triangle, polygon (built after the keywords) or empty
