@@ -844,3 +844,41 @@ def test_constant_b_rate_from_a_variable(specimen, tmp_path):
     big = late["q"] > 0.2 * P0
     assert big.sum() > 10
     assert np.max(np.abs(late["b"][big] - 0.5)) < 0.02
+
+
+# ---------------------------------------------------------------------------------------------
+# 17. 'until NAME VALUE': progress and ETA count to the end of the test, which stops the run
+
+
+def test_until_counts_progress_to_the_target_and_stops(specimen, tmp_path):
+    target = 0.003
+    # a second stage continues the test to a further target: the run is not stopped at once
+    # (the first stage's stop is reset) and its progress counts from where it starts
+    out = shear_run(specimen, tmp_path,
+                    f"fix sh all cell/servo axisym x {AXIAL_RATE} {P0} until eps_d13 {target} "
+                    "csv sh.csv 50", 100000)
+    out2 = run_ok(restart_deck(specimen) +
+                  f"fix sh all cell/servo axisym x {AXIAL_RATE} {P0} until eps_d13 {target} "
+                  "csv first.csv 50\nrun 100000\n"
+                  f"fix sh all cell/servo axisym x {AXIAL_RATE} {P0} until eps_d13 0.004 "
+                  "csv second.csv 50\nrun 100000\n", tmp_path, name="in.stages")
+    second = read_csv(tmp_path / "second.csv")
+    assert second["eps_d13"][-1] >= 0.004 and np.all(second["eps_d13"][:-1] < 0.004)
+    assert second["eps_d13"][0] >= target and second["progress"][0] < 0.1
+    assert np.all(np.diff(second["progress"]) > 0) and second["progress"][-1] == 1.0
+    assert out2.count("reached the target") == 2
+    rows = read_csv(tmp_path / "sh.csv")
+    d13 = rows["eps_d13"]
+    # progress is the fraction of the way from the start to the target (not of the run)
+    expected = np.clip((d13 - d13[0]) / (target - d13[0]), 0.0, 1.0)
+    assert np.allclose(rows["progress"], expected, rtol=1e-9, atol=1e-12)
+    # the run ended at the first step at the target: the last row is that step (written
+    # although it is not a multiple of 50), and no row before it had reached it
+    assert d13[-1] >= target and np.all(d13[:-1] < target)
+    assert rows["progress"][-1] == 1.0
+    assert "reached the target 0.003" in out
+    # the step at which eps1 - eps3 crossed the target: it advances by about 1.5 rate dt per
+    # step in axisymmetric compression, so the run took ~target/(1.5 rate dt) steps, far
+    # fewer than the 100000 asked for
+    steps = rows["step"][-1] - rows["step"][0]
+    assert 0.5 < steps * 1.5 * AXIAL_RATE * DT / target < 1.5

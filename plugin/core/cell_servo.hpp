@@ -389,6 +389,22 @@ inline ServoCommand path_servo_step(const PiPath& path, double speed, double mea
 }
 
 // ---------------------------------------------------------------------------------------------
+// Progress of a test that ends when a measure x reaches its target: the fraction of the way
+// from where it started, (x - x0)/(target - x0), in [0, 1]; 1 once x has reached the target
+// from x0's side (then the test ends)
+
+inline double progress_towards(double start, double now, double target)
+{
+  if (!(target != start)) return 1.0;
+  return std::clamp((now - start) / (target - start), 0.0, 1.0);
+}
+
+inline bool reached(double start, double now, double target)
+{
+  return target >= start ? now >= target : now <= target;
+}
+
+// ---------------------------------------------------------------------------------------------
 // Quasi-equilibrium for specimen preparation (paper section 2; physics.md §4, §5.4)
 
 struct EquilibriumCriteria {

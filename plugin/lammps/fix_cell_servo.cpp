@@ -26,6 +26,7 @@
 #include "math_const.h"
 #include "modify.h"
 #include "neighbor.h"
+#include "timer.h"
 #include "pair.h"
 #include "update.h"
 #include "variable.h"
@@ -243,6 +244,13 @@ FixCellServo::~FixCellServo()
   // the box stops deforming with this fix: pair styles must not add an affine velocity
   for (int i = 0; i < 6; ++i) domain->h_rate[i] = 0.0;
   for (int i = 0; i < 3; ++i) domain->h_ratelo[i] = 0.0;
+}
+
+void FixCellServo::post_run()
+{
+  // a run stopped by 'until' leaves the timer expired: later runs must be allowed to run
+  if (until_met) timer->reset_timeout();
+  until_met = 0;
 }
 
 int FixCellServo::setmask()
@@ -477,6 +485,19 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
       csv_path = value(1);
       csv_every = positive_integer(lmp, value(2), "csv interval N");
       iarg += 3;
+    } else if (key == "until") {
+      const std::string name = value(1);
+      until_value = finite_number(lmp, value(2), "until value");
+      until_output = -1;
+      for (int k : {EPS1, EPS2, EPS3, EPS_V, EPS_Q, EPS_D13, SIG1, SIG2, SIG3, P, Q, B, LODE_DEG,
+                    ETA_LD, SINPHI, VOID_RATIO, SOLID_FRACTION, PI_X, PI_Y, PI_EX, PI_EY, TIME,
+                    BOUNDARY_WORK})
+        if (name == OUTPUT_NAMES[k]) until_output = k;
+      if (until_output < 0)
+        error->all(FLERR, "fix cell/servo: until: '{}' is not a strain, stress, void ratio, "
+                   "time or boundary_work output of the fix (names: docs/fix_cell_servo.md)",
+                   name);
+      iarg += 3;
     } else if (key == "continue") {
       const std::string v = value();
       if (v != "yes" && v != "no")
@@ -706,6 +727,7 @@ void FixCellServo::setup(int)
   compute_outputs();
   compute_particle_outputs();
   choose_rate_cap();
+  progress_at_setup = output[PROGRESS];
   if (mode == Mode::PATH && path_speed > tycore::max_followable_speed(path, update->dt))
     error->all(FLERR, "fix cell/servo: at speed {:.4g} the shortest leg of the Pi-plane path "
                "(length {:.4g}) takes {:.3g} steps, and the cell cannot follow a leg in fewer "
@@ -807,6 +829,22 @@ void FixCellServo::end_of_step()
     write_csv_row();
   }
 
+  if (until_output >= 0 && tycore::reached(until_start, output[until_output], until_value)) {
+    // the test is over: the last row, and the run stops after this step (as fix halt does)
+    if (csv_every > 0 && update->ntimestep % csv_every != 0) {
+      compute_particle_outputs();
+      write_csv_row();
+    }
+    if (!until_met) {
+      if (comm->me == 0)
+        utils::logmesg(lmp, "fix cell/servo: {} = {:.6g} reached the target {:.6g} at step {}: "
+                       "the run stops\n", OUTPUT_NAMES[until_output], output[until_output],
+                       until_value, update->ntimestep);
+      timer->force_timeout();
+      until_met = 1;
+    }
+  }
+
   const tycore::CellMeasurement cell = cell_measurement();
   tycore::ServoCommand command;
   try {
@@ -824,11 +862,16 @@ void FixCellServo::end_of_step()
     sample.stress = cell.stress;
     sample.target_stress = Eigen::Vector3d::Constant(target_p);
     sample.unbalanced_force_ratio = output[UNBALANCED];
-    sample.kinetic_energy_ratio =
-        0.5 * (kinetic_stress[0] + kinetic_stress[1] + kinetic_stress[2]) / target_p;
+    sample.kinetic_energy_ratio = output[KINETIC_RATIO];
     sample.coordination = output[Z];
-    equilibrium_reached = tycore::update_equilibrium(equilibrium, sample, criteria).reached;
+    const tycore::EquilibriumCheck check =
+        tycore::update_equilibrium(equilibrium, sample, criteria);
+    equilibrium_reached = check.reached;
     output[EQUILIBRIUM] = equilibrium_reached;
+    output[EQ_STRESS_OK] = check.stress_ok;
+    output[EQ_UNBALANCED_OK] = check.force_ok;
+    output[EQ_KINETIC_OK] = check.energy_ok;
+    output[EQ_COORDINATION_OK] = check.coordination_ok;
   }
 
   // a servo held at its cap for long has lost control of the stress: say what to change
@@ -923,10 +966,19 @@ void FixCellServo::compute_outputs()
   output[PI_X] = pi_stress.x(), output[PI_Y] = pi_stress.y();
   output[PI_EX] = pi_strain.x(), output[PI_EY] = pi_strain.y();
 
-  // progress: along the path, else through the current run; ETA in wall-clock seconds
+  // progress: to the 'until' target, else along the path, else through the current run;
+  // ETA in wall-clock seconds
   const bigint done_steps = update->ntimestep - step_start;
-  const double wall_per_step = done_steps > 0 ? (MPI_Wtime() - wall_start) / done_steps : NaN;
-  if (mode == Mode::PATH) {
+  const double wall = MPI_Wtime() - wall_start;
+  const double wall_per_step = done_steps > 0 ? wall / done_steps : NaN;
+  if (until_output >= 0) {
+    output[TIME] = elapsed_time;
+    output[BOUNDARY_WORK] = boundary_work;
+    if (std::isnan(until_start)) until_start = output[until_output];
+    output[PROGRESS] = tycore::progress_towards(until_start, output[until_output], until_value);
+    const double gained = output[PROGRESS] - progress_at_setup;
+    output[ETA_SECONDS] = gained > 0.0 ? wall / gained * (1.0 - output[PROGRESS]) : NaN;
+  } else if (mode == Mode::PATH) {
     output[PROGRESS] = path.progress(memory.path_length).fraction;
     output[ETA_SECONDS] =
         path.remaining_time(memory.path_length, path_speed) / update->dt * wall_per_step;
@@ -950,7 +1002,7 @@ void FixCellServo::compute_outputs()
 
 bool FixCellServo::is_particle_output(int n)
 {
-  return n == Z || n == ZM || n == UNBALANCED || n == P_KINETIC;
+  return n == Z || n == ZM || n == UNBALANCED || n == P_KINETIC || n == KINETIC_RATIO;
 }
 
 void FixCellServo::compute_particle_outputs()
@@ -960,7 +1012,10 @@ void FixCellServo::compute_particle_outputs()
   // kinetic stress of the fluctuation velocities
   int dim;
   const double *count = static_cast<double *>(pair->extract("contact_count", dim));
-  double local[8] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0}, total[8];
+  // kinetic stress of all particles (5-7) and kinetic energy of the load-bearing ones (8): the
+  // quasi-equilibrium test leaves out the rattlers (0 or 1 contact), as Zm does (Thornton
+  // 2000; docs/fix_cell_servo.md), which move freely in their cages whatever the packing does
+  double local[9] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0}, total[9];
   double **f = atom->f, **v = atom->v;
   for (int i = 0; i < atom->nlocal; ++i) {
     const long c = count ? std::lround(count[i]) : 0;
@@ -969,9 +1024,12 @@ void FixCellServo::compute_particle_outputs()
     if (c == 0) local[2] += 1.0;
     if (c == 1) local[3] += 1.0;
     local[4] += std::sqrt(f[i][0] * f[i][0] + f[i][1] * f[i][1] + f[i][2] * f[i][2]);
-    for (int k = 0; k < 3; ++k) local[5 + k] += atom->rmass[i] * v[i][k] * v[i][k];
+    const double mv2[3] = {atom->rmass[i] * v[i][0] * v[i][0], atom->rmass[i] * v[i][1] * v[i][1],
+                           atom->rmass[i] * v[i][2] * v[i][2]};
+    for (int k = 0; k < 3; ++k) local[5 + k] += mv2[k];
+    if (c >= 2) local[8] += 0.5 * (mv2[0] + mv2[1] + mv2[2]);
   }
-  MPI_Allreduce(local, total, 8, MPI_DOUBLE, MPI_SUM, world);
+  MPI_Allreduce(local, total, 9, MPI_DOUBLE, MPI_SUM, world);
   const double n = total[0], ends = total[1], n0 = total[2], n1 = total[3];
   output[Z] = ends / n;
   output[ZM] = n - n0 - n1 > 0.0 ? (ends - n1) / (n - n0 - n1) : 0.0;
@@ -979,6 +1037,9 @@ void FixCellServo::compute_particle_outputs()
   output[UNBALANCED] = force_sum > 0.0 ? (total[4] / n) / (force_sum / contacts) : NaN;
   const double volume = domain->xprd * domain->yprd * domain->zprd;
   for (int k = 0; k < 3; ++k) kinetic_stress[k] = total[5 + k] / volume;
+  // E_kin of the load-bearing particles / (p V), p the target (iso) or the measured one
+  const double p_ref = target_p > 0.0 ? target_p : output[P];
+  output[KINETIC_RATIO] = p_ref > 0.0 ? total[8] / (p_ref * volume) : NaN;
   output[P_KINETIC] = (kinetic_stress[0] + kinetic_stress[1] + kinetic_stress[2]) / 3.0;
   particle_step = update->ntimestep;
 }
@@ -1029,6 +1090,7 @@ std::vector<double> FixCellServo::restart_record() const
   list.push_back(boundary_work);
   list.push_back(elapsed_time);
   list.push_back(double(clock_step));
+  list.push_back(until_start);
   const std::vector<double> followed = mode == Mode::PATH ? path.to_array() : std::vector<double>{};
   list.push_back(double(followed.size()));
   list.insert(list.end(), followed.begin(), followed.end());
@@ -1091,6 +1153,7 @@ void FixCellServo::restart(char *buf)
   boundary_work = list[k++];
   elapsed_time = list[k++];
   clock_step = static_cast<bigint>(list[k++]);
+  until_start = list[k++];
   if (static_cast<int>(list[k++]) > 0) path = tycore::PiPath::from_array(list + k);
   restored = 1;
 }

@@ -13,6 +13,7 @@
 #include "csv_record.hpp"
 
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -28,6 +29,7 @@ class FixCellServo : public Fix {
   void setup(int) override;
   void post_integrate() override;
   void end_of_step() override;
+  void post_run() override;
   double compute_vector(int) override;
   void write_restart(FILE *) override;
   void restart(char *) override;
@@ -121,9 +123,14 @@ class FixCellServo : public Fix {
   tycore::CsvRecord csv;
   std::string csv_header() const;
 
-  // progress / ETA
+  // progress / ETA; 'until NAME VALUE': the test ends when output NAME reaches VALUE
   double wall_start;
   bigint step_start;
+  double progress_at_setup = 0.0;
+  int until_output = -1;
+  double until_value = 0.0;
+  double until_start = std::numeric_limits<double>::quiet_NaN();   // NAME when the test began
+  int until_met = 0;
 
   void parse_mode(int narg, char **arg, int &iarg);
   void parse_keywords(int narg, char **arg, int iarg);
