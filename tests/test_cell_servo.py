@@ -882,3 +882,23 @@ def test_until_counts_progress_to_the_target_and_stops(specimen, tmp_path):
     # fewer than the 100000 asked for
     steps = rows["step"][-1] - rows["step"][0]
     assert 0.5 < steps * 1.5 * AXIAL_RATE * DT / target < 1.5
+
+
+# ---------------------------------------------------------------------------------------------
+# 18. extra record columns from computes and variables
+
+
+@pytest.mark.parametrize("ranks", [1, 2])
+def test_extra_columns_from_computes_and_variables(specimen, tmp_path, ranks):
+    extra = "compute kin all ke\nvariable twice_p equal 2*f_sh[10]\n"
+    shear_run(specimen, tmp_path,
+              f"fix sh all cell/servo axisym x {AXIAL_RATE} {P0} "
+              "extra 2 kinetic c_kin twice_p v_twice_p csv sh.csv 20", 400, extra=extra,
+              np_ranks=ranks)
+    rows = read_csv(tmp_path / "sh.csv")
+    with open(tmp_path / "sh.csv") as fh:
+        assert fh.readline().strip().endswith(",progress,kinetic,twice_p")
+    assert np.allclose(rows["twice_p"], 2.0 * rows["p"], rtol=1e-11)
+    # compute ke = (1/2) sum m v^2 = (3/2) p_kinetic V (fluctuation velocities both)
+    assert np.allclose(rows["kinetic"], 1.5 * rows["p_kinetic"] * rows["volume"], rtol=1e-9)
+    assert np.all(rows["kinetic"] > 0)

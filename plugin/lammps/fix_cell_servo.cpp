@@ -485,6 +485,26 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
       csv_path = value(1);
       csv_every = positive_integer(lmp, value(2), "csv interval N");
       iarg += 3;
+    } else if (key == "extra") {
+      // extra N name1 value1 ... : columns of the record from computes, fixes or variables
+      const int n = positive_integer(lmp, value(1), "extra column count N");
+      if (iarg + 2 + 2 * n > narg)
+        error->all(FLERR, "fix cell/servo: extra {} needs {} name-value pairs", n, n);
+      for (int k = 0; k < n; ++k) {
+        const std::string name = arg[iarg + 2 + 2 * k], ref = arg[iarg + 3 + 2 * k];
+        if (name.find_first_of(",\"' ") != std::string::npos || name.empty())
+          error->all(FLERR, "fix cell/servo: extra column name '{}' may not hold commas, quotes "
+                     "or blanks", name);
+        bool taken = name == "step";
+        for (const char *builtin : OUTPUT_NAMES) taken = taken || name == builtin;
+        for (const auto &e : extra_columns) taken = taken || name == e.first;
+        if (taken) error->all(FLERR, "fix cell/servo: extra column name '{}' is taken", name);
+        if (!utils::strmatch(ref, "^[cfv]_"))
+          error->all(FLERR, "fix cell/servo: extra column {}: '{}' is not a c_ID, c_ID[i], "
+                     "f_ID[i] or v_name reference", name, ref);
+        extra_columns.emplace_back(name, ref);
+      }
+      iarg += 2 + 2 * n;
     } else if (key == "until") {
       const std::string name = value(1);
       until_value = finite_number(lmp, value(2), "until value");
@@ -740,15 +760,17 @@ void FixCellServo::setup(int)
   open_csv();
   // the state at the start of the run, unless the record holds this step already (a
   // continued test, or a run resumed at the step of its restart file)
-  if (csv_every > 0 && update->ntimestep % csv_every == 0 &&
-      (comm->me != 0 || csv.last_step() < update->ntimestep))
-    write_csv_row();
+  int first_row = csv_every > 0 && update->ntimestep % csv_every == 0 &&
+      (comm->me != 0 || csv.last_step() < update->ntimestep);
+  MPI_Bcast(&first_row, 1, MPI_INT, 0, world);    // (extra columns evaluate on every rank)
+  if (first_row) write_csv_row();
 }
 
 std::string FixCellServo::csv_header() const
 {
   std::string header = "step";
   for (int k : CSV_COLUMNS) header += std::string(",") + OUTPUT_NAMES[k];
+  for (const auto &e : extra_columns) header += "," + e.first;
   return header;
 }
 
@@ -1056,9 +1078,17 @@ double FixCellServo::compute_vector(int n)
 
 void FixCellServo::write_csv_row()
 {
+  // the extra columns first, on every rank (computes and variables are collective)
+  std::vector<double> extra;
+  if (!extra_columns.empty()) {
+    modify->clearstep_compute();
+    for (const auto &e : extra_columns) extra.push_back(input->variable->compute_equal(e.second));
+    modify->addstep_compute(update->ntimestep + 1);
+  }
   if (comm->me != 0 || !csv.is_open()) return;
   std::vector<double> row;
   for (int k : CSV_COLUMNS) row.push_back(output[k]);
+  row.insert(row.end(), extra.begin(), extra.end());
   try {
     csv.write_row(update->ntimestep, row);
   } catch (std::exception &e) {

@@ -16,6 +16,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -122,6 +123,7 @@ class FixCellServo : public Fix {
   int csv_every;
   tycore::CsvRecord csv;
   std::string csv_header() const;
+  std::vector<std::pair<std::string, std::string>> extra_columns;   // name, reference
 
   // progress / ETA; 'until NAME VALUE': the test ends when output NAME reaches VALUE
   double wall_start;
