@@ -452,16 +452,19 @@ RESTART_CASES = [pytest.param(0.0, id="mu0"), pytest.param(0.3, id="mu0.3")]
 
 
 @pytest.mark.parametrize("mu", RESTART_CASES)
+def resumed_deck(restart, steps):
+    """A new process: no pair_style/pair_coeff (kept by the restart), same fix ID and mode."""
+    return (LOAD_TYLMP + f"read_restart {restart}\ncomm_modify vel yes\n"
+            "neighbor 2e-5 bin\nfix nve all nve/sphere\n" + SHEAR_FIX + f"\nrun {steps}\n")
+
+
 def test_restart_continues_exactly(specimen, tmp_path, mu):
     one, split = tmp_path / "one", tmp_path / "split"
     one.mkdir(), split.mkdir()
     shear_run(specimen, one, SHEAR_FIX, 1000, mu=mu)
     deck = restart_deck(specimen, mu) + SHEAR_FIX + "\nrun 500\nwrite_restart half.restart\n"
     run_ok(deck, split, name="in.first")
-    # new process: no pair_style/pair_coeff (kept by the restart), same fix ID and mode
-    second = (LOAD_TYLMP + "read_restart half.restart\ncomm_modify vel yes\n"
-              "neighbor 2e-5 bin\nfix nve all nve/sphere\n" + SHEAR_FIX + "\nrun 500\n")
-    out = run_ok(second, split, name="in.second")
+    out = run_ok(resumed_deck("half.restart", 500), split, name="in.second")
     assert "restoring pair style thornton/yin" in out
     a, b = read_csv(one / "sh.csv"), read_csv(split / "sh.csv")
     # the record continues: no duplicated row at the split, same steps, and the fix's own
@@ -672,15 +675,19 @@ def test_stress_target_reading_the_fix_itself(specimen, tmp_path):
 # 14. multi-stage tests: a redefined fix continues the test; resuming after a crash
 
 
+def two_stages(specimen, first, second, steps, name="in.stages"):
+    """A deck: fix sh defined with `first`, run, redefined with `second`, run."""
+    return (restart_deck(specimen) + f"fix sh all cell/servo {first}\nrun {steps}\n"
+            f"fix sh all cell/servo {second}\nrun {steps}\n")
+
+
 def test_redefined_fix_continues_the_test(specimen, tmp_path):
     """Compression, then the same fix ID redefined for extension: one record, one strain
     reference, one clock (issue 14: the first segment used to be truncated away and the
     strains and time to restart)."""
     r = AXIAL_RATE
-    deck = (restart_deck(specimen) + f"fix sh all cell/servo axisym x {r} {P0} csv sh.csv 10\n"
-            "run 500\n"
-            f"fix sh all cell/servo axisym x {-r} {P0} csv sh.csv 10\nrun 500\n")
-    run_ok(deck, tmp_path)
+    run_ok(two_stages(specimen, f"axisym x {r} {P0} csv sh.csv 10",
+                      f"axisym x {-r} {P0} csv sh.csv 10", 500), tmp_path)
     rows = read_csv(tmp_path / "sh.csv")
     n = rows["step"] - rows["step"][0]
     # every row once, in order, from the start of the first segment
@@ -698,10 +705,8 @@ def test_redefined_fix_continues_the_test(specimen, tmp_path):
 
 def test_continue_no_starts_a_new_test(specimen, tmp_path):
     r = AXIAL_RATE
-    deck = (restart_deck(specimen) + f"fix sh all cell/servo axisym x {r} {P0} csv a.csv 10\n"
-            "run 300\n"
-            f"fix sh all cell/servo axisym x {r} {P0} continue no csv b.csv 10\nrun 300\n")
-    run_ok(deck, tmp_path)
+    run_ok(two_stages(specimen, f"axisym x {r} {P0} csv a.csv 10",
+                      f"axisym x {r} {P0} continue no csv b.csv 10", 300), tmp_path)
     b = read_csv(tmp_path / "b.csv")
     assert b["time"][0] == 0.0 and b["eps1"][0] == 0.0
     # a fresh fix starts from rest: the first step applies no rate
@@ -725,9 +730,7 @@ def test_resume_after_crash_appends_without_repeated_steps(specimen, tmp_path):
            "run 200\n", crash, name="in.first")
     with open(crash / "sh.csv", "a") as fh:     # the line it was writing when it died
         fh.write("5010,0.0")
-    second = (LOAD_TYLMP + "read_restart r300.restart\ncomm_modify vel yes\n"
-              "neighbor 2e-5 bin\nfix nve all nve/sphere\n" + SHEAR_FIX + "\nrun 200\n")
-    out = run_ok(second, crash, name="in.second")
+    out = run_ok(resumed_deck("r300.restart", 200), crash, name="in.second")
     assert "dropped 21 row(s)" in out
     a, b = read_csv(one / "sh.csv"), read_csv(crash / "sh.csv")
     assert np.array_equal(a["step"], b["step"])
@@ -771,7 +774,7 @@ def test_mismatched_restart_record_is_refused(tmp_path, damage):
     rc, out = run_deck(second, tmp_path, name="in.second")
     expected = {"path": "written by a run on another Pi-plane path",
                 "version": "has version 99, this build reads version 2",
-                "size": "numbers where this programme expects",
+                "size": "says it holds 48 numbers, but its parts hold 49",
                 "old": "a record of an earlier build of fix cell/servo"}[damage]
     error_line = next((line for line in out.splitlines() if "ERROR" in line), out[-2000:])
     assert expected in error_line, error_line
@@ -902,3 +905,33 @@ def test_extra_columns_from_computes_and_variables(specimen, tmp_path, ranks):
     # compute ke = (1/2) sum m v^2 = (3/2) p_kinetic V (fluctuation velocities both)
     assert np.allclose(rows["kinetic"], 1.5 * rows["p_kinetic"] * rows["volume"], rtol=1e-9)
     assert np.all(rows["kinetic"] > 0)
+
+
+# ---------------------------------------------------------------------------------------------
+# 19. quasi-equilibrium outputs: which criterion holds; kinetic energy without rattlers
+
+
+def test_equilibrium_criteria_outputs(specimen, tmp_path):
+    """Outputs 37-40 say which criterion held at the last check, output 41 is the kinetic
+    energy of the particles with two or more contacts over p V (rattlers left out, as in Zm),
+    recomputed here from LAMMPS' own contact/atom count and velocities."""
+    crit_u, crit_k = 1e-3, 1e-9
+    extra = ("compute cont all contact/atom\n"
+             "variable ke_bearing atom 0.5*mass*(vx^2+vy^2+vz^2)*(c_cont>=2)\n"
+             "compute keb all reduce sum v_ke_bearing\n"
+             "compute ke all ke\n")
+    report = ('print "EQ $(f_sh[21]:%.17g) $(f_sh[38]) $(f_sh[41]:%.17g) $(f_sh[39]) '
+              '$(c_keb:%.17g) $(c_ke:%.17g) $(f_sh[10]:%.17g) $(f_sh[35]:%.17g) $(f_sh[37]) '
+              '$(f_sh[40])"\n')
+    deck = (restart_deck(specimen, 0.0, 0.0) + extra
+            + f"fix sh all cell/servo iso {P0} equilibrium 100 eq_unbalanced {crit_u} "
+            f"eq_kinetic {crit_k}\nrun 500\n"
+            "thermo_style custom step c_keb c_ke\nrun 0\n" + report)
+    out = run_ok(deck, tmp_path)
+    line = next(l for l in out.splitlines() if l.startswith("EQ "))
+    u, u_ok, k, k_ok, ke_bearing, ke_all, p, volume, s_ok, z_ok = map(float, line.split()[1:])
+    # each flag is its criterion applied to the value at the check (the run ends on a check)
+    assert u_ok == float(u <= crit_u) and k_ok == float(k <= crit_k)
+    assert s_ok in (0.0, 1.0) and z_ok in (0.0, 1.0)
+    assert k == pytest.approx(ke_bearing / (P0 * volume), rel=1e-9)
+    assert 0.0 < ke_bearing <= ke_all

@@ -50,11 +50,31 @@ def specimens(tmp_path_factory):
                                          "variable scale index quick\n"
                                          "include inputs/common/specimen.in\n")
         procs.append(subprocess.Popen(["lmp", "-in", f"in.{kind}", "-log", "none", "-nocite"],
-                                      cwd=str(work), stdout=subprocess.DEVNULL,
+                                      cwd=str(work), stdout=subprocess.PIPE, text=True,
                                       stderr=subprocess.STDOUT, env=_env()))
     for proc in procs:
-        assert proc.wait(timeout=900) == 0
+        out, _ = proc.communicate(timeout=1800)
+        assert proc.returncode == 0, out[-3000:]
+        # the default quick preparation meets its own criteria (issue 14)
+        assert "preparation reached quasi-equilibrium" in out, out[-3000:]
+        assert "WARNING" not in out, out[-3000:]
     return work / "tylmp_specimens"
+
+
+def test_preparation_reports_the_failed_criteria(tmp_path):
+    """Stopped before quasi-equilibrium, the preparation names each criterion that failed
+    with its value and limit (issue 14: the kinetic-energy one used to be missing)."""
+    os.symlink(os.path.join(REPO, "inputs"), tmp_path / "inputs")
+    (tmp_path / "in.short").write_text("variable specimen index loose\n"
+                                       "variable scale index quick\n"
+                                       "variable prep_max_steps index 3000\n"
+                                       "include inputs/common/specimen.in\n")
+    out = _lmp(tmp_path, "in.short", {})
+    assert "WARNING: preparation did not reach quasi-equilibrium within 3000 steps" in out
+    assert "FAILED kinetic energy of the load-bearing particles E_k/(pV) =" in out
+    assert "(criterion eq_kinetic 1e-7)" in out
+    assert "FAILED unbalanced force ratio" in out
+    assert (tmp_path / "tylmp_specimens" / "loose_quick.restart").is_file()
 
 
 def run_cyclic(tmp_path_factory, specimens, **variables):

@@ -1168,10 +1168,14 @@ void FixCellServo::restart(char *buf)
   // sizes: the record must be exactly as long as its parts say
   const std::vector<double> own = restart_record();
   const std::size_t fixed = own.size() - 1 - (mode == Mode::PATH ? path.to_array().size() : 0);
-  if (size < fixed + 1 || size != fixed + 1 + static_cast<std::size_t>(list[fixed]))
-    error->all(FLERR, "fix cell/servo: the restart record of fix {} has {} numbers where this "
-               "programme expects {} plus its path: the file was written by another programme "
-               "or is damaged", id, list[2], fixed + 1);
+  if (size < fixed + 1)
+    error->all(FLERR, "fix cell/servo: the restart record of fix {} holds {} numbers, fewer "
+               "than the {} of this programme: the file is damaged or was written by another "
+               "programme", id, size, fixed + 1);
+  if (size != fixed + 1 + static_cast<std::size_t>(list[fixed]))
+    error->all(FLERR, "fix cell/servo: the restart record of fix {} says it holds {} numbers, "
+               "but its parts hold {}: the file is damaged or was written by another programme",
+               id, size, fixed + 1 + static_cast<std::size_t>(list[fixed]));
   int k = 5;
   k += static_cast<int>(n_programme);
   for (double &L : reference_length) L = list[k++];

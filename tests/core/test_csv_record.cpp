@@ -30,6 +30,23 @@ void spit(const std::string& path, const std::string& text)
   std::ofstream(path) << text;
 }
 
+// `before` resumed at `step`, one row (step `next`, value 9) appended: the file afterwards
+std::string resumed(const std::string& before, long long step, long long next,
+                    long long expect_last, int expect_dropped)
+{
+  const std::string path = temp_path("resume");
+  spit(path, before);
+  CsvRecord r;
+  r.resume(path, "step,a", step);
+  EXPECT_EQ(r.last_step(), expect_last);
+  EXPECT_EQ(r.dropped_rows(), expect_dropped);
+  r.write_row(next, {9});
+  r.close();
+  const std::string after = slurp(path);
+  std::remove(path.c_str());
+  return after;
+}
+
 }    // namespace
 
 TEST(CsvRecord, NewRecordHasHeaderAndRows)
@@ -51,31 +68,14 @@ TEST(CsvRecord, NewRecordHasHeaderAndRows)
 // from step 20, so rows 30 and a torn row are superseded; steps never repeat or go back
 TEST(CsvRecord, ResumeDropsRowsAfterTheResumedStepAndATornLine)
 {
-  const std::string path = temp_path("resume");
-  spit(path, "step,a\n0,1\n10,2\n20,3\n30,4\n40,");
-  CsvRecord r;
-  r.resume(path, "step,a", 20);
-  EXPECT_EQ(r.last_step(), 20);
-  EXPECT_EQ(r.dropped_rows(), 2);
-  r.write_row(30, {4.5});
-  r.close();
-  EXPECT_EQ(slurp(path), "step,a\n0,1\n10,2\n20,3\n30,4.5\n");
-  std::remove(path.c_str());
+  EXPECT_EQ(resumed("step,a\n0,1\n10,2\n20,3\n30,4\n40,", 20, 30, 20, 2),
+            "step,a\n0,1\n10,2\n20,3\n30,9\n");
 }
 
 // a redefined fix at the step its predecessor wrote last: nothing dropped, rows appended
 TEST(CsvRecord, ResumeAtTheLastStepAppends)
 {
-  const std::string path = temp_path("append");
-  spit(path, "step,a\n0,1\n10,2\n");
-  CsvRecord r;
-  r.resume(path, "step,a", 10);
-  EXPECT_EQ(r.last_step(), 10);
-  EXPECT_EQ(r.dropped_rows(), 0);
-  r.write_row(20, {3});
-  r.close();
-  EXPECT_EQ(slurp(path), "step,a\n0,1\n10,2\n20,3\n");
-  std::remove(path.c_str());
+  EXPECT_EQ(resumed("step,a\n0,1\n10,2\n", 10, 20, 10, 0), "step,a\n0,1\n10,2\n20,9\n");
 }
 
 TEST(CsvRecord, ResumeOfAMissingOrEmptyFileStartsIt)
