@@ -451,13 +451,13 @@ def max_relative_difference(a, b, names=COMPARED):
 RESTART_CASES = [pytest.param(0.0, id="mu0"), pytest.param(0.3, id="mu0.3")]
 
 
-@pytest.mark.parametrize("mu", RESTART_CASES)
 def resumed_deck(restart, steps):
     """A new process: no pair_style/pair_coeff (kept by the restart), same fix ID and mode."""
     return (LOAD_TYLMP + f"read_restart {restart}\ncomm_modify vel yes\n"
             "neighbor 2e-5 bin\nfix nve all nve/sphere\n" + SHEAR_FIX + f"\nrun {steps}\n")
 
 
+@pytest.mark.parametrize("mu", RESTART_CASES)
 def test_restart_continues_exactly(specimen, tmp_path, mu):
     one, split = tmp_path / "one", tmp_path / "split"
     one.mkdir(), split.mkdir()

@@ -14,6 +14,7 @@
 
 #include "fix_cell_servo.h"
 
+#include "cell_statistics.hpp"
 #include "pi_plane.hpp"
 
 #include "atom.h"
@@ -1030,39 +1031,24 @@ bool FixCellServo::is_particle_output(int n)
 void FixCellServo::compute_particle_outputs()
 {
   if (particle_step == update->ntimestep) return;
-  // coordination: Z = 2C/N; Zm = (2C - N1)/(N - N0 - N1) without rattlers (Thornton 2000);
-  // kinetic stress of the fluctuation velocities
+  // Z, Zm, unbalanced force, kinetic stress and the kinetic energy of the load-bearing
+  // particles (plugin/core/cell_statistics.hpp)
   int dim;
   const double *count = static_cast<double *>(pair->extract("contact_count", dim));
-  // kinetic stress of all particles (5-7) and kinetic energy of the load-bearing ones (8): the
-  // quasi-equilibrium test leaves out the rattlers (0 or 1 contact), as Zm does (Thornton
-  // 2000; docs/fix_cell_servo.md), which move freely in their cages whatever the packing does
-  double local[9] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0}, total[9];
-  double **f = atom->f, **v = atom->v;
-  for (int i = 0; i < atom->nlocal; ++i) {
-    const long c = count ? std::lround(count[i]) : 0;
-    local[0] += 1.0;
-    local[1] += c;
-    if (c == 0) local[2] += 1.0;
-    if (c == 1) local[3] += 1.0;
-    local[4] += std::sqrt(f[i][0] * f[i][0] + f[i][1] * f[i][1] + f[i][2] * f[i][2]);
-    const double mv2[3] = {atom->rmass[i] * v[i][0] * v[i][0], atom->rmass[i] * v[i][1] * v[i][1],
-                           atom->rmass[i] * v[i][2] * v[i][2]};
-    for (int k = 0; k < 3; ++k) local[5 + k] += mv2[k];
-    if (c >= 2) local[8] += 0.5 * (mv2[0] + mv2[1] + mv2[2]);
-  }
-  MPI_Allreduce(local, total, 9, MPI_DOUBLE, MPI_SUM, world);
-  const double n = total[0], ends = total[1], n0 = total[2], n1 = total[3];
-  output[Z] = ends / n;
-  output[ZM] = n - n0 - n1 > 0.0 ? (ends - n1) / (n - n0 - n1) : 0.0;
-  // mean |resultant force on a particle| / mean |contact force|
-  output[UNBALANCED] = force_sum > 0.0 ? (total[4] / n) / (force_sum / contacts) : NaN;
+  tycore::ParticleSums local, total;
+  for (int i = 0; i < atom->nlocal; ++i)
+    local.add(count ? std::lround(count[i]) : 0, atom->f[i], atom->rmass[i], atom->v[i]);
+  MPI_Allreduce(local.sum, total.sum, tycore::ParticleSums::size, MPI_DOUBLE, MPI_SUM, world);
   const double volume = domain->xprd * domain->yprd * domain->zprd;
-  for (int k = 0; k < 3; ++k) kinetic_stress[k] = total[5 + k] / volume;
-  // E_kin of the load-bearing particles / (p V), p the target (iso) or the measured one
-  const double p_ref = target_p > 0.0 ? target_p : output[P];
-  output[KINETIC_RATIO] = p_ref > 0.0 ? total[8] / (p_ref * volume) : NaN;
-  output[P_KINETIC] = (kinetic_stress[0] + kinetic_stress[1] + kinetic_stress[2]) / 3.0;
+  // the kinetic ratio relative to the target p (iso), else to the measured one
+  const tycore::ParticleStatistics st = tycore::particle_statistics(
+      total, contacts, force_sum, volume, target_p > 0.0 ? target_p : output[P]);
+  output[Z] = st.Z;
+  output[ZM] = st.Zm;
+  output[UNBALANCED] = st.unbalanced;
+  for (int k = 0; k < 3; ++k) kinetic_stress[k] = st.kinetic_stress[k];
+  output[P_KINETIC] = st.p_kinetic;
+  output[KINETIC_RATIO] = st.kinetic_ratio;
   particle_step = update->ntimestep;
 }
 
