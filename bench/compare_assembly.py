@@ -84,7 +84,7 @@ variable sx equal c_stress[1]
 variable sy equal c_stress[2]
 variable sz equal c_stress[3]
 fix out all print {every} "$(step) $(v_eps:%.10g) $(v_sx:%.10g) $(v_sy:%.10g) $(v_sz:%.10g) $(vol:%.10g)" file out.txt screen no title "# step eps_a sx sy sz volume"
-fix outz all print 1000 "$(step) $(c_z:%.6g)" file touching.txt screen no title "# step touching"
+fix outz all print {every} "$(step) $(c_z:%.6g)" file touching.txt screen no title "# step touching"
 thermo_style custom step v_eps c_stress[1] c_stress[2] c_stress[3]
 """
 

@@ -8,6 +8,11 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 versions="${TYLMP_TEST_LAMMPS:-2021 2025}"
 bash scripts/setup.sh
+case " $versions " in
+  *" 2025 "*)    # both builds first: the cross-version tests of either half run both LAMMPS,
+                 # each with this tree's build of tylmp (not one left from an earlier run)
+    TYLMP_LAMMPS2025_NO_TESTS=1 bash scripts/lammps2025.sh >/dev/null ;;
+esac
 status=0
 for v in $versions; do
   case "$v" in

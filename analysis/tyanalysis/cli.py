@@ -74,6 +74,17 @@ def cmd_axisym(a):
     _wrote(figures.axisym(tables, labels, a.out))
 
 
+def cmd_cyclic(a):
+    from . import cyclic
+    tables = _read_all(a.files)
+    labels = _labels(a.files, a.labels)
+    for t, lab in zip(tables, labels):
+        _kv(lab, [("reversals", len(cyclic.reversals(t)))]
+            + [(f"work_cycle{k + 1}_J_per_m3", float(w))
+               for k, w in enumerate(cyclic.cycle_work(t))])
+    _wrote(figures.cyclic(tables, labels, a.out))
+
+
 def _mu_of(path):
     m = re.search(r"mu[_=-]?([0-9]+(?:\.[0-9]+)?)", os.path.basename(path))
     return float(m.group(1)) if m else None
@@ -375,6 +386,7 @@ def build_parser():
     p = files_cmd("axisym", cmd_axisym, "Figs 1-2: deviator stress, void ratio and volumetric strain vs ε1 − ε3")
     p.add_argument("--void-ratio", action="store_true",
                    help="accepted for old commands: the void ratio (Fig. 2) and εv panels are both drawn")
+    files_cmd("cyclic", cmd_cyclic, "cyclic axisymmetric test: q and εv against ε1 − ε3")
     p = files_cmd("friction", cmd_friction, "Fig. 3: sinφ_max and sinφ_cv against μ")
     p.add_argument("--mu", type=float, nargs="+", help="μ of each file (default: from names like mu0.3)")
     p = files_cmd("radial", cmd_radial, "Figs 4-6: radial b tests, peak states on the Π plane")

@@ -85,6 +85,28 @@ def axisym(tables, labels, out):
     return save_figure(fig, out)
 
 
+def cyclic(tables, labels, out):
+    """Cyclic axisymmetric test: signed deviator stress sigma1 - sigma3 (q, negative in
+    extension) and volumetric strain against eps1 - eps3."""
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(10, 4))
+    for t, lab in zip(tables, labels):
+        d = derived(t)
+        a1.plot(d["eps_d13"] * PCT, d["dev_stress"] * KPA, lw=0.8, label=lab)
+        a2.plot(d["eps_d13"] * PCT, d["eps_v"] * PCT, lw=0.8, label=lab)
+    a1.set_xlabel("deviator strain ε1 − ε3 [%]")
+    a1.set_ylabel("q = σ1 − σ3 [kPa] (< 0 in extension)")
+    a1.set_title("Cyclic axisymmetric test at constant p")
+    a2.set_xlabel("deviator strain ε1 − ε3 [%]")
+    a2.set_ylabel("volumetric strain εv [%] (compression +)")
+    a2.set_title("Volumetric strain")
+    for a in (a1, a2):
+        a.axhline(0, color="0.8", lw=0.6, zorder=0)
+        a.axvline(0, color="0.8", lw=0.6, zorder=0)
+        a.grid(alpha=0.3)
+        a.legend(fontsize=8)
+    return save_figure(fig, out)
+
+
 def friction(mus, sinphi_max, sinphi_cv, out):
     """Fig. 3: peak and critical-state sin(phi) against interparticle friction, points in
     increasing mu. The paper's Skinner data and Horne curve have no numbers in its text

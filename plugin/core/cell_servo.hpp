@@ -126,6 +126,11 @@ struct CellMeasurement {
   Eigen::Vector3d strain;      // natural strains from the reference cell, compression positive
 };
 
+// A principal strain of 1 % in one step is no laboratory test: at a quasi-static inertial
+// number (I < 1e-3, docs/theory.md) a step strains a packing by ~1e-6; beyond this the contacts
+// of one step overlap by a sizeable fraction of a radius and the cell edges may collapse
+constexpr double MAX_STRAIN_PER_STEP = 0.01;
+
 struct ServoSettings {
   // fraction of the stress error removed per step; the error keeps its sign as long as the
   // instantaneous stiffness is below 1/gain = 4 times the estimate
@@ -382,6 +387,22 @@ inline ServoCommand path_servo_step(const PiPath& path, double speed, double mea
       fixed_axis >= 0 ? plane_strain_control(mean_stress, step.deviatoric_strain_rate, fixed_axis)
                       : mean_stress_control(mean_stress, step.deviatoric_strain_rate);
   return servo_step(control, cell, settings, dt, memory);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Progress of a test that ends when a measure x reaches its target: the fraction of the way
+// from where it started, (x - x0)/(target - x0), in [0, 1]; 1 once x has reached the target
+// from x0's side (then the test ends)
+
+inline double progress_towards(double start, double now, double target)
+{
+  if (!(target != start)) return 1.0;
+  return std::clamp((now - start) / (target - start), 0.0, 1.0);
+}
+
+inline bool reached(double start, double now, double target)
+{
+  return target >= start ? now >= target : now <= target;
 }
 
 // ---------------------------------------------------------------------------------------------

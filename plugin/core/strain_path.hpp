@@ -128,11 +128,13 @@ class PiPath {
  public:
   PiPath() = default;
 
-  // open polyline through the vertices; repeat the first vertex to close it
-  static PiPath polygon(const std::vector<Eigen::Vector2d>& vertices)
+  // polyline through the vertices; close = true adds the leg from the last vertex back to the
+  // first (as does repeating the first vertex)
+  static PiPath polygon(std::vector<Eigen::Vector2d> vertices, bool close = false)
   {
     if (vertices.size() < 2)
       throw std::invalid_argument("a Pi-plane polygon needs at least two vertices");
+    if (close && vertices.back() != vertices.front()) vertices.push_back(vertices.front());
     PiPath path;
     for (std::size_t i = 0; i + 1 < vertices.size(); ++i) {
       PiSegment leg;
@@ -172,6 +174,17 @@ class PiPath {
     return circle(start.norm(), lode_angle_deg(start), signed_sweep);
   }
 
+  // the same path entered from the point `from` (the current strain): a straight lead-in leg
+  // from `from` to the first point is put in front, unless it would be shorter than min_leg
+  // (a gap the follower closes by itself, at most speed*dt per step)
+  PiPath starting_from(const Eigen::Vector2d& from, double min_leg) const
+  {
+    if (segments_.empty()) return *this;
+    const Eigen::Vector2d first = segments_.front().start_point();
+    if (!((first - from).norm() >= min_leg)) return *this;
+    return polygon({from, first}).then(*this);
+  }
+
   // this path followed by next; next must start where this one ends
   PiPath then(const PiPath& next) const
   {
@@ -189,6 +202,12 @@ class PiPath {
   }
 
   double length() const { return cumulative_.empty() ? 0.0 : cumulative_.back(); }
+  double shortest_leg() const
+  {
+    double shortest = length();
+    for (const PiSegment& s : segments_) shortest = std::min(shortest, s.length());
+    return shortest;
+  }
   int segment_count() const { return static_cast<int>(segments_.size()); }
   const std::vector<PiSegment>& segments() const { return segments_; }
   double segment_start(int i) const { return i == 0 ? 0.0 : cumulative_[i - 1]; }
@@ -324,6 +343,18 @@ inline PiPath multiaxial_plane_strain_path(double prestrain, DeviatoricStrainMea
 
 // ---------------------------------------------------------------------------------------------
 // Following a path
+
+// A leg travelled in fewer steps than this cannot be followed: the follower's pull back onto
+// the path is limited to speed*dt per step and the p servo removes a fraction `gain` (0.25) of
+// its error per step, so both need several steps per leg (at speed*dt above a whole leg the
+// target jumps to its end in one step and the progress runs ahead of the strain)
+constexpr int MIN_STEPS_PER_LEG = 10;
+
+// the largest Pi-plane speed at which every leg takes at least MIN_STEPS_PER_LEG steps
+inline double max_followable_speed(const PiPath& path, double dt)
+{
+  return path.shortest_leg() / (MIN_STEPS_PER_LEG * dt);
+}
 
 struct PathStep {
   Eigen::Vector3d deviatoric_strain_rate;   // traceless, 1/s

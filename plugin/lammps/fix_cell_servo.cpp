@@ -14,6 +14,7 @@
 
 #include "fix_cell_servo.h"
 
+#include "cell_statistics.hpp"
 #include "pi_plane.hpp"
 
 #include "atom.h"
@@ -26,6 +27,7 @@
 #include "math_const.h"
 #include "modify.h"
 #include "neighbor.h"
+#include "timer.h"
 #include "pair.h"
 #include "update.h"
 #include "variable.h"
@@ -33,6 +35,8 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <map>
+#include <set>
 #include <vector>
 
 using namespace LAMMPS_NS;
@@ -41,8 +45,24 @@ using namespace FixConst;
 namespace {
 
 constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
-// written first in the restart record, so that a record of another programme is refused
-constexpr double RESTART_TAG = 8461.0;
+// the restart record starts with a tag, its version and its size (in doubles), so that a
+// record of another programme or of another version of this fix is refused, not misread;
+// 8461 tagged the unversioned record of earlier builds
+constexpr double RESTART_TAG = 8462.0, OLD_RESTART_TAG = 8461.0;
+constexpr int RESTART_VERSION = 2;
+
+// the state a replaced fix leaves to the one that redefines it (same LAMMPS instance and ID):
+// Modify deletes the old fix before it constructs the new one
+std::map<std::string, FixCellServo::Continuation> &continuations()
+{
+  static std::map<std::string, FixCellServo::Continuation> stash;
+  return stash;
+}
+
+std::string continuation_key(LAMMPS *lmp, const char *id)
+{
+  return fmt::format("{}/{}", static_cast<const void *>(lmp), id);
+}
 
 // pair thornton/yin cell tallies (pair_thornton_yin.h)
 constexpr int TALLY_STIFFNESS = 0, TALLY_CONTACTS = 6, TALLY_SLIDING = 7, TALLY_FORCE = 8;
@@ -53,9 +73,44 @@ const char *const OUTPUT_NAMES[] = {
     "lode_deg", "eta_LD", "sinphi", "void_ratio", "solid_fraction", "Z", "Zm",
     "sliding_fraction", "unbalanced", "inertial_number", "pi_x", "pi_y", "pi_ex", "pi_ey",
     "progress", "eta_seconds", "equilibrium", "rate1", "rate2", "rate3", "boundary_work",
-    "p_kinetic", "volume"};
+    "p_kinetic", "volume", "time", "eq_stress_ok", "eq_unbalanced_ok", "eq_kinetic_ok",
+    "eq_coordination_ok", "kinetic_ratio"};
+// the CSV columns after `step` (one list, used for the header and every row)
+const int CSV_COLUMNS[] = {
+    FixCellServo::TIME, FixCellServo::EPS1, FixCellServo::EPS2, FixCellServo::EPS3,
+    FixCellServo::EPS_V, FixCellServo::EPS_Q, FixCellServo::EPS_D13, FixCellServo::SIG1,
+    FixCellServo::SIG2, FixCellServo::SIG3, FixCellServo::P, FixCellServo::Q, FixCellServo::B,
+    FixCellServo::LODE_DEG, FixCellServo::ETA_LD, FixCellServo::SINPHI,
+    FixCellServo::VOID_RATIO, FixCellServo::SOLID_FRACTION, FixCellServo::Z, FixCellServo::ZM,
+    FixCellServo::SLIDING_FRACTION, FixCellServo::UNBALANCED, FixCellServo::INERTIAL_NUMBER,
+    FixCellServo::PI_X, FixCellServo::PI_Y, FixCellServo::PI_EX, FixCellServo::PI_EY,
+    FixCellServo::RATE1, FixCellServo::RATE2, FixCellServo::RATE3, FixCellServo::BOUNDARY_WORK,
+    FixCellServo::P_KINETIC, FixCellServo::VOLUME, FixCellServo::PROGRESS};
 static_assert(sizeof(OUTPUT_NAMES) / sizeof(OUTPUT_NAMES[0]) == FixCellServo::N_OUTPUT,
               "one name per output");
+
+// a finite floating-point argument: utils::numeric takes 1e400 (it overflows to inf in strtod)
+// and its message does not say which argument was wrong
+double finite_number(LAMMPS *lmp, const char *text, const std::string &what)
+{
+  char *end = nullptr;
+  const double value = strtod(text, &end);
+  if (end == text || *end != '\0')
+    lmp->error->all(FLERR, "fix cell/servo: {} must be a number, got '{}'", what, text);
+  if (!std::isfinite(value))
+    lmp->error->all(FLERR, "fix cell/servo: {} = '{}' is not a finite number (inf, nan or a "
+                    "value that overflows)", what, text);
+  return value;
+}
+
+int positive_integer(LAMMPS *lmp, const char *text, const std::string &what)
+{
+  char *end = nullptr;
+  const long value = strtol(text, &end, 10);
+  if (end == text || *end != '\0' || value <= 0 || value > std::numeric_limits<int>::max())
+    lmp->error->all(FLERR, "fix cell/servo: {} must be a positive integer, got '{}'", what, text);
+  return static_cast<int>(value);
+}
 
 int axis_index(const char *name)
 {
@@ -72,10 +127,11 @@ int axis_index(const char *name)
 FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), target_p(0.0), major_axis(0), major_rate(0.0), b_target(0.0),
     path_speed(0.0), prestrain(0.0), inertial_cap(1e-3), equilibrium_every(0), equilibrium_reached(0),
-    boundary_work(0.0), restored(0), contacts(0.0), sliding(0.0), force_sum(0.0),
+    elapsed_time(0.0), clock_step(0), boundary_work(0.0), restored(0), continued(0),
+    continue_previous(1), contacts(0.0), sliding(0.0), force_sum(0.0),
     measured_step(-1), output_step(-1), particle_step(-1), mean_diameter(0.0), mean_density(0.0),
     solid_volume(0.0), pressure(nullptr), pair(nullptr), tally_flag(nullptr), csv_every(0),
-    csv(nullptr), wall_start(0.0), step_start(0), saturated_steps(0)
+    wall_start(0.0), step_start(0), saturated_steps(0)
 {
   if (narg < 5) error->all(FLERR, "Illegal fix cell/servo command: expected 'fix ID all cell/servo MODE ...' (modes: iso axes axisym constant_b deviatoric circle triangle polygon)");
   if (strcmp(arg[1], "all") != 0)
@@ -97,16 +153,58 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
   extvector = 0;
   nevery = 1;
 
-  for (auto &a : axis_input) a = {tycore::AxisControl::STRAIN_RATE, 0.0, "", -1};
+  for (auto &a : axis_input) a = {tycore::AxisControl::STRAIN_RATE, 0.0, "", -1, ""};
+  major_input = {tycore::AxisControl::STRAIN_RATE, 0.0, "", -1, ""};
   for (double &s : stress) s = 0.0;
   for (double &s : kinetic_stress) s = 0.0;
   for (double &s : stiffness_sums) s = 0.0;
   for (double &o : output) o = NaN;
   for (int i = 0; i < 3; ++i) reference_length[i] = domain->prd[i];
+  clock_step = update->ntimestep;
 
   int iarg = 3;
   parse_mode(narg, arg, iarg);
   parse_keywords(narg, arg, iarg);
+  if (mode == Mode::PATH) programme_path = path.to_array();
+
+  // a redefinition (same ID: Modify has just deleted the fix in this slot) continues the test
+  // of the fix it replaces, unless 'continue no'
+  bool replacing = false;
+  for (int i = 0; i < modify->nfix; ++i)
+    if (modify->fix[i] == nullptr) replacing = true;
+  auto &stash = continuations();
+  const auto previous = stash.find(continuation_key(lmp, id));
+  if (replacing && previous != stash.end()) {
+    const Continuation &c = previous->second;
+    if (continue_previous) {
+      for (int k = 0; k < 3; ++k) {
+        reference_length[k] = c.reference_length[k];
+        memory.last_strain_rate(k) = c.last_strain_rate[k];
+      }
+      elapsed_time = c.elapsed_time;
+      clock_step = c.clock_step;
+      boundary_work = c.boundary_work;
+      continued = 1;
+      continued_csv = c.csv_path;
+    } else if (!csv_path.empty() && csv_path == c.csv_path) {
+      error->all(FLERR, "fix cell/servo: 'continue no' starts a new test, whose record would "
+                 "overwrite {}, the record of the test it replaces: name another file", csv_path);
+    }
+  }
+  if (previous != stash.end()) stash.erase(previous);
+
+  // every path starts from the current strain (from the reference, kept by a continued test):
+  // a leg to the path's first point goes in front unless the follower can close the gap itself
+  if (mode == Mode::PATH) {
+    const Eigen::Vector3d strain(current_strain(0), current_strain(1), current_strain(2));
+    const Eigen::Vector2d from = tycore::pi_coordinates(strain);
+    const int legs = path.segment_count();
+    path = path.starting_from(from, tycore::MIN_STEPS_PER_LEG * path_speed * update->dt);
+    if (path.segment_count() > legs && comm->me == 0)
+      utils::logmesg(lmp, "fix cell/servo: the path starts at the current strain, Pi point "
+                     "({:.6g}, {:.6g}); a leg of length {:.6g} to its first point goes first\n",
+                     from.x(), from.y(), path.segments().front().length());
+  }
 
   try {
     // controllability depends on which axes hold a stress, not on the values; equal-style
@@ -117,9 +215,9 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
         axes[k] = {axis_input[k].control,
                    axis_input[k].variable.empty() ? axis_input[k].value : 1.0};
       tycore::require_controllable(tycore::per_axis_control(axes));
-    } else if (mode != Mode::PATH && mode != Mode::DEVIATORIC) {
-      tycore::require_controllable(current_control());
-    }
+    } else if (mode == Mode::ISO) {
+      tycore::require_controllable(tycore::isotropic_compression_control(target_p));
+    }    // axisym and constant_b always are
   } catch (std::exception &e) {
     error->all(FLERR, "fix cell/servo: {}", e.what());
   }
@@ -130,12 +228,30 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
 
 FixCellServo::~FixCellServo()
 {
+  // left for a fix that redefines this one (see the constructor)
+  Continuation c;
+  for (int k = 0; k < 3; ++k) {
+    c.reference_length[k] = reference_length[k];
+    c.last_strain_rate[k] = memory.last_strain_rate(k);
+  }
+  c.elapsed_time = elapsed_time;
+  c.clock_step = clock_step;
+  c.boundary_work = boundary_work;
+  c.csv_path = csv_path;
+  continuations()[continuation_key(lmp, id)] = c;
+
   if (modify->find_compute(pressure_id) >= 0) modify->delete_compute(pressure_id);
-  if (csv) fclose(csv);
   // (the pair may be gone already: pair thornton/yin clears its tally flag in init_style)
   // the box stops deforming with this fix: pair styles must not add an affine velocity
   for (int i = 0; i < 6; ++i) domain->h_rate[i] = 0.0;
   for (int i = 0; i < 3; ++i) domain->h_ratelo[i] = 0.0;
+}
+
+void FixCellServo::post_run()
+{
+  // a run stopped by 'until' leaves the timer expired: later runs must be allowed to run
+  if (until_met) timer->reset_timeout();
+  until_met = 0;
 }
 
 int FixCellServo::setmask()
@@ -147,11 +263,12 @@ int FixCellServo::setmask()
    MODE args: see the header of docs/fix_cell_servo.md
 ------------------------------------------------------------------------- */
 
-FixCellServo::AxisInput FixCellServo::parse_value(const char *text, tycore::AxisControl control)
+FixCellServo::AxisInput FixCellServo::parse_value(const char *text, tycore::AxisControl control,
+                                                   const std::string &what)
 {
-  AxisInput in{control, 0.0, "", -1};
+  AxisInput in{control, 0.0, "", -1, what};
   if (strncmp(text, "v_", 2) == 0) in.variable = text + 2;
-  else in.value = utils::numeric(FLERR, text, false, lmp);
+  else in.value = finite_number(lmp, text, what);
   return in;
 }
 
@@ -164,7 +281,7 @@ void FixCellServo::parse_mode(int narg, char **arg, int &iarg)
                  n);
   };
   auto stress_arg = [&](const char *what) {
-    const double value = utils::numeric(FLERR, arg[iarg++], false, lmp);
+    const double value = finite_number(lmp, arg[iarg++], name + " " + what);
     if (!(value > 0.0))
       error->all(FLERR, "fix cell/servo {}: target {} = {} must be positive (a granular cell "
                  "carries no tension)", name, what, value);
@@ -185,33 +302,41 @@ void FixCellServo::parse_mode(int narg, char **arg, int &iarg)
     mode = Mode::AXISYM;
     need(3);
     major_axis = axis_arg();
-    major_rate = utils::numeric(FLERR, arg[iarg++], false, lmp);
-    if (major_rate == 0.0)
+    major_input = parse_value(arg[iarg++], tycore::AxisControl::STRAIN_RATE,
+                              "axisym axial strain rate");
+    major_rate = major_input.value;
+    if (major_input.variable.empty() && major_rate == 0.0)
       error->all(FLERR, "fix cell/servo axisym: axial strain rate must be non-zero (> 0 "
                  "compression, < 0 extension)");
     target_p = stress_arg("mean stress p");
   } else if (name == "constant_b") {
     mode = Mode::CONSTANT_B;
     need(4);
-    b_target = utils::numeric(FLERR, arg[iarg++], false, lmp);
+    b_target = finite_number(lmp, arg[iarg++], "constant_b b");
     if (!(b_target >= 0.0 && b_target <= 1.0))
       error->all(FLERR, "fix cell/servo constant_b: b = {} is outside [0, 1]", b_target);
     major_axis = axis_arg();
-    major_rate = utils::numeric(FLERR, arg[iarg++], false, lmp);
-    if (!(major_rate > 0.0))
+    major_input = parse_value(arg[iarg++], tycore::AxisControl::STRAIN_RATE,
+                              "constant_b major-axis strain rate");
+    major_rate = major_input.value;
+    if (major_input.variable.empty() && !(major_rate > 0.0))
       error->all(FLERR, "fix cell/servo constant_b: the major-axis strain rate must be positive "
                  "(compression of the major axis)");
     target_p = stress_arg("mean stress p");
   } else if (name == "deviatoric") {
     mode = Mode::DEVIATORIC;
     need(4);
-    for (auto &a : axis_input) a = parse_value(arg[iarg++], tycore::AxisControl::STRAIN_RATE);
+    for (int k = 0; k < 3; ++k)
+      axis_input[k] = parse_value(arg[iarg++], tycore::AxisControl::STRAIN_RATE,
+                                  fmt::format("deviatoric strain rate R{}", k + 1));
     target_p = stress_arg("mean stress p");
   } else if (name == "axes") {
     mode = Mode::AXES;
     bool given[3] = {false, false, false};
     while (iarg < narg && axis_index(arg[iarg]) >= 0) {
       const int axis = axis_index(arg[iarg]);
+      if (given[axis])
+        error->all(FLERR, "fix cell/servo axes: axis {} is given twice", arg[iarg]);
       if (iarg + 3 > narg)
         error->all(FLERR, "fix cell/servo axes: axis {} needs 'stress VALUE' or 'rate VALUE'",
                    arg[iarg]);
@@ -222,7 +347,8 @@ void FixCellServo::parse_mode(int narg, char **arg, int &iarg)
       else
         error->all(FLERR, "fix cell/servo axes: control '{}' of axis {} is neither 'stress' nor "
                    "'rate'", kind, arg[iarg]);
-      axis_input[axis] = parse_value(arg[iarg + 2], control);
+      axis_input[axis] = parse_value(arg[iarg + 2], control,
+                                     fmt::format("axes {} {}", arg[iarg], kind));
       if (control == tycore::AxisControl::STRESS && axis_input[axis].variable.empty() &&
           !(axis_input[axis].value > 0.0))
         error->all(FLERR, "fix cell/servo axes: target stress of axis {} = {} must be positive",
@@ -237,7 +363,7 @@ void FixCellServo::parse_mode(int narg, char **arg, int &iarg)
   } else if (name == "circle" || name == "triangle") {
     mode = Mode::PATH;
     need(2);
-    prestrain = utils::numeric(FLERR, arg[iarg++], false, lmp);
+    prestrain = finite_number(lmp, arg[iarg++], name + " pre-strain");
     if (!(prestrain > 0.0))
       error->all(FLERR, "fix cell/servo {}: pre-strain {} must be positive", name, prestrain);
     target_p = stress_arg("mean stress p");
@@ -245,19 +371,16 @@ void FixCellServo::parse_mode(int narg, char **arg, int &iarg)
   } else if (name == "polygon") {
     mode = Mode::PATH;
     need(1);
-    const int n = utils::inumeric(FLERR, arg[iarg++], false, lmp);
+    const int n = positive_integer(lmp, arg[iarg++], "polygon vertex count N");
     if (n < 2) error->all(FLERR, "fix cell/servo polygon: needs at least 2 vertices, got {}", n);
     need(2 * n + 1);
-    std::vector<Eigen::Vector2d> vertices;
+    polygon_vertices.clear();
     for (int k = 0; k < n; ++k, iarg += 2)
-      vertices.emplace_back(utils::numeric(FLERR, arg[iarg], false, lmp),
-                            utils::numeric(FLERR, arg[iarg + 1], false, lmp));
+      polygon_vertices.emplace_back(finite_number(lmp, arg[iarg], fmt::format("polygon vertex {} x", k + 1)),
+                            finite_number(lmp, arg[iarg + 1],
+                                          fmt::format("polygon vertex {} y", k + 1)));
     target_p = stress_arg("mean stress p");
-    try {
-      path = tycore::PiPath::polygon(vertices);
-    } catch (std::exception &e) {
-      error->all(FLERR, "fix cell/servo polygon: {}", e.what());
-    }
+    path_kind = name;
   } else {
     error->all(FLERR, "fix cell/servo: unknown mode '{}' (expected iso, axes, axisym, "
                "constant_b, deviatoric, circle, triangle or polygon)", name);
@@ -271,8 +394,17 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
   auto measure = tycore::DeviatoricStrainMeasure::STRAIN_DIFFERENCE_13;
   bool with_prestrain = true;
   double sweep = 360.0;
+  std::set<std::string> seen;
+  auto positive_number = [&](const char *text, const std::string &what) {
+    const double v = finite_number(lmp, text, what);
+    if (!(v > 0.0))
+      error->all(FLERR, "fix cell/servo: {} must be positive, got {}", what, v);
+    return v;
+  };
   while (iarg < narg) {
     const std::string key = arg[iarg];
+    if (!seen.insert(key).second)
+      error->all(FLERR, "fix cell/servo: keyword '{}' is given twice", key);
     auto value = [&](int k = 1) {
       if (iarg + k >= narg)
         error->all(FLERR, "fix cell/servo: keyword '{}' needs a value", key);
@@ -307,8 +439,16 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
     } else if (key == "sweep") {
       if (path_kind != "circle")
         error->all(FLERR, "fix cell/servo: keyword 'sweep' applies only to the circle path");
-      sweep = utils::numeric(FLERR, value(), false, lmp);
+      sweep = finite_number(lmp, value(), "sweep");
       if (!(sweep > 0.0)) error->all(FLERR, "fix cell/servo circle: sweep must be positive");
+      iarg += 2;
+    } else if (key == "close") {
+      if (path_kind != "polygon")
+        error->all(FLERR, "fix cell/servo: keyword 'close' applies only to the polygon path");
+      const std::string v = value();
+      if (v != "yes" && v != "no")
+        error->all(FLERR, "fix cell/servo: close must be yes or no, got '{}'", v);
+      close_polygon = v == "yes";
       iarg += 2;
     } else if (key == "plane_strain") {
       path_only();
@@ -318,55 +458,90 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
       else error->all(FLERR, "fix cell/servo: plane_strain must be total or deviatoric, got '{}'", v);
       iarg += 2;
     } else if (key == "speed") {
-      path_speed = utils::numeric(FLERR, value(), false, lmp);
+      path_speed = finite_number(lmp, value(), "speed");
       if (!(path_speed > 0.0))
         error->all(FLERR, "fix cell/servo: path speed must be positive, got {}", path_speed);
       iarg += 2;
     } else if (key == "gain") {
-      settings.gain = utils::numeric(FLERR, value(), false, lmp);
+      settings.gain = finite_number(lmp, value(), "gain");
       iarg += 2;
     } else if (key == "integral_gain") {
-      settings.integral_gain = utils::numeric(FLERR, value(), false, lmp);
+      settings.integral_gain = finite_number(lmp, value(), "integral_gain");
       iarg += 2;
     } else if (key == "integral_band") {
-      settings.integral_band = utils::numeric(FLERR, value(), false, lmp);
+      settings.integral_band = finite_number(lmp, value(), "integral_band");
       iarg += 2;
     } else if (key == "max_rate") {
-      settings.max_strain_rate = utils::numeric(FLERR, value(), false, lmp);
+      settings.max_strain_rate = finite_number(lmp, value(), "max_rate");
       if (!(settings.max_strain_rate > 0.0))
         error->all(FLERR, "fix cell/servo: max_rate must be positive, got {}",
                    settings.max_strain_rate);
       iarg += 2;
     } else if (key == "max_inertial") {
-      inertial_cap = utils::numeric(FLERR, value(), false, lmp);
+      inertial_cap = finite_number(lmp, value(), "max_inertial");
       if (!(inertial_cap > 0.0))
         error->all(FLERR, "fix cell/servo: max_inertial must be positive, got {}", inertial_cap);
       iarg += 2;
     } else if (key == "csv") {
       csv_path = value(1);
-      csv_every = utils::inumeric(FLERR, value(2), false, lmp);
-      if (csv_every <= 0) error->all(FLERR, "fix cell/servo: csv interval must be positive");
+      csv_every = positive_integer(lmp, value(2), "csv interval N");
       iarg += 3;
+    } else if (key == "extra") {
+      // extra N name1 value1 ... : columns of the record from computes, fixes or variables
+      const int n = positive_integer(lmp, value(1), "extra column count N");
+      if (iarg + 2 + 2 * n > narg)
+        error->all(FLERR, "fix cell/servo: extra {} needs {} name-value pairs", n, n);
+      for (int k = 0; k < n; ++k) {
+        const std::string name = arg[iarg + 2 + 2 * k], ref = arg[iarg + 3 + 2 * k];
+        if (name.find_first_of(",\"' ") != std::string::npos || name.empty())
+          error->all(FLERR, "fix cell/servo: extra column name '{}' may not hold commas, quotes "
+                     "or blanks", name);
+        bool taken = name == "step";
+        for (const char *builtin : OUTPUT_NAMES) taken = taken || name == builtin;
+        for (const auto &e : extra_columns) taken = taken || name == e.first;
+        if (taken) error->all(FLERR, "fix cell/servo: extra column name '{}' is taken", name);
+        if (!utils::strmatch(ref, "^[cfv]_"))
+          error->all(FLERR, "fix cell/servo: extra column {}: '{}' is not a c_ID, c_ID[i], "
+                     "f_ID[i] or v_name reference", name, ref);
+        extra_columns.emplace_back(name, ref);
+      }
+      iarg += 2 + 2 * n;
+    } else if (key == "until") {
+      const std::string name = value(1);
+      until_value = finite_number(lmp, value(2), "until value");
+      until_output = -1;
+      for (int k : {EPS1, EPS2, EPS3, EPS_V, EPS_Q, EPS_D13, SIG1, SIG2, SIG3, P, Q, B, LODE_DEG,
+                    ETA_LD, SINPHI, VOID_RATIO, SOLID_FRACTION, PI_X, PI_Y, PI_EX, PI_EY, TIME,
+                    BOUNDARY_WORK})
+        if (name == OUTPUT_NAMES[k]) until_output = k;
+      if (until_output < 0)
+        error->all(FLERR, "fix cell/servo: until: '{}' is not a strain, stress, void ratio, "
+                   "time or boundary_work output of the fix (names: docs/fix_cell_servo.md)",
+                   name);
+      iarg += 3;
+    } else if (key == "continue") {
+      const std::string v = value();
+      if (v != "yes" && v != "no")
+        error->all(FLERR, "fix cell/servo: continue must be yes or no, got '{}'", v);
+      continue_previous = v == "yes";
+      iarg += 2;
     } else if (key == "equilibrium") {
-      equilibrium_every = utils::inumeric(FLERR, value(), false, lmp);
-      if (equilibrium_every <= 0)
-        error->all(FLERR, "fix cell/servo: equilibrium check interval must be positive");
+      equilibrium_every = positive_integer(lmp, value(), "equilibrium interval N");
       iarg += 2;
     } else if (key == "eq_stress") {
-      criteria.stress_tolerance = utils::numeric(FLERR, value(), false, lmp);
+      criteria.stress_tolerance = positive_number(value(), key);
       iarg += 2;
     } else if (key == "eq_unbalanced") {
-      criteria.max_unbalanced_force_ratio = utils::numeric(FLERR, value(), false, lmp);
+      criteria.max_unbalanced_force_ratio = positive_number(value(), key);
       iarg += 2;
     } else if (key == "eq_kinetic") {
-      criteria.max_kinetic_energy_ratio = utils::numeric(FLERR, value(), false, lmp);
+      criteria.max_kinetic_energy_ratio = positive_number(value(), key);
       iarg += 2;
     } else if (key == "eq_coordination") {
-      criteria.coordination_tolerance = utils::numeric(FLERR, value(), false, lmp);
+      criteria.coordination_tolerance = positive_number(value(), key);
       iarg += 2;
     } else if (key == "eq_window") {
-      criteria.window = utils::inumeric(FLERR, value(), false, lmp);
-      if (criteria.window < 1) error->all(FLERR, "fix cell/servo: eq_window must be >= 1");
+      criteria.window = positive_integer(lmp, value(), "eq_window");
       iarg += 2;
     } else {
       error->all(FLERR, "fix cell/servo: unknown keyword '{}'", key);
@@ -374,10 +549,13 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
   }
   if (!path_kind.empty()) {
     try {
-      path = path_kind == "circle"
-          ? tycore::constant_deviatoric_strain_path(prestrain, measure, rotation, with_prestrain,
-                                                    sweep)
-          : tycore::multiaxial_plane_strain_path(prestrain, measure, rotation, with_prestrain);
+      if (path_kind == "circle")
+        path = tycore::constant_deviatoric_strain_path(prestrain, measure, rotation,
+                                                      with_prestrain, sweep);
+      else if (path_kind == "triangle")
+        path = tycore::multiaxial_plane_strain_path(prestrain, measure, rotation, with_prestrain);
+      else
+        path = tycore::PiPath::polygon(polygon_vertices, close_polygon);
     } catch (std::exception &e) {
       error->all(FLERR, "fix cell/servo {}: {}", path_kind, e.what());
     }
@@ -399,16 +577,36 @@ double FixCellServo::evaluate(AxisInput &in)
   modify->clearstep_compute();
   const double value = input->variable->compute_equal(in.ivar);
   modify->addstep_compute(update->ntimestep + 1);
+  if (!std::isfinite(value))
+    error->all(FLERR, "fix cell/servo: variable {} ({}) evaluated to {} at step {}: not a "
+               "finite number", in.variable, in.what, value, update->ntimestep);
+  if (in.control == tycore::AxisControl::STRESS && !(value > 0.0))
+    error->all(FLERR, "fix cell/servo: variable {} ({}) evaluated to {} at step {}: a target "
+               "stress must be positive", in.variable, in.what, value, update->ntimestep);
   return value;
+}
+
+// the major-axis rate of axisym and constant_b: a number, or a variable evaluated every step
+double FixCellServo::major_strain_rate()
+{
+  if (major_input.variable.empty()) return major_rate;
+  const double rate = evaluate(major_input);
+  if (mode == Mode::CONSTANT_B && rate < 0.0)
+    error->all(FLERR, "fix cell/servo: variable {} ({}) evaluated to {} at step {}: the major "
+               "axis of a constant-b path is compressed (rate >= 0)", major_input.variable,
+               major_input.what, rate, update->ntimestep);
+  major_rate_now = rate;
+  return rate;
 }
 
 tycore::MixedControl FixCellServo::current_control()
 {
   switch (mode) {
     case Mode::ISO: return tycore::isotropic_compression_control(target_p);
-    case Mode::AXISYM: return tycore::axisymmetric_control(major_axis, major_rate, target_p);
+    case Mode::AXISYM:
+      return tycore::axisymmetric_control(major_axis, major_strain_rate(), target_p);
     case Mode::CONSTANT_B:
-      return tycore::constant_b_control(target_p, b_target, major_rate, major_axis,
+      return tycore::constant_b_control(target_p, b_target, major_strain_rate(), major_axis,
                                         (major_axis + 1) % 3, (major_axis + 2) % 3);
     case Mode::DEVIATORIC: {
       Eigen::Vector3d rate;
@@ -429,6 +627,11 @@ tycore::MixedControl FixCellServo::current_control()
 
 void FixCellServo::init()
 {
+  if (update->whichflag == 2)
+    error->all(FLERR, "fix cell/servo cannot be used with minimize: it deforms the cell by "
+               "strain rates in time and holds stresses by a servo, neither of which a "
+               "minimizer steps through (use fix box/relax to minimize with a stress-controlled "
+               "box, and unfix the cell/servo first)");
   if (utils::strmatch(update->integrate_style, "^respa"))
     error->all(FLERR, "fix cell/servo does not support run_style respa");
   for (int i = 0; i < modify->nfix; ++i)
@@ -449,7 +652,8 @@ void FixCellServo::init()
   if (icompute < 0) error->all(FLERR, "fix cell/servo: its stress compute was deleted");
   pressure = modify->compute[icompute];
 
-  for (auto &a : axis_input) {
+  for (AxisInput *in : {&axis_input[0], &axis_input[1], &axis_input[2], &major_input}) {
+    AxisInput &a = *in;
     if (a.variable.empty()) continue;
     a.ivar = input->variable->find(a.variable.c_str());
     if (a.ivar < 0)
@@ -474,6 +678,15 @@ void FixCellServo::init()
   mean_density = total[2] / total[0];
   solid_volume = total[3];
 
+  saturated_steps = 0;
+}
+
+// the default cap and the check of the servo settings need the stress-held targets, which may
+// be variables that read this fix's own outputs: they are evaluated only after the first
+// measurement (in setup), not in init where no stress has been tallied yet
+void FixCellServo::choose_rate_cap()
+{
+  if (!major_input.variable.empty()) major_strain_rate();
   if (settings.max_strain_rate == 0.0) {
     settings.max_strain_rate = default_max_rate();
     if (mode == Mode::AXES) {
@@ -499,13 +712,13 @@ void FixCellServo::init()
     error->warning(FLERR, "fix cell/servo: max_rate {:.3g} is below the prescribed strain rate "
                    "{:.3g}; the servo cannot keep up and the stress will drift (raise max_rate)",
                    settings.max_strain_rate, prescribed_rate());
-  saturated_steps = 0;
 }
 
 // largest prescribed principal strain rate (or path speed) of the programme [1/s]
 double FixCellServo::prescribed_rate() const
 {
-  double rate = std::max(std::fabs(major_rate), path_speed);
+  double rate = std::max(std::fabs(major_input.variable.empty() ? major_rate : major_rate_now),
+                         path_speed);
   for (const auto &a : axis_input)
     if (a.control == tycore::AxisControl::STRAIN_RATE && a.variable.empty())
       rate = std::max(rate, std::fabs(a.value));
@@ -530,28 +743,63 @@ void FixCellServo::setup(int)
     domain->h_rate[i] = -memory.last_strain_rate(i) * domain->prd[i];
     domain->h_ratelo[i] = -0.5 * domain->h_rate[i];
   }
+  advance_clock();
   measure();
   compute_outputs();
   compute_particle_outputs();
+  choose_rate_cap();
+  progress_at_setup = output[PROGRESS];
+  if (mode == Mode::PATH && path_speed > tycore::max_followable_speed(path, update->dt))
+    error->all(FLERR, "fix cell/servo: at speed {:.4g} the shortest leg of the Pi-plane path "
+               "(length {:.4g}) takes {:.3g} steps, and the cell cannot follow a leg in fewer "
+               "than {}: use speed <= {:.4g} (or a smaller timestep)", path_speed,
+               path.shortest_leg(), path.shortest_leg() / (path_speed * update->dt),
+               tycore::MIN_STEPS_PER_LEG, tycore::max_followable_speed(path, update->dt));
   wall_start = MPI_Wtime();
   step_start = update->ntimestep;
 
-  if (!csv_path.empty() && comm->me == 0 && !csv) {
-    // a restored programme continues its record; a new one starts it
-    csv = fopen(csv_path.c_str(), restored ? "a" : "w");
-    if (!csv) error->one(FLERR, "fix cell/servo: cannot open {} for writing", csv_path);
-    fseek(csv, 0, SEEK_END);
-    if (ftell(csv) == 0) {
-      fputs("step,time", csv);
-      for (int k = 0; k < N_OUTPUT; ++k)
-        if (k < N_CSV || k >= RATE1) fprintf(csv, ",%s", OUTPUT_NAMES[k]);
-      fputs(",progress\n", csv);
-      fflush(csv);
-    }
+  open_csv();
+  // the state at the start of the run, unless the record holds this step already (a
+  // continued test, or a run resumed at the step of its restart file)
+  int first_row = csv_every > 0 && update->ntimestep % csv_every == 0 &&
+      (comm->me != 0 || csv.last_step() < update->ntimestep);
+  MPI_Bcast(&first_row, 1, MPI_INT, 0, world);    // (extra columns evaluate on every rank)
+  if (first_row) write_csv_row();
+}
+
+std::string FixCellServo::csv_header() const
+{
+  std::string header = "step";
+  for (int k : CSV_COLUMNS) header += std::string(",") + OUTPUT_NAMES[k];
+  for (const auto &e : extra_columns) header += "," + e.first;
+  return header;
+}
+
+// a new test starts its record; a test continued from a restart file or from the fix this
+// one redefines appends to it (tycore::CsvRecord: superseded rows of a crashed run dropped)
+void FixCellServo::open_csv()
+{
+  if (csv_path.empty() || comm->me != 0 || csv.is_open()) return;
+  try {
+    if (restored || (continued && csv_path == continued_csv))
+      csv.resume(csv_path, csv_header(), update->ntimestep);
+    else
+      csv.start(csv_path, csv_header());
+  } catch (std::exception &e) {
+    error->one(FLERR, "fix cell/servo: {}", e.what());
   }
-  if (!restored && update->ntimestep == step_start && csv_every > 0 &&
-      update->ntimestep % csv_every == 0)
-    write_csv_row();
+  if (csv.dropped_rows() > 0)
+    utils::logmesg(lmp, "fix cell/servo: {} continues at step {}: dropped {} row(s) written "
+                   "after that step by an earlier run\n", csv_path, update->ntimestep,
+                   csv.dropped_rows());
+}
+
+// simulated time since the test started, at the current timestep size of each step
+void FixCellServo::advance_clock()
+{
+  if (update->ntimestep > clock_step)
+    elapsed_time += double(update->ntimestep - clock_step) * update->dt;
+  clock_step = update->ntimestep;
 }
 
 /* ----------------------------------------------------------------------
@@ -596,11 +844,28 @@ tycore::CellMeasurement FixCellServo::cell_measurement() const
 
 void FixCellServo::end_of_step()
 {
+  advance_clock();
   measure();
   compute_outputs();
   if (csv_every > 0 && update->ntimestep % csv_every == 0) {
     compute_particle_outputs();
     write_csv_row();
+  }
+
+  if (until_output >= 0 && tycore::reached(until_start, output[until_output], until_value)) {
+    // the test is over: the last row, and the run stops after this step (as fix halt does)
+    if (csv_every > 0 && update->ntimestep % csv_every != 0) {
+      compute_particle_outputs();
+      write_csv_row();
+    }
+    if (!until_met) {
+      if (comm->me == 0)
+        utils::logmesg(lmp, "fix cell/servo: {} = {:.6g} reached the target {:.6g} at step {}: "
+                       "the run stops\n", OUTPUT_NAMES[until_output], output[until_output],
+                       until_value, update->ntimestep);
+      timer->force_timeout();
+      until_met = 1;
+    }
   }
 
   const tycore::CellMeasurement cell = cell_measurement();
@@ -620,11 +885,16 @@ void FixCellServo::end_of_step()
     sample.stress = cell.stress;
     sample.target_stress = Eigen::Vector3d::Constant(target_p);
     sample.unbalanced_force_ratio = output[UNBALANCED];
-    sample.kinetic_energy_ratio =
-        0.5 * (kinetic_stress[0] + kinetic_stress[1] + kinetic_stress[2]) / target_p;
+    sample.kinetic_energy_ratio = output[KINETIC_RATIO];
     sample.coordination = output[Z];
-    equilibrium_reached = tycore::update_equilibrium(equilibrium, sample, criteria).reached;
+    const tycore::EquilibriumCheck check =
+        tycore::update_equilibrium(equilibrium, sample, criteria);
+    equilibrium_reached = check.reached;
     output[EQUILIBRIUM] = equilibrium_reached;
+    output[EQ_STRESS_OK] = check.stress_ok;
+    output[EQ_UNBALANCED_OK] = check.force_ok;
+    output[EQ_KINETIC_OK] = check.energy_ok;
+    output[EQ_COORDINATION_OK] = check.coordination_ok;
   }
 
   // a servo held at its cap for long has lost control of the stress: say what to change
@@ -636,6 +906,13 @@ void FixCellServo::end_of_step()
                    SATURATION_WARN_STEPS, output[P], target_p);
 
   const double rate[3] = {command.strain_rate(0), command.strain_rate(1), command.strain_rate(2)};
+  const double fastest = command.strain_rate.cwiseAbs().maxCoeff();
+  if (fastest * update->dt > tycore::MAX_STRAIN_PER_STEP)
+    error->all(FLERR, "fix cell/servo: at step {} the strain rate {:.4g} 1/s strains the cell by "
+               "{:.3g} in one step; the cell cannot follow more than {} per step: use rates "
+               "<= {:.4g} 1/s (or a smaller timestep)", update->ntimestep,
+               fastest, fastest * update->dt, tycore::MAX_STRAIN_PER_STEP,
+               tycore::MAX_STRAIN_PER_STEP / update->dt);
   const double volume = domain->xprd * domain->yprd * domain->zprd;
   // boundary work V sigma : deps over this step (contact stress; docs/theory.md §5.3)
   for (int k = 0; k < 3; ++k) boundary_work += volume * stress[k] * rate[k] * update->dt;
@@ -712,10 +989,19 @@ void FixCellServo::compute_outputs()
   output[PI_X] = pi_stress.x(), output[PI_Y] = pi_stress.y();
   output[PI_EX] = pi_strain.x(), output[PI_EY] = pi_strain.y();
 
-  // progress: along the path, else through the current run; ETA in wall-clock seconds
+  // progress: to the 'until' target, else along the path, else through the current run;
+  // ETA in wall-clock seconds
   const bigint done_steps = update->ntimestep - step_start;
-  const double wall_per_step = done_steps > 0 ? (MPI_Wtime() - wall_start) / done_steps : NaN;
-  if (mode == Mode::PATH) {
+  const double wall = MPI_Wtime() - wall_start;
+  const double wall_per_step = done_steps > 0 ? wall / done_steps : NaN;
+  if (until_output >= 0) {
+    output[TIME] = elapsed_time;
+    output[BOUNDARY_WORK] = boundary_work;
+    if (std::isnan(until_start)) until_start = output[until_output];
+    output[PROGRESS] = tycore::progress_towards(until_start, output[until_output], until_value);
+    const double gained = output[PROGRESS] - progress_at_setup;
+    output[ETA_SECONDS] = gained > 0.0 ? wall / gained * (1.0 - output[PROGRESS]) : NaN;
+  } else if (mode == Mode::PATH) {
     output[PROGRESS] = path.progress(memory.path_length).fraction;
     output[ETA_SECONDS] =
         path.remaining_time(memory.path_length, path_speed) / update->dt * wall_per_step;
@@ -728,6 +1014,7 @@ void FixCellServo::compute_outputs()
   output[RATE1] = rate(0), output[RATE2] = rate(1), output[RATE3] = rate(2);
   output[BOUNDARY_WORK] = boundary_work;
   output[VOLUME] = volume;
+  output[TIME] = elapsed_time;
   output_step = update->ntimestep;
 }
 
@@ -738,36 +1025,30 @@ void FixCellServo::compute_outputs()
 
 bool FixCellServo::is_particle_output(int n)
 {
-  return n == Z || n == ZM || n == UNBALANCED || n == P_KINETIC;
+  return n == Z || n == ZM || n == UNBALANCED || n == P_KINETIC || n == KINETIC_RATIO;
 }
 
 void FixCellServo::compute_particle_outputs()
 {
   if (particle_step == update->ntimestep) return;
-  // coordination: Z = 2C/N; Zm = (2C - N1)/(N - N0 - N1) without rattlers (Thornton 2000);
-  // kinetic stress of the fluctuation velocities
+  // Z, Zm, unbalanced force, kinetic stress and the kinetic energy of the load-bearing
+  // particles (plugin/core/cell_statistics.hpp)
   int dim;
   const double *count = static_cast<double *>(pair->extract("contact_count", dim));
-  double local[8] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0}, total[8];
-  double **f = atom->f, **v = atom->v;
-  for (int i = 0; i < atom->nlocal; ++i) {
-    const long c = count ? std::lround(count[i]) : 0;
-    local[0] += 1.0;
-    local[1] += c;
-    if (c == 0) local[2] += 1.0;
-    if (c == 1) local[3] += 1.0;
-    local[4] += std::sqrt(f[i][0] * f[i][0] + f[i][1] * f[i][1] + f[i][2] * f[i][2]);
-    for (int k = 0; k < 3; ++k) local[5 + k] += atom->rmass[i] * v[i][k] * v[i][k];
-  }
-  MPI_Allreduce(local, total, 8, MPI_DOUBLE, MPI_SUM, world);
-  const double n = total[0], ends = total[1], n0 = total[2], n1 = total[3];
-  output[Z] = ends / n;
-  output[ZM] = n - n0 - n1 > 0.0 ? (ends - n1) / (n - n0 - n1) : 0.0;
-  // mean |resultant force on a particle| / mean |contact force|
-  output[UNBALANCED] = force_sum > 0.0 ? (total[4] / n) / (force_sum / contacts) : NaN;
+  tycore::ParticleSums local, total;
+  for (int i = 0; i < atom->nlocal; ++i)
+    local.add(count ? std::lround(count[i]) : 0, atom->f[i], atom->rmass[i], atom->v[i]);
+  MPI_Allreduce(local.sum, total.sum, tycore::ParticleSums::size, MPI_DOUBLE, MPI_SUM, world);
   const double volume = domain->xprd * domain->yprd * domain->zprd;
-  for (int k = 0; k < 3; ++k) kinetic_stress[k] = total[5 + k] / volume;
-  output[P_KINETIC] = (kinetic_stress[0] + kinetic_stress[1] + kinetic_stress[2]) / 3.0;
+  // the kinetic ratio relative to the target p (iso), else to the measured one
+  const tycore::ParticleStatistics st = tycore::particle_statistics(
+      total, contacts, force_sum, volume, target_p > 0.0 ? target_p : output[P]);
+  output[Z] = st.Z;
+  output[ZM] = st.Zm;
+  output[UNBALANCED] = st.unbalanced;
+  for (int k = 0; k < 3; ++k) kinetic_stress[k] = st.kinetic_stress[k];
+  output[P_KINETIC] = st.p_kinetic;
+  output[KINETIC_RATIO] = st.kinetic_ratio;
   particle_step = update->ntimestep;
 }
 
@@ -783,13 +1064,22 @@ double FixCellServo::compute_vector(int n)
 
 void FixCellServo::write_csv_row()
 {
-  if (comm->me != 0 || !csv) return;
-  const double time = update->atime + (update->ntimestep - update->atimestep) * update->dt;
-  fprintf(csv, BIGINT_FORMAT ",%.12g", update->ntimestep, time);
-  for (int k = 0; k < N_OUTPUT; ++k)
-    if (k < N_CSV || k >= RATE1) fprintf(csv, ",%.12g", output[k]);
-  fprintf(csv, ",%.12g\n", output[PROGRESS]);
-  fflush(csv);
+  // the extra columns first, on every rank (computes and variables are collective)
+  std::vector<double> extra;
+  if (!extra_columns.empty()) {
+    modify->clearstep_compute();
+    for (const auto &e : extra_columns) extra.push_back(input->variable->compute_equal(e.second));
+    modify->addstep_compute(update->ntimestep + 1);
+  }
+  if (comm->me != 0 || !csv.is_open()) return;
+  std::vector<double> row;
+  for (int k : CSV_COLUMNS) row.push_back(output[k]);
+  row.insert(row.end(), extra.begin(), extra.end());
+  try {
+    csv.write_row(update->ntimestep, row);
+  } catch (std::exception &e) {
+    error->one(FLERR, "fix cell/servo: {}", e.what());
+  }
 }
 
 /* ----------------------------------------------------------------------
@@ -797,9 +1087,14 @@ void FixCellServo::write_csv_row()
    equilibrium state, boundary work
 ------------------------------------------------------------------------- */
 
-void FixCellServo::write_restart(FILE *fp)
+// [tag, version, size, mode, programme path (n, ...), reference cell (3), servo memory,
+//  equilibrium state, equilibrium reached, boundary work, elapsed time, clock step,
+//  followed path (n, ...)]
+std::vector<double> FixCellServo::restart_record() const
 {
-  std::vector<double> list{RESTART_TAG, static_cast<double>(static_cast<int>(mode))};
+  std::vector<double> list{RESTART_TAG, RESTART_VERSION, 0.0, double(static_cast<int>(mode))};
+  list.push_back(double(programme_path.size()));
+  list.insert(list.end(), programme_path.begin(), programme_path.end());
   for (double L : reference_length) list.push_back(L);
   double m[tycore::ServoMemory::size];
   memory.to_array(m);
@@ -809,6 +1104,19 @@ void FixCellServo::write_restart(FILE *fp)
   list.insert(list.end(), e, e + tycore::EquilibriumState::size);
   list.push_back(equilibrium_reached);
   list.push_back(boundary_work);
+  list.push_back(elapsed_time);
+  list.push_back(double(clock_step));
+  list.push_back(until_start);
+  const std::vector<double> followed = mode == Mode::PATH ? path.to_array() : std::vector<double>{};
+  list.push_back(double(followed.size()));
+  list.insert(list.end(), followed.begin(), followed.end());
+  list[2] = double(list.size());
+  return list;
+}
+
+void FixCellServo::write_restart(FILE *fp)
+{
+  const std::vector<double> list = restart_record();
   if (comm->me == 0) {
     const int size = static_cast<int>(list.size() * sizeof(double));
     fwrite(&size, sizeof(int), 1, fp);
@@ -819,10 +1127,43 @@ void FixCellServo::write_restart(FILE *fp)
 void FixCellServo::restart(char *buf)
 {
   const double *list = reinterpret_cast<double *>(buf);
-  if (list[0] != RESTART_TAG || static_cast<int>(list[1]) != static_cast<int>(mode))
+  if (list[0] == OLD_RESTART_TAG)
+    error->all(FLERR, "fix cell/servo: the restart file holds a record of an earlier build of "
+               "fix cell/servo (unversioned); it cannot be continued by this one: rerun the "
+               "stage that wrote it, or define the fix under a new ID");
+  if (list[0] != RESTART_TAG)
+    error->all(FLERR, "fix cell/servo: the restart file's record for fix {} is not a cell/servo "
+               "record; define the fix under a new ID", id);
+  if (static_cast<int>(list[1]) != RESTART_VERSION)
+    error->all(FLERR, "fix cell/servo: the restart record of fix {} has version {}, this build "
+               "reads version {}", id, list[1], RESTART_VERSION);
+  if (static_cast<int>(list[3]) != static_cast<int>(mode))
     error->all(FLERR, "fix cell/servo: the restart file holds the state of another cell/servo "
                "mode; use the same mode as the run that wrote it, or a new fix ID");
-  int k = 2;
+  // the path: the same kind, pre-strain, rotation, sweep or vertices as the run that wrote it
+  const std::size_t size = static_cast<std::size_t>(list[2]);
+  const std::size_t n_programme = programme_path.size();
+  bool same_path = size >= 5 && static_cast<std::size_t>(list[4]) == n_programme &&
+      size >= 5 + n_programme;
+  for (std::size_t i = 0; same_path && i < n_programme; ++i)
+    same_path = list[5 + i] == programme_path[i];
+  if (!same_path)
+    error->all(FLERR, "fix cell/servo: the restart file was written by a run on another "
+               "Pi-plane path (another path kind, pre-strain, rotation, sweep or vertices); "
+               "resume it with the same path, or define the fix under a new ID");
+  // sizes: the record must be exactly as long as its parts say
+  const std::vector<double> own = restart_record();
+  const std::size_t fixed = own.size() - 1 - (mode == Mode::PATH ? path.to_array().size() : 0);
+  if (size < fixed + 1)
+    error->all(FLERR, "fix cell/servo: the restart record of fix {} holds {} numbers, fewer "
+               "than the {} of this programme: the file is damaged or was written by another "
+               "programme", id, size, fixed + 1);
+  if (size != fixed + 1 + static_cast<std::size_t>(list[fixed]))
+    error->all(FLERR, "fix cell/servo: the restart record of fix {} says it holds {} numbers, "
+               "but its parts hold {}: the file is damaged or was written by another programme",
+               id, size, fixed + 1 + static_cast<std::size_t>(list[fixed]));
+  int k = 5;
+  k += static_cast<int>(n_programme);
   for (double &L : reference_length) L = list[k++];
   memory = tycore::ServoMemory::from_array(list + k);
   k += tycore::ServoMemory::size;
@@ -830,5 +1171,9 @@ void FixCellServo::restart(char *buf)
   k += tycore::EquilibriumState::size;
   equilibrium_reached = static_cast<int>(list[k++]);
   boundary_work = list[k++];
+  elapsed_time = list[k++];
+  clock_step = static_cast<bigint>(list[k++]);
+  until_start = list[k++];
+  if (static_cast<int>(list[k++]) > 0) path = tycore::PiPath::from_array(list + k);
   restored = 1;
 }

@@ -10,10 +10,14 @@
 #include "fix.h"
 
 #include "cell_servo.hpp"
+#include "csv_record.hpp"
 
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace LAMMPS_NS {
 
@@ -26,6 +30,7 @@ class FixCellServo : public Fix {
   void setup(int) override;
   void post_integrate() override;
   void end_of_step() override;
+  void post_run() override;
   double compute_vector(int) override;
   void write_restart(FILE *) override;
   void restart(char *) override;
@@ -36,9 +41,19 @@ class FixCellServo : public Fix {
     SINPHI, VOID_RATIO, SOLID_FRACTION, Z, ZM, SLIDING_FRACTION, UNBALANCED, INERTIAL_NUMBER,
     PI_X, PI_Y, PI_EX, PI_EY,    // the CSV columns end here
     PROGRESS, ETA_SECONDS, EQUILIBRIUM, RATE1, RATE2, RATE3, BOUNDARY_WORK, P_KINETIC, VOLUME,
+    TIME, EQ_STRESS_OK, EQ_UNBALANCED_OK, EQ_KINETIC_OK, EQ_COORDINATION_OK, KINETIC_RATIO,
     N_OUTPUT
   };
   static constexpr int N_CSV = PI_EY + 1;
+  // what a redefined fix (same ID) takes over from the one it replaces (docs/fix_cell_servo.md)
+  struct Continuation {
+    double reference_length[3];
+    double elapsed_time;
+    bigint clock_step;
+    double boundary_work;
+    double last_strain_rate[3];
+    std::string csv_path;
+  };
 
  protected:
   enum class Mode { ISO, AXES, AXISYM, CONSTANT_B, DEVIATORIC, PATH };
@@ -54,11 +69,17 @@ class FixCellServo : public Fix {
     double value;
     std::string variable;
     int ivar;
+    std::string what;              // the argument, for error messages
   };
   AxisInput axis_input[3];
+  AxisInput major_input;           // axisym, constant_b: the major rate, number or variable
+  double major_rate_now = 0.0;     // its value at the last evaluation
+  double major_strain_rate();
   tycore::PiPath path;
   double path_speed;               // Pi-plane speed |de/dt| [1/s]
-  std::string path_kind;           // circle, triangle (built after the keywords) or empty
+  std::string path_kind;           // circle, triangle, polygon (built after the keywords) or empty
+  std::vector<Eigen::Vector2d> polygon_vertices;
+  bool close_polygon = false;
   double prestrain;                // circle, triangle
   tycore::PlaneStrain plane_strain = tycore::PlaneStrain::TOTAL;
   tycore::ServoSettings settings;
@@ -71,10 +92,15 @@ class FixCellServo : public Fix {
   int equilibrium_reached;
 
   // state (written to restart files)
-  double reference_length[3];      // cell edges when the programme started
+  double reference_length[3];      // cell edges when the test started (strain reference)
+  double elapsed_time;             // simulated time since the test started [s]
+  bigint clock_step;               // step up to which elapsed_time is counted
   tycore::ServoMemory memory;
   double boundary_work;            // int V sigma:deps, compression positive [J]
   int restored;                    // 1 if the state came from a restart file
+  int continued;                   // 1 if it came from the fix this one redefines
+  int continue_previous;           // keyword continue yes|no
+  std::string continued_csv;       // the record that fix wrote
 
   // measurements of the last step
   double stress[3], kinetic_stress[3], stiffness_sums[6];
@@ -95,15 +121,22 @@ class FixCellServo : public Fix {
   // CSV
   std::string csv_path;
   int csv_every;
-  FILE *csv;
+  tycore::CsvRecord csv;
+  std::string csv_header() const;
+  std::vector<std::pair<std::string, std::string>> extra_columns;   // name, reference
 
-  // progress / ETA
+  // progress / ETA; 'until NAME VALUE': the test ends when output NAME reaches VALUE
   double wall_start;
   bigint step_start;
+  double progress_at_setup = 0.0;
+  int until_output = -1;
+  double until_value = 0.0;
+  double until_start = std::numeric_limits<double>::quiet_NaN();   // NAME when the test began
+  int until_met = 0;
 
   void parse_mode(int narg, char **arg, int &iarg);
   void parse_keywords(int narg, char **arg, int iarg);
-  AxisInput parse_value(const char *text, tycore::AxisControl control);
+  AxisInput parse_value(const char *text, tycore::AxisControl control, const std::string &what);
   double evaluate(AxisInput &in);
   tycore::MixedControl current_control();
 
@@ -114,7 +147,12 @@ class FixCellServo : public Fix {
   void compute_particle_outputs();
   static bool is_particle_output(int);
   void write_csv_row();
+  void open_csv();
+  void advance_clock();
+  std::vector<double> restart_record() const;
+  std::vector<double> programme_path;   // the user's path, without the lead-in leg
   double default_max_rate() const;
+  void choose_rate_cap();
   double prescribed_rate() const;
   bigint saturated_steps;
   static constexpr int SATURATION_WARN_STEPS = 1000;

@@ -30,6 +30,7 @@ CHOICES = {
     "scale": ("quick", "paper"),
     "rotation": ("cw", "ccw"),
     "plane": ("total", "deviatoric"),
+    "control": ("strain", "stress"),
 }
 
 # fragments whose text (comments and blank lines dropped) is part of the specimen key: the

@@ -284,3 +284,19 @@ TEST(CellServo, TrianglePathHoldsTotalPlaneStrain)
                                          deviatoric, PlaneStrain::DEVIATORIC);
   EXPECT_NE(c.strain_rate(0), 0.0);
 }
+
+// progress to a halt target counts from the value at the start to the target, either way
+// (issue 14: progress through a padded run length ended at 0.88)
+TEST(CellServo, ProgressTowardsTheTarget)
+{
+  EXPECT_DOUBLE_EQ(tycore::progress_towards(0.0, 0.15, 0.30), 0.5);
+  EXPECT_DOUBLE_EQ(tycore::progress_towards(0.01, 0.01, 0.30), 0.0);
+  EXPECT_DOUBLE_EQ(tycore::progress_towards(0.0, 0.31, 0.30), 1.0);
+  // towards a smaller value (extension to eps1 - eps3 = -0.1)
+  EXPECT_DOUBLE_EQ(tycore::progress_towards(0.0, -0.025, -0.1), 0.25);
+  EXPECT_TRUE(tycore::reached(0.0, -0.1, -0.1));
+  EXPECT_FALSE(tycore::reached(0.0, -0.099, -0.1));
+  EXPECT_TRUE(tycore::reached(0.0, 0.3, 0.3));
+  EXPECT_FALSE(tycore::reached(0.0, 0.2999, 0.3));
+  EXPECT_DOUBLE_EQ(tycore::progress_towards(0.3, 0.3, 0.3), 1.0);
+}

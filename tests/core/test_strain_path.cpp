@@ -283,3 +283,51 @@ TEST(StrainPathPolygon, HoldsEndPoint)
   EXPECT_EQ(step.deviatoric_strain_rate.norm(), 0.0);
   EXPECT_EQ(step.path_length, path.length());
 }
+
+// a speed that crosses the shortest leg in fewer than MIN_STEPS_PER_LEG steps cannot be
+// followed; at the limit the follower reaches every vertex (issue 15: circle ... speed 1e3)
+TEST(StrainPathPolygon, MaxFollowableSpeedIsSetByTheShortestLeg)
+{
+  const PiPath path = PiPath::polygon({{0.0, 0.0}, {0.0, 3e-3}, {1e-3, 3e-3}});
+  const double dt = 0.02;
+  EXPECT_DOUBLE_EQ(path.shortest_leg(), 1e-3);
+  const double v = tycore::max_followable_speed(path, dt);
+  EXPECT_DOUBLE_EQ(v, 1e-3 / (tycore::MIN_STEPS_PER_LEG * dt));
+  const Trace t = run_path(path, Vector3d::Zero(), v, dt, 1000);
+  // the whole path in length/(v dt) steps (each leg may end on a round-off sliver of a step),
+  // the shortest leg in MIN_STEPS_PER_LEG
+  const int steps = static_cast<int>(t.progress.size());
+  EXPECT_GE(steps, 4 * tycore::MIN_STEPS_PER_LEG);
+  EXPECT_LE(steps, 4 * tycore::MIN_STEPS_PER_LEG + 2);
+  const Vector2d end = tycore::pi_coordinates(t.strain.back());
+  EXPECT_NEAR(end.x(), 1e-3, 1e-15);
+  EXPECT_NEAR(end.y(), 3e-3, 1e-15);
+}
+
+// a polygon starts from the current strain: the leg to its first vertex is travelled first,
+// and close = true comes back to the first vertex (issue 14: the first vertex was skipped and
+// the polygon never closed)
+TEST(StrainPathPolygon, StartsFromTheCurrentStrainAndCloses)
+{
+  const Vector2d from(0.0, 0.0), v1(0.0, 1e-3), v2(1e-3, 1e-3), v3(1e-3, 0.0);
+  const PiPath open = PiPath::polygon({v1, v2, v3});
+  const PiPath closed = PiPath::polygon({v1, v2, v3}, true);
+  EXPECT_EQ(open.segment_count(), 2);
+  EXPECT_EQ(closed.segment_count(), 3);
+  EXPECT_NEAR(closed.length(), 2e-3 + std::sqrt(2.0) * 1e-3, 1e-18);
+  const PiPath entered = closed.starting_from(from, 1e-6);
+  ASSERT_EQ(entered.segment_count(), 4);
+  EXPECT_NEAR(entered.length(), 1e-3 + closed.length(), 1e-18);
+  // followed from the origin: the strain passes through every vertex and ends on v1
+  const double speed = 1e-5, dt = 1.0;
+  const Trace t = run_path(entered, Vector3d::Zero(), speed, dt, 100000);
+  for (const Vector2d& v : {v1, v2, v3}) {
+    double closest = 1.0;
+    for (const Vector3d& e : t.strain)
+      closest = std::min(closest, (tycore::pi_coordinates(e) - v).norm());
+    EXPECT_LT(closest, 1e-15) << v.transpose();
+  }
+  EXPECT_LT((tycore::pi_coordinates(t.strain.back()) - v1).norm(), 1e-15);
+  // already there (closer than min_leg): no lead-in
+  EXPECT_EQ(closed.starting_from(v1 + Vector2d(1e-9, 0.0), 1e-6).segment_count(), 3);
+}

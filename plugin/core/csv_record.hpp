@@ -1,0 +1,143 @@
+// The CSV record of a test (fix cell/servo's `csv FILE N`): one header line of column names,
+// then one row per output step, the step number first. Plain C++ (no LAMMPS), so that the
+// rules a record keeps are tested directly (tests/core/test_csv_record.cpp):
+//  * every write is checked and flushed: a full disk or a closed pipe is an error
+//    (std::runtime_error), never a silently short record;
+//  * a new test starts its record (the file is created or emptied, the header written);
+//  * a continued test (a redefined fix, or a run resumed from a restart file) appends to the
+//    record it continues: the header must be the same; rows of steps after the step it resumes
+//    at (written by a run that crashed after its last restart file) and a torn last line are
+//    superseded by the rows the resumed run writes, so the steps never repeat or go back.
+#ifndef TYCORE_CSV_RECORD_HPP
+#define TYCORE_CSV_RECORD_HPP
+
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace tycore {
+
+class CsvRecord {
+ public:
+  CsvRecord() = default;
+  CsvRecord(const CsvRecord&) = delete;
+  CsvRecord& operator=(const CsvRecord&) = delete;
+  ~CsvRecord() { close(); }
+
+  bool is_open() const { return file_ != nullptr; }
+  const std::string& path() const { return path_; }
+  // step of the last row in the file (-1 without rows)
+  long long last_step() const { return last_step_; }
+  // rows removed when continuing (superseded rows and a torn line)
+  int dropped_rows() const { return dropped_; }
+
+  void start(const std::string& path, const std::string& header)
+  {
+    close();
+    path_ = path;
+    file_ = std::fopen(path.c_str(), "w");
+    if (!file_) fail("cannot open");
+    last_step_ = -1;
+    dropped_ = 0;
+    write_text(header + "\n");
+  }
+
+  void resume(const std::string& path, const std::string& header, long long current_step)
+  {
+    close();
+    path_ = path;
+    last_step_ = -1;
+    dropped_ = 0;
+    std::string text;
+    if (std::FILE* in = std::fopen(path.c_str(), "r")) {
+      char buffer[65536];
+      std::size_t n;
+      while ((n = std::fread(buffer, 1, sizeof buffer, in)) > 0) text.append(buffer, n);
+      const bool bad = std::ferror(in) != 0;
+      std::fclose(in);
+      if (bad) fail("cannot read");
+    }
+    if (text.empty()) {
+      start(path, header);
+      return;
+    }
+    const std::size_t header_end = text.find('\n');
+    if (header_end == std::string::npos || text.compare(0, header_end, header) != 0)
+      throw std::runtime_error("the record " + path + " has other columns than this test "
+                               "writes (its header differs): continue it with the same "
+                               "columns, or write to another file");
+    // keep complete rows up to the current step
+    std::size_t keep = header_end + 1, pos = keep;
+    while (pos < text.size()) {
+      const std::size_t end = text.find('\n', pos);
+      if (end == std::string::npos) {    // torn last line (a crash while writing it)
+        ++dropped_;
+        break;
+      }
+      const long long step = std::strtoll(text.c_str() + pos, nullptr, 10);
+      if (step > current_step) {    // written after the state this run resumes from
+        for (std::size_t p = pos; p < text.size(); ++p) dropped_ += text[p] == '\n';
+        dropped_ += text.back() != '\n';
+        break;
+      }
+      last_step_ = step;
+      keep = pos = end + 1;
+    }
+    if (keep < text.size()) {
+      std::error_code ec;
+      std::filesystem::resize_file(path, keep, ec);
+      if (ec) throw std::runtime_error("cannot shorten the record " + path + ": " + ec.message());
+    }
+    file_ = std::fopen(path.c_str(), "a");
+    if (!file_) fail("cannot open");
+  }
+
+  // one row: the step, then the values with 12 significant digits
+  void write_row(long long step, const std::vector<double>& values)
+  {
+    std::string line = std::to_string(step);
+    char number[32];
+    for (double v : values) {
+      std::snprintf(number, sizeof number, ",%.12g", v);
+      line += number;
+    }
+    write_text(line + "\n");
+    last_step_ = step;
+  }
+
+  void close()
+  {
+    if (file_) std::fclose(file_);
+    file_ = nullptr;
+  }
+
+ private:
+  [[noreturn]] void fail(const char* what) const
+  {
+    throw std::runtime_error(std::string(what) + " the record " + path_ + ": "
+                             + std::strerror(errno));
+  }
+
+  void write_text(const std::string& text)
+  {
+    if (!file_) throw std::runtime_error("the record " + path_ + " is not open");
+    errno = 0;
+    if (std::fwrite(text.data(), 1, text.size(), file_) != text.size()
+        || std::fflush(file_) != 0)
+      fail("cannot write to");
+  }
+
+  std::FILE* file_ = nullptr;
+  std::string path_;
+  long long last_step_ = -1;
+  int dropped_ = 0;
+};
+
+}    // namespace tycore
+
+#endif
