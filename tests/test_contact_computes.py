@@ -329,3 +329,26 @@ def test_two_ranks_count_each_contact_once(newton, tmp_path):
     sx, sy, sz = spacing
     np.testing.assert_allclose(m[12:15], [forces[0] / (sy * sz), forces[1] / (sx * sz),
                                           forces[2] / (sx * sy)], rtol=1e-9)
+
+
+def test_sliding_fraction_after_a_change_of_mu(specimen, tmp_path):
+    """The setup pass of a run evaluates forces without a step of the history: the sliding
+    state it reports must be that of the mu now in force. The specimen was compressed with
+    mu = 0, where every contact is at its (zero) sliding limit; with mu = 0.3 the kept T = 0
+    is far from mu (P + 2Pc) > 0, so no contact slides (the record's first row showed 1)."""
+    runs = {}
+    for mu in (0.0, 0.3):
+        out = run_ok(restart_deck(specimen, mu=mu, gamma=0.6) + """
+compute m all thornton/yin/micromechanics
+fix cell all cell/servo iso 1e5
+thermo_style custom step c_m[1] c_m[2] f_cell[20]
+thermo_modify format float %.16g
+run 0
+""", tmp_path)
+        (row,) = thermo_rows(out, "Step")[0]
+        runs[mu] = row
+    for mu, expected in ((0.0, 1.0), (0.3, 0.0)):
+        row = runs[mu]
+        assert row["c_m[1]"] > 100, row                 # contacts of the packing
+        assert row["c_m[2]"] == expected, (mu, row)     # compute's sliding fraction
+        assert row["f_cell[20]"] == expected, (mu, row)  # the cell fix's record column

@@ -185,6 +185,21 @@ inline void normal_force_step(const PairConstants& k, double R, double Rinv, dou
   h.radius = st.contact_radius;
 }
 
+// Whether a contact whose force is evaluated without a step of its history (the setup pass of
+// a run: unchanged positions, history kept) slides under the coefficients in force now: its
+// kept |T| at the Coulomb limit mu max(P + 2Pc, 0) (docs/theory.md §2), or a limit of zero (a
+// frictionless contact, or a Hertz contact at zero load), which a step of the law also flags
+// as sliding. The flag kept in the history belongs to the last step and to the mu of that
+// step: after a change of mu (a new pair_coeff, fix adapt) it would be stale.
+inline bool slides_without_step(const PairConstants& k, double R, double P, const ContactHistory& h)
+{
+  const double Pc = jkr::pull_off_force(k.c.Gamma, R);
+  const double limit = k.c.mu * std::max(P + 2.0 * Pc, 0.0);
+  if (limit <= 0.0) return true;
+  const double T2 = h.T[0] * h.T[0] + h.T[1] * h.T[1] + h.T[2] * h.T[2];
+  return T2 >= limit * limit * (1.0 - 1e-12);
+}
+
 // Stage 1c: start of the tangential law (tangential_step): the frictionless case completely,
 // otherwise what the stiffness radius needs
 template <bool Adhesive>

@@ -665,8 +665,10 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
   }
 
   // forces and torques of one contact on i and j (and the energy and cell tallies)
-  const auto apply_contact = [&](const Contact &ct, bool with_energy) {
+  const auto apply_contact = [&](Contact &ct, bool with_energy) {
     const int i = ct.i, j = ct.j;
+    // a step of the law has just set the history's flag; the setup pass has set ct.sliding
+    if (history_update) ct.sliding = ct.h->sliding;
     const double nx = ct.n[0], ny = ct.n[1], nz = ct.n[2];
     const tycore::PairCoefficients &c = ct.constants->c;
     double Fn = ct.st.P;
@@ -742,7 +744,7 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
             ct.share * ct.rsq * (k_N * nn + k_T * ((k < 3 ? n2[a_of[k]] : 0.0) - nn));
       }
       cell_tallies[TALLY_CONTACTS] += ct.share;
-      cell_tallies[TALLY_SLIDING] += ct.share * ct.h->sliding;
+      cell_tallies[TALLY_SLIDING] += ct.share * ct.sliding;
       cell_tallies[TALLY_FORCE] += ct.share * std::sqrt(fx * fx + fy * fy + fz * fz);
       contact_count[i] += 1.0;
       if (newton_pair || j < nlocal) contact_count[j] += 1.0;
@@ -887,6 +889,7 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
             ? tycore::jkr::contact_radius_warm(delta, R, c.E_star, c.Gamma, h.radius)
             : std::sqrt(R * delta);
         ct.st.P = tycore::jkr::normal_force(ct.st.contact_radius, R, c.E_star, c.Gamma);
+        ct.sliding = tycore::slides_without_step(constants, R, ct.st.P, h) ? 1.0 : 0.0;
         apply_contact(ct, eflag);
       }
     }
@@ -925,7 +928,7 @@ void PairThorntonYin::record_contact(const Contact &ct, double Fn, double fs1, d
   rec.P = Fn;
   rec.overlap = atom->radius[i] + atom->radius[j] - std::sqrt(ct.rsq);
   rec.contact_radius = ct.st.contact_radius;
-  rec.sliding = ct.h->sliding;
+  rec.sliding = ct.sliding;
   rec.peeling = ct.h->peeling;
   rec.mask = atom->mask[i] & atom->mask[j];
   records.push_back(rec);

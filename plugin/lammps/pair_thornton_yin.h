@@ -131,6 +131,7 @@ class PairThorntonYin : public tylmp_compat::PairWithHistory {
     double n[3], del[3], rsq, R, lever_i, lever_j, vn, vt[3], share;
     tycore::ContactHistory *h;    // the contact's slot in the history page
     tycore::StepState st;
+    double sliding;               // 1 if at the Coulomb limit in this force evaluation, else 0
   };
   static constexpr int BATCH = 16;    // contacts per batch (8 to 64 measured alike)
 
