@@ -198,9 +198,12 @@ def test_axisym_csv_columns(axisym_dense):
     assert names == CSV_COLUMNS
     assert len(t["step"]) > 100 and np.all(np.diff(t["step"]) > 0)
     assert np.all(np.isfinite(t["p"])) and np.all(np.isfinite(t["eps_d13"]))
-    # the deck stops at its default end, 30 % deviator strain (halt checked every 500 steps:
-    # the last CSV row may precede the halting step by a few hundred steps)
-    assert 0.295 <= t["eps_d13"][-1] < 0.31
+    # the deck stops at its default end, 30 % deviator strain: the fix's `until` ends the run
+    # at the first step past it and writes that step as the last row, where progress is 1
+    # (it ended at 0.88 when a padded run length was the reference)
+    assert 0.30 <= t["eps_d13"][-1] < 0.3001
+    assert t["eps_d13"][-2] < 0.30
+    assert t["progress"][-1] == 1.0 and np.all(t["progress"][:-1] < 1.0)
 
 
 def _thermo(out):
