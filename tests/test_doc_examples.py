@@ -50,13 +50,8 @@ PREAMBLE = ("units si\n"
 # settings of the preamble a block may repeat (legal only before the box exists)
 REPEATS = {" ".join(line.split()) for line in PREAMBLE.splitlines()[:5] + LOAD_TYLMP.splitlines()}
 
-# (page, text in the block) -> why the example cannot run after the preamble
-CANNOT_RUN = {
-    ("fix_cell_servo.md", "z stress v_sz"):
-        "a list of alternatives, not a sequence: fix prep and fix cell are both cell/servo fixes "
-        "('Must not have multiple fixes change box parameter x'), and the last line reads v_sz, "
-        "a variable the example does not define",
-}
+# (page, text in the block) -> why the example cannot run after the preamble (none today)
+CANNOT_RUN = {}
 
 
 def examples(page):
