@@ -13,6 +13,25 @@ LOAD_TYLMP = (
     "python tylmp_load invoke\n")
 
 
+def two_spheres_box(x2, diameter, density, types=1):
+    """Two equal spheres in a 2 mm box with fixed boundaries: atom 1 (type 1) at the origin,
+    atom 2 (type `types`) at (x2, 0, 0); groups `one` and `two`."""
+    return f"""
+units si
+atom_style sphere
+atom_modify map array
+boundary f f f
+comm_modify vel yes
+region box block -1e-3 1e-3 -1e-3 1e-3 -1e-3 1e-3
+create_box {types} box
+create_atoms 1 single 0 0 0
+create_atoms {types} single {x2!r} 0 0
+set atom * diameter {diameter!r} density {density!r}
+group one id 1
+group two id 2
+"""
+
+
 def run_deck(text, workdir, name="in.test", np_ranks=1, variables=None, timeout=600):
     """Write `text` to workdir/name, run it; return (returncode, combined output)."""
     path = os.path.join(str(workdir), name)

@@ -19,7 +19,7 @@ import pytest
 import jkr_reference as ref
 from cellspec import DT, E, LATTICE_SPECIMEN, NU, read_csv
 from conftest import BUILD, REPO
-from lmprun import LOAD_TYLMP, read_table, run_deck
+from lmprun import LOAD_TYLMP, read_table, run_deck, two_spheres_box
 
 V2021, V2025 = 20210929, 20250204
 
@@ -56,18 +56,7 @@ R_STAR, E_STAR = R / 2, ref.effective_modulus(E, NU)
 
 def two_spheres(load_lines, x2):
     """Two spheres of radius R, one at the origin, one at (x2, 0, 0), under thornton/yin."""
-    return f"""{load_lines}
-units si
-atom_style sphere
-atom_modify map array
-boundary f f f
-comm_modify vel yes
-region box block -1e-3 1e-3 -1e-3 1e-3 -1e-3 1e-3
-create_box 1 box
-create_atoms 1 single 0 0 0
-create_atoms 1 single {x2!r} 0 0
-set atom * diameter {2 * R} density {RHO}
-pair_style thornton/yin
+    return load_lines + two_spheres_box(x2, 2 * R, RHO) + f"""pair_style thornton/yin
 pair_coeff * * {E} {NU} 0.3 {GAMMA}
 neighbor 2e-6 bin
 """

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import jkr_reference as ref
-from lmprun import LOAD_TYLMP, read_table, run_ok
+from lmprun import LOAD_TYLMP, read_table, run_ok, two_spheres_box
 
 E, NU, RHO = 70e9, 0.3, 2650.0
 R = 1.0e-4                         # sphere radius: R* = 50 µm (docs/theory.md §1.8)
@@ -20,20 +20,7 @@ def two_sphere_deck(pair_lines, motion, nsteps, dt, columns, every=1, extra=""):
     """Atom 1 at the origin held still, atom 2 moved by `motion` (fix move args)."""
     names = " ".join(f"v_{c}" for c in columns)
     defs = "\n".join(f"variable {c} equal {expr}" for c, expr in columns.items())
-    return f"""
-units si
-atom_style sphere
-atom_modify map array
-boundary f f f
-comm_modify vel yes
-region box block -1e-3 1e-3 -1e-3 1e-3 -1e-3 1e-3
-create_box 2 box
-create_atoms 1 single 0 0 0
-create_atoms 2 single {2 * R} 0 0
-set atom * diameter {2 * R} density {RHO}
-group one id 1
-group two id 2
-{LOAD_TYLMP}
+    return two_spheres_box(2 * R, 2 * R, RHO, types=2) + f"""{LOAD_TYLMP}
 {pair_lines}
 neighbor 2e-6 bin
 neigh_modify every 1 delay 0 check yes
@@ -227,20 +214,7 @@ def test_loaded_pair_rotated_rigidly_keeps_its_force_in_the_body_frame(tmp_path,
     y_load = 0.4 * slide
     period = 1e-4
     dt = period / 20000
-    deck = f"""
-units si
-atom_style sphere
-atom_modify map array
-boundary f f f
-comm_modify vel yes
-region box block -1e-3 1e-3 -1e-3 1e-3 -1e-3 1e-3
-create_box 1 box
-create_atoms 1 single 0 0 0
-create_atoms 1 single {2 * R - delta} 0 0
-set atom * diameter {2 * R} density {RHO}
-group one id 1
-group two id 2
-{LOAD_TYLMP}
+    deck = two_spheres_box(2 * R - delta, 2 * R, RHO) + f"""{LOAD_TYLMP}
 pair_style thornton/yin
 pair_coeff * * {E} {NU} {mu} 0.0
 neighbor 2e-6 bin
