@@ -13,6 +13,14 @@ LOAD_TYLMP = (
     "python tylmp_load invoke\n")
 
 
+def reduce_local(name, *values, mode="sum"):
+    """`compute NAME all reduce MODE VALUES` of local values (e.g. of compute
+    thornton/yin/contacts) in the syntax of the running LAMMPS: from 21 Nov 2023 it needs
+    'inputs local'."""
+    base = f"compute {name} all reduce {mode} {' '.join(values)}"
+    return f'if "$(version) >= 20231121" then "{base} inputs local" else "{base}"\n'
+
+
 def two_spheres_box(x2, diameter, density, types=1):
     """Two equal spheres in a 2 mm box with fixed boundaries: atom 1 (type 1) at the origin,
     atom 2 (type `types`) at (x2, 0, 0); groups `one` and `two`."""

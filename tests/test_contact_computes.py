@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from cellspec import DT, E, LATTICE_SPECIMEN, NU, read_csv, restart_deck
-from lmprun import LOAD_TYLMP, run_ok
+from lmprun import LOAD_TYLMP, reduce_local, run_ok
 
 # columns of compute thornton/yin/contacts (docs/compute_thornton_yin_contacts.md)
 COLUMNS = ["id1", "id2", "fnx", "fny", "fnz", "ftx", "fty", "ftz", "lx", "ly", "lz", "P",
@@ -317,7 +317,7 @@ def test_two_ranks_count_each_contact_once(newton, tmp_path):
     spacing = (1.99e-4, 1.995e-4, 1.998e-4)
     deck = lattice_deck(spacing).replace("comm_modify vel yes", f"comm_modify vel yes\nnewton {newton}")
     deck = deck.replace("thermo_style custom step c_m[*] c_pv[*]",
-                        "compute c all thornton/yin/contacts\ncompute sP all reduce sum c_c[12]\n"
+                        "compute c all thornton/yin/contacts\n" + reduce_local("sP", "c_c[12]") +
                         "thermo_style custom step c_m[*] c_pv[*] c_sP")
     out = run_ok(deck, tmp_path, np_ranks=2)
     assert "2 by 1 by 1" in out or "1 by 2 by 1" in out or "1 by 1 by 2" in out

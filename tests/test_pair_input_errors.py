@@ -199,7 +199,10 @@ def test_large_damping_ratio_warns(beta, message, tmp_path):
 def test_moderate_damping_ratio_does_not_warn(tmp_path):
     rc, out = run_deck(deck(pair_coeff="pair_coeff * * 70e9 0.3 0.3 0.3 damping 0.9 0.5"),
                        tmp_path)
-    assert rc == 0 and "WARNING" not in out, out[-2000:]
+    # (4 Feb 2025 also warns that no fix integrates this static deck: not about the pair)
+    warnings = [l for l in out.splitlines()
+                if "WARNING" in l and "No fixes with time integration" not in l]
+    assert rc == 0 and not warnings, out[-2000:]
 
 
 def one_sphere_cell(box_fix):
@@ -248,4 +251,9 @@ def test_overflowing_damping_force_stops_the_run(tmp_path):
         "run 0", "fix integrate all nve/sphere\nrun 5\n")
     rc, out = run_deck(text, tmp_path)
     assert "damping ratio 1e+300 is too large for the explicit step" in out
-    assert "the contact force of atoms 1 and 2 is not finite at step" in out, out[-2000:]
+    assert rc != 0, out[-2000:]
+    # the run stops: in 29 Sep 2021 at the pair's check of the next (overflowing) force; in
+    # 4 Feb 2025 the spheres thrown out by the first, finite but huge, damping force are lost
+    # before that force is evaluated, and LAMMPS stops on the lost atoms
+    assert ("the contact force of atoms 1 and 2 is not finite at step" in out
+            or "4 Feb 2025" in out and "ERROR: Lost atoms" in out), out[-2000:]

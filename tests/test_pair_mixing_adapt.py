@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from cellspec import bisect
-from lmprun import LOAD_TYLMP, run_ok
+from lmprun import LOAD_TYLMP, reduce_local, run_ok
 
 R = 1e-4                 # both spheres
 DELTA = 1e-6             # overlap
@@ -49,10 +49,7 @@ timestep 1e-9
 fix hold all setforce 0 0 0
 fix nve all nve/sphere
 compute c all thornton/yin/contacts
-compute P all reduce sum c_c[12]
-compute Tsq all reduce sum c_c[6] c_c[7] c_c[8]
-compute sl all reduce sum c_c[15]
-{extra}
+{reduce_local("P", "c_c[12]")}{reduce_local("Tsq", "c_c[6]", "c_c[7]", "c_c[8]")}{reduce_local("sl", "c_c[15]")}{extra}
 thermo_style custom step c_P c_sl c_Tsq[1] c_Tsq[2] c_Tsq[3]
 thermo_modify format float %.16g
 {run}
