@@ -319,13 +319,10 @@ void PairThorntonYin::init_style()
   delete[] local_max;
 
   // the checks below see the mixed coefficients of unlike types (init_one mixes them later)
-  double rad_any = 0.0;
-  for (int t = 1; t <= ntypes; ++t) rad_any = MAX(rad_any, maxrad_type[t]);
   for (int i = 1; i <= ntypes; ++i)
     for (int j = i; j <= ntypes; ++j) {
       if (!setflag[i][j]) mix_pair(i, j);
-      const double rad_i = maxrad_type[i] > 0.0 ? maxrad_type[i] : rad_any;
-      const double rad_j = maxrad_type[j] > 0.0 ? maxrad_type[j] : rad_any;
+      const double rad_i = largest_radius(i), rad_j = largest_radius(j);
       if (rad_i > 0.0 && rad_j > 0.0) check_law_domain(i, j, rad_i, rad_j, true);
     }
   check_break_against_skin();
@@ -403,6 +400,19 @@ void PairThorntonYin::check_timestep_against_rayleigh()
                    RAYLEIGH_WARN_FRACTION * t_rayleigh);
 }
 
+/* ----------------------------------------------------------------------
+   largest radius of the spheres of type t (init_style), or of any type when type t has no
+   spheres yet (its pair coefficients still get a cutoff and the checks)
+------------------------------------------------------------------------- */
+
+double PairThorntonYin::largest_radius(int t) const
+{
+  if (maxrad_type[t] > 0.0) return maxrad_type[t];
+  double rad_any = 0.0;
+  for (int k = 1; k <= atom->ntypes; ++k) rad_any = MAX(rad_any, maxrad_type[k]);
+  return rad_any;
+}
+
 /* ---------------------------------------------------------------------- */
 
 double PairThorntonYin::init_one(int i, int j)
@@ -427,11 +437,7 @@ double PairThorntonYin::init_one(int i, int j)
       tycore::PairCoefficients{E_star[i][j], G_star[i][j], friction[i][j], surface_energy[i][j]});
 
   // cutoff: touching largest spheres plus the adhesive tensile range
-  double rad_i = maxrad_type[i], rad_j = maxrad_type[j];
-  double rad_any = 0.0;
-  for (int t = 1; t <= atom->ntypes; ++t) rad_any = MAX(rad_any, maxrad_type[t]);
-  if (rad_i <= 0.0) rad_i = rad_any;
-  if (rad_j <= 0.0) rad_j = rad_any;
+  const double rad_i = largest_radius(i), rad_j = largest_radius(j);
   // again here: fix adapt changes mu and Gamma and calls init_one (warnings come from init_style)
   if (rad_i > 0.0 && rad_j > 0.0) check_law_domain(i, j, rad_i, rad_j, false);
   double cutoff = rad_i + rad_j;

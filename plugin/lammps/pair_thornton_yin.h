@@ -122,6 +122,7 @@ class PairThorntonYin : public tylmp_compat::PairWithHistory {
   void check_break_against_skin();
   void check_timestep_against_rayleigh();
   void check_law_domain(int, int, double, double, bool);
+  double largest_radius(int) const;
   double affine_velocity_gradient(double L[3][3]) const;
 
   // one contact in flight through the staged kernel (tycore::StepState)
