@@ -29,6 +29,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace tycore {
 
@@ -82,6 +83,9 @@ struct ContactBatch {
   alignas(64) double force_magnitude[batch_lanes];
   alignas(64) double energy[batch_lanes];          // with BatchParameters::energy: stored
                                                    // elastic energy (contact_stored_energy)
+  alignas(64) double slides[batch_lanes];          // 1: at the Coulomb limit in this force
+                                                   // evaluation (the history's flag after a
+                                                   // step; slides_without_step without one)
 };
 
 struct BatchParameters {
@@ -124,6 +128,21 @@ inline ContactHistory stored_history(const ContactBatch& b, int lane)
   h.stored_energy = b.stored_energy[lane];
   h.radius = b.radius[lane];
   return h;
+}
+
+// the same, from and to a contact's slot in LAMMPS's history page (history_size doubles,
+// ContactHistory verbatim)
+inline void load_history(ContactBatch& b, int lane, const double* slot)
+{
+  ContactHistory h;
+  std::memcpy(&h, slot, sizeof(h));
+  load_history(b, lane, h);
+}
+
+inline void store_history(const ContactBatch& b, int lane, double* slot)
+{
+  const ContactHistory h = stored_history(b, lane);
+  std::memcpy(slot, &h, sizeof(h));
 }
 
 // instruction sets of the batch entry, narrowest first
@@ -215,6 +234,34 @@ inline void stored_energies(ContactBatch& b, int n, const PairConstants& k)
                                                              b.P[i], stored_history(b, i));
 }
 
+// The force of lane i split as the contact records keep it: normal part Fn n (elastic P less
+// the normal viscous force) and tangential part fs (elastic T less the tangential viscous
+// force), and the energy the viscous forces take out over the step. Damping stays outside the
+// elastic history: eta = 2 beta sqrt(m* k), k = 2E*a normal, 8G*a tangential (the energy
+// account: docs/theory.md §2.4).
+template <bool Damped>
+[[gnu::always_inline]] inline double damped_force(const ContactBatch& b, int i,
+                                                  const PairCoefficients& c,
+                                                  const BatchParameters& p, double& Fn,
+                                                  double fs[3])
+{
+  const double a = b.contact_radius[i];
+  Fn = b.P[i];
+  fs[0] = b.T[0][i];
+  fs[1] = b.T[1][i];
+  fs[2] = b.T[2][i];
+  if (!Damped) return 0.0;
+  const double vn = b.vn[i], vt1 = b.vt[0][i], vt2 = b.vt[1][i], vt3 = b.vt[2][i];
+  const double m_star = b.m_star[i];
+  const double eta_n = 2.0 * p.beta_n * std::sqrt(m_star * 2.0 * c.E_star * a);
+  const double eta_t = 2.0 * p.beta_t * std::sqrt(m_star * 8.0 * c.G_star * a);
+  Fn -= eta_n * vn;
+  fs[0] -= eta_t * vt1;
+  fs[1] -= eta_t * vt2;
+  fs[2] -= eta_t * vt3;
+  return p.dt * (eta_n * vn * vn + eta_t * (vt1 * vt1 + vt2 * vt2 + vt3 * vt3));
+}
+
 // Everything after the law for lane i: viscous damping outside the elastic history, the force
 // on i and the torque's ingredient, with Tally the affine-stiffness tally; a broken lane gets
 // zeros. k_T_law: the tangential stiffness the law used this step, or < 0 where it used none
@@ -227,22 +274,10 @@ template <bool Adhesive, bool Damped, bool Tally>
   const bool gone = b.broken[i] != 0.0;
   const double nx = b.n[0][i], ny = b.n[1][i], nz = b.n[2][i];
   const double a = b.contact_radius[i], R = b.R[i], P = b.P[i];
-  double Fn = P;
-  double fs1 = b.T[0][i], fs2 = b.T[1][i], fs3 = b.T[2][i];
-  if (Damped) {    // eta = 2 beta sqrt(m* k), k = 2E*a normal, 8G*a tangential
-    const double vn = b.vn[i], vt1 = b.vt[0][i], vt2 = b.vt[1][i], vt3 = b.vt[2][i];
-    const double m_star = b.m_star[i];
-    const double eta_n = 2.0 * p.beta_n * std::sqrt(m_star * 2.0 * c.E_star * a);
-    const double eta_t = 2.0 * p.beta_t * std::sqrt(m_star * 8.0 * c.G_star * a);
-    Fn -= eta_n * vn;
-    fs1 -= eta_t * vt1;
-    fs2 -= eta_t * vt2;
-    fs3 -= eta_t * vt3;
-    const double lost = p.dt * (eta_n * vn * vn + eta_t * (vt1 * vt1 + vt2 * vt2 + vt3 * vt3));
-    b.damping_dissipation[i] = gone ? 0.0 : lost;
-  } else {
-    b.damping_dissipation[i] = 0.0;
-  }
+  double Fn, fs[3];
+  const double lost = damped_force<Damped>(b, i, c, p, Fn, fs);
+  b.damping_dissipation[i] = gone ? 0.0 : lost;
+  const double fs1 = fs[0], fs2 = fs[1], fs3 = fs[2];
   const double fx = nx * Fn + fs1, fy = ny * Fn + fs2, fz = nz * Fn + fs3;
   b.force[0][i] = gone ? 0.0 : fx;
   b.force[1][i] = gone ? 0.0 : fy;
@@ -326,18 +361,64 @@ inline void advance_batch(ContactBatch& b, int n, const PairConstants& k, const 
                           Isa isa = best_isa())
 {
   switch (isa) {
-    case Isa::avx512: detail::advance_batch_avx512<Adhesive, Damped>(b, n, k, p); return;
-    case Isa::avx2: detail::advance_batch_avx2<Adhesive, Damped>(b, n, k, p); return;
-    case Isa::sse2: detail::advance_batch_sse2<Adhesive, Damped>(b, n, k, p); return;
-    case Isa::scalar: break;
+    case Isa::avx512: detail::advance_batch_avx512<Adhesive, Damped>(b, n, k, p); break;
+    case Isa::avx2: detail::advance_batch_avx2<Adhesive, Damped>(b, n, k, p); break;
+    case Isa::sse2: detail::advance_batch_sse2<Adhesive, Damped>(b, n, k, p); break;
+    case Isa::scalar:
+      detail::touch_or_break<Adhesive>(b, n, k);
+      for (int i = 0; i < n; ++i) {
+        const double k_T = detail::scalar_lane<Adhesive>(b, i, k, p.dt);
+        if (p.tally) detail::lane_outputs<Adhesive, Damped, true>(b, i, k.c, p, k_T);
+        else detail::lane_outputs<Adhesive, Damped, false>(b, i, k.c, p, k_T);
+      }
+      if (p.energy) detail::stored_energies(b, n, k);
+      break;
   }
+  for (int i = 0; i < n; ++i) b.slides[i] = b.sliding[i];
+}
+
+// The forces of contacts 0 .. n-1 without a step of their history: the setup pass of a run,
+// which recomputes the forces at unchanged positions. First touch and separation as in
+// advance_batch (touch_or_break); otherwise the history is kept: P and a at the overlap (warm
+// start from the kept radius), the kept T, damping and tallies as after a step, sliding judged
+// under the mu in force now (slides_without_step, docs/theory.md §2). Nothing is dissipated
+// (dissipation, damping_dissipation and break_energy are 0): no step is taken. Scalar only,
+// once per run.
+template <bool Adhesive, bool Damped>
+inline void forces_without_step(ContactBatch& b, int n, const PairConstants& k,
+                                const BatchParameters& p)
+{
+  const PairCoefficients& c = k.c;
   detail::touch_or_break<Adhesive>(b, n, k);
   for (int i = 0; i < n; ++i) {
-    const double k_T = detail::scalar_lane<Adhesive>(b, i, k, p.dt);
-    if (p.tally) detail::lane_outputs<Adhesive, Damped, true>(b, i, k.c, p, k_T);
-    else detail::lane_outputs<Adhesive, Damped, false>(b, i, k.c, p, k_T);
+    const ContactHistory h = stored_history(b, i);
+    const double R = b.R[i], delta = b.delta[i];
+    double a = 0.0, P = 0.0;
+    if (b.broken[i] == 0.0) {
+      a = Adhesive ? jkr::contact_radius_warm(delta, R, c.E_star, c.Gamma, h.radius)
+                   : std::sqrt(R * delta);
+      P = jkr::normal_force(a, R, c.E_star, c.Gamma);
+    }
+    b.contact_radius[i] = a;
+    b.P[i] = P;
+    b.slides[i] = b.broken[i] == 0.0 && slides_without_step(k, R, P, h) ? 1.0 : 0.0;
+    b.dissipation[i] = 0.0;
+    if (p.tally) detail::lane_outputs<Adhesive, Damped, true>(b, i, c, p, -1.0);
+    else detail::lane_outputs<Adhesive, Damped, false>(b, i, c, p, -1.0);
+    b.damping_dissipation[i] = 0.0;
+    b.break_energy[i] = 0.0;
   }
   if (p.energy) detail::stored_energies(b, n, k);
+}
+
+// The normal part Fn (along n) and tangential part fs of the force lane `lane` applied in
+// the last advance_batch or forces_without_step, viscous damping included (for the contact
+// records of the computes; advance_batch keeps only their sum)
+template <bool Damped>
+inline void force_parts(const ContactBatch& b, int lane, const PairCoefficients& c,
+                        const BatchParameters& p, double& Fn, double fs[3])
+{
+  detail::damped_force<Damped>(b, lane, c, p, Fn, fs);
 }
 
 // Cube roots y_i = cbrt(x_i), i < n, lane-wide in the build `isa` (simd_cbrt). For tests and

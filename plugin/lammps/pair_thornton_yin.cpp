@@ -83,6 +83,7 @@ PairThorntonYin::PairThorntonYin(LAMMPS *lmp) : PairWithHistory(lmp)
   record_contacts = 0;
   record_step = -1;
   generic_paths = 0;
+  isa = tycore::best_isa();
   for (double &h : box_h) h = 0.0;
   box_step = -1;
   box_from_setup = 1;
@@ -162,18 +163,44 @@ void PairThorntonYin::allocate()
 
 void PairThorntonYin::settings(int narg, char **arg)
 {
-  // pair_style thornton/yin [paths specialised|generic]: `generic` runs the adhesive, damped
-  // kernel for every scene, for benchmarks of the specialisations (bench/pair_speed.py)
+  // pair_style thornton/yin [isa auto|scalar|sse2|avx2|avx512] [paths specialised|generic]
+  //  isa: the build of the batch law (tycore::advance_batch); auto = the widest this
+  //       processor runs (tycore::best_isa). All builds give the same forces to the bit.
+  //  paths generic: the adhesive, damped kernel for every scene, for benchmarks of the
+  //       specialisations (bench/pair_speed.py)
   generic_paths = 0;
-  if (narg == 2 && strcmp(arg[0], "paths") == 0) {
-    if (strcmp(arg[1], "generic") == 0) generic_paths = 1;
-    else if (strcmp(arg[1], "specialised") != 0)
-      error->all(FLERR, "pair_style thornton/yin: paths must be 'specialised' or 'generic', "
-                 "got '{}'", arg[1]);
-  } else if (narg != 0) {
-    error->all(FLERR, "pair_style thornton/yin takes no arguments except 'paths specialised|"
-               "generic' (got '{}'); material parameters go in pair_coeff I J E nu mu Gamma "
-               "[damping beta_n beta_t]", arg[0]);
+  isa = tycore::best_isa();
+  for (int iarg = 0; iarg < narg; iarg += 2) {
+    if (iarg + 2 > narg)
+      error->all(FLERR, "pair_style thornton/yin: keyword '{}' needs a value", arg[iarg]);
+    const std::string value = arg[iarg + 1];
+    if (strcmp(arg[iarg], "isa") == 0) {
+      const tycore::Isa isas[] = {tycore::Isa::scalar, tycore::Isa::sse2, tycore::Isa::avx2,
+                                  tycore::Isa::avx512};
+      bool known = value == "auto";
+      for (const tycore::Isa choice : isas)
+        if (value == tycore::isa_name(choice)) {
+          known = true;
+          if (!tycore::isa_supported(choice))
+            error->all(FLERR, "pair_style thornton/yin: isa {}: this processor does not run "
+                       "{} instructions; use 'isa auto' (here: {}) or a narrower build",
+                       value, value, tycore::isa_name(tycore::best_isa()));
+          isa = choice;
+        }
+      if (!known)
+        error->all(FLERR, "pair_style thornton/yin: isa must be auto, scalar, sse2, avx2 or "
+                   "avx512, got '{}'", value);
+    } else if (strcmp(arg[iarg], "paths") == 0) {
+      if (value == "generic") generic_paths = 1;
+      else if (value != "specialised")
+        error->all(FLERR, "pair_style thornton/yin: paths must be 'specialised' or 'generic', "
+                   "got '{}'", value);
+    } else {
+      error->all(FLERR, "pair_style thornton/yin: unknown keyword '{}' (it takes 'isa "
+                 "auto|scalar|sse2|avx2|avx512' and 'paths specialised|generic'); material "
+                 "parameters go in pair_coeff I J E nu mu Gamma [damping beta_n beta_t]",
+                 arg[iarg]);
+    }
   }
 }
 
@@ -296,6 +323,9 @@ void PairThorntonYin::init_style()
                "(units si, cgs, micro or nano), got 'units {}'", units);
 
   tylmp_compat::request_history_list(neighbor, this, instance_me);
+  // one batch per type pair, made when its first contact comes (eval)
+  batches.clear();
+  batches.resize((atom->ntypes + 1) * (atom->ntypes + 1));
 
   dt = update->dt;
 
@@ -625,24 +655,20 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
   ev_init(eflag, vflag);
 
   // in setup the forces are recomputed at unchanged positions: no history increment
-  const bool history_update = !update->setupflag;
+  const bool step = !update->setupflag;
   dt = update->dt;
-
   double L[3][3];
   const bool affine = affine_velocity_gradient(L) > 0.0;
 
   double **x = atom->x;
   double **v = atom->v;
-  double **f = atom->f;
   double **omega = atom->omega;
-  double **torque = atom->torque;
   const double *radius = atom->radius;
   const double *rmass = atom->rmass;
   const int *type = atom->type;
   const int nlocal = atom->nlocal;
   const int newton_pair = force->newton_pair;
   const int ntypes_plus_1 = atom->ntypes + 1;
-
   const int inum = list->inum;
   const int *ilist = list->ilist;
   const int *numneigh = list->numneigh;
@@ -650,135 +676,23 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
   int **firsttouch = fix_history->firstflag;
   double **firsthistory = fix_history->firstvalue;
 
-  double dissipated_friction = 0.0, dissipated_break = 0.0, dissipated_damping = 0.0;
-
-  const bool tally = tally_cell != 0;
-  if (tally) {
-    for (double &t : cell_tallies) t = 0.0;
-    const int nall = nlocal + atom->nghost;
-    if (atom->nmax > nmax_count) {
-      memory->destroy(contact_count);
-      nmax_count = atom->nmax;
-      memory->create(contact_count, nmax_count, "pair:contact_count");
+  begin_tallies();
+  Sums sums{0.0, 0.0, 0.0};
+  const bool energy = evflag && eflag_either;
+  const auto batch_of = [&](int itype, int jtype) -> Batch & {
+    const int pair = MIN(itype, jtype) * ntypes_plus_1 + MAX(itype, jtype);
+    if (!batches[pair]) batches[pair].reset(new Batch{});    // lanes past n hold numbers
+    Batch &bt = *batches[pair];
+    if (bt.n == 0) {
+      bt.constants = &pair_constants[pair];
+      bt.p = tycore::BatchParameters{dt, damp_n[itype][jtype], damp_t[itype][jtype],
+                                     tally_cell != 0, energy};
     }
-    for (int k = 0; k < nall; ++k) contact_count[k] = 0.0;
-  }
-
-  const bool recording = record_contacts != 0;
-  if (recording) {
-    records.clear();
-    record_step = update->ntimestep;
-  }
-
-  // forces and torques of one contact on i and j (and the energy and cell tallies)
-  const auto apply_contact = [&](Contact &ct, bool with_energy) {
-    const int i = ct.i, j = ct.j;
-    // a step of the law has just set the history's flag; the setup pass has set ct.sliding
-    if (history_update) ct.sliding = ct.h->sliding;
-    const double nx = ct.n[0], ny = ct.n[1], nz = ct.n[2];
-    const tycore::PairCoefficients &c = ct.constants->c;
-    double Fn = ct.st.P;
-    double fs1 = ct.h->T[0], fs2 = ct.h->T[1], fs3 = ct.h->T[2];
-    if (DAMPED) {
-      // viscous damping outside the elastic history: eta = 2 beta sqrt(m* k)
-      const int itype = type[i], jtype = type[j];
-      const double m_star = rmass[i] * rmass[j] / (rmass[i] + rmass[j]);
-      const double eta_n = 2.0 * damp_n[itype][jtype] *
-          std::sqrt(m_star * 2.0 * c.E_star * ct.st.contact_radius);
-      const double eta_t = 2.0 * damp_t[itype][jtype] *
-          std::sqrt(m_star * 8.0 * c.G_star * ct.st.contact_radius);
-      Fn -= eta_n * ct.vn;
-      fs1 -= eta_t * ct.vt[0];
-      fs2 -= eta_t * ct.vt[1];
-      fs3 -= eta_t * ct.vt[2];
-      if (history_update)
-        dissipated_damping += ct.share * dt *
-            (eta_n * ct.vn * ct.vn +
-             eta_t * (ct.vt[0] * ct.vt[0] + ct.vt[1] * ct.vt[1] + ct.vt[2] * ct.vt[2]));
-    }
-    const double fx = nx * Fn + fs1;
-    const double fy = ny * Fn + fs2;
-    const double fz = nz * Fn + fs3;
-    // a NaN or inf anywhere upstream (velocity, spin, history, ...) reaches the force: stop
-    // here rather than propagate it (one comparison; NaN fails it)
-    if (!(std::fabs(fx + fy + fz) <= DBL_MAX)) contact_fault(i, j, 0.0, true);
-    if (recording && (newton_pair || j < nlocal || atom->tag[i] < atom->tag[j]))
-      record_contact(ct, Fn, fs1, fs2, fs3);
-    f[i][0] += fx;
-    f[i][1] += fy;
-    f[i][2] += fz;
-    // torque of the tangential force applied at the contact point
-    const double tor1 = ny * fs3 - nz * fs2;
-    const double tor2 = nz * fs1 - nx * fs3;
-    const double tor3 = nx * fs2 - ny * fs1;
-    torque[i][0] -= ct.lever_i * tor1;
-    torque[i][1] -= ct.lever_i * tor2;
-    torque[i][2] -= ct.lever_i * tor3;
-    if (newton_pair || j < nlocal) {
-      f[j][0] -= fx;
-      f[j][1] -= fy;
-      f[j][2] -= fz;
-      torque[j][0] -= ct.lever_j * tor1;
-      torque[j][1] -= ct.lever_j * tor2;
-      torque[j][2] -= ct.lever_j * tor3;
-    }
-    if (evflag)
-      ev_tally_xyz(i, j, nlocal, newton_pair,
-                   with_energy ? tycore::contact_stored_energy(c, ct.R, ct.st.contact_radius,
-                                                               ct.st.P, *ct.h)
-                               : 0.0,
-                   0.0, fx, fy, fz, ct.del[0], ct.del[1], ct.del[2]);
-    if (tally) {
-      // affine stiffness of this contact (docs/theory.md §6.1), k_T = 8 G* a_T(P + 2Pc); without
-      // adhesion a_T is the Hertz radius itself, as in evaluate_contact. A micro-slip step of
-      // the kernel has just computed this k_T (stage B); peeled, frictionless and setup steps
-      // have not
-      const double R = ct.R, P = ct.st.P, contact_radius = ct.st.contact_radius;
-      const double k_N = tycore::jkr::normal_stiffness(contact_radius, R, c.E_star, c.Gamma);
-      const bool kernel_has_k_T = history_update && !ct.st.frictionless && !ct.st.peeled_step;
-      const double k_T = kernel_has_k_T
-          ? ct.st.stiffness
-          : 8.0 * c.G_star *
-              (ADHESIVE ? tycore::micro_slip_radius(
-                              R, c.E_star, P + 2.0 * tycore::jkr::pull_off_force(c.Gamma, R))
-                        : contact_radius);
-      const double n2[3] = {nx * nx, ny * ny, nz * nz};
-      const int a_of[6] = {0, 1, 2, 0, 0, 1}, b_of[6] = {0, 1, 2, 1, 2, 2};
-      for (int k = 0; k < 6; ++k) {
-        const double nn = n2[a_of[k]] * n2[b_of[k]];
-        cell_tallies[TALLY_STIFFNESS + k] +=
-            ct.share * ct.rsq * (k_N * nn + k_T * ((k < 3 ? n2[a_of[k]] : 0.0) - nn));
-      }
-      cell_tallies[TALLY_CONTACTS] += ct.share;
-      cell_tallies[TALLY_SLIDING] += ct.share * ct.sliding;
-      cell_tallies[TALLY_FORCE] += ct.share * std::sqrt(fx * fx + fy * fy + fz * fz);
-      contact_count[i] += 1.0;
-      if (newton_pair || j < nlocal) contact_count[j] += 1.0;
-    }
-  };
-
-  // the rest of the step of every contact in the batch, stage by stage: the cube roots of
-  // independent contacts overlap (tycore::StepState)
-  Contact batch[BATCH], single_contact;
-  int nbatch = 0;
-  const auto flush_batch = [&]() {
-    if (ADHESIVE)
-      for (int b = 0; b < nbatch; ++b) tycore::stiffness_of(*batch[b].constants, batch[b].st);
-    for (int b = 0; b < nbatch; ++b) tycore::slip_decision(*batch[b].constants, *batch[b].h, batch[b].st);
-    for (int b = 0; b < nbatch; ++b) tycore::theta_of(batch[b].st);
-    for (int b = 0; b < nbatch; ++b) {
-      Contact &ct = batch[b];
-      double dissipation = 0.0;
-      tycore::finish_step(*ct.h, ct.st, dissipation);
-      dissipated_friction += ct.share * dissipation;
-      apply_contact(ct, eflag_either);
-    }
-    nbatch = 0;
+    return bt;
   };
 
   for (int ii = 0; ii < inum; ++ii) {
     const int i = ilist[ii];
-    const int itype = type[i];
     const double radi = radius[i];
     int *touch = firsttouch[i];
     double *allhistory = firsthistory[i];
@@ -787,69 +701,34 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
 
     for (int jj = 0; jj < jnum; ++jj) {
       const int j = jlist[jj] & NEIGHMASK;
-      const int jtype = type[j];
-      double *slot = &allhistory[HISTORY_SIZE * jj];
-
       const double delx = x[i][0] - x[j][0];
       const double dely = x[i][1] - x[j][1];
       const double delz = x[i][2] - x[j][2];
       const double rsq = delx * delx + dely * dely + delz * delz;
       const double radj = radius[j];
       const double radsum = radi + radj;
-
       if (!touch[jj] && rsq > radsum * radsum) continue;    // apart, never touched (delta < 0)
 
-      const tycore::PairConstants &constants = pair_constants[itype * ntypes_plus_1 + jtype];
-      const tycore::PairCoefficients &c = constants.c;
+      const double r = std::sqrt(rsq);
+      const double delta = radsum - r;
+      // Hertz/JKR contact mechanics assume delta << R; once the overlap exceeds the smaller
+      // radius the law and the explicit step have long failed. A NaN overlap (a NaN position
+      // or radius) fails it too, and so does a contact torn apart by an infinite position
+      if (!(delta <= MIN(radi, radj)) || !std::isfinite(delta)) contact_fault(i, j, delta, false);
+
+      Batch &bt = batch_of(type[i], type[j]);
+      tycore::ContactBatch &b = bt.b;
+      const int l = bt.n;
       // R* = ri rj/(ri + rj) and 1/R* from one division
       const double product = radi * radj;
       const double inv = 1.0 / (product * radsum);
-      const double R = product * product * inv, Rinv = radsum * radsum * inv;
-      const double r = std::sqrt(rsq);
-      const double delta = radsum - r;
-      const double share = (newton_pair || j < nlocal) ? 1.0 : 0.5;
-      // Hertz/JKR contact mechanics assume delta << R; once the overlap exceeds the smaller
-      // radius the law and the explicit step have long failed. Written so that a NaN overlap
-      // (a NaN position or radius) fails it too
-      if (!(delta <= MIN(radi, radj))) contact_fault(i, j, delta, false);
-
-      if (touch[jj] && delta < 0.0) {    // delta_f <= 0: only tensile contacts can break
-        // a contact torn apart by an infinite position (overflowed velocity) is a fault too
-        if (!std::isfinite(delta)) contact_fault(i, j, delta, false);
-        const double delta_break = ADHESIVE ? tycore::jkr::break_overlap(R, c.E_star, c.Gamma)
-                                            : 0.0;
-        if (delta < delta_break) {    // Thornton & Yin (1991): separation at delta_f
-          if (history_update) {
-            const tycore::ContactHistory h = load_history(slot);
-            double stored = tycore::tangential_energy(c, R, h.P_prev, h);
-            if (ADHESIVE) {
-              const double a_break = tycore::jkr::contact_radius(delta_break, R, c.E_star,
-                                                                 c.Gamma);
-              stored += tycore::jkr::stored_energy(a_break, R, c.E_star, c.Gamma);
-            }
-            dissipated_break += share * stored;
-          }
-          touch[jj] = 0;
-          for (int k = 0; k < HISTORY_SIZE; ++k) slot[k] = 0.0;
-          continue;
-        }
-      }
-
-      Contact &ct = history_update ? batch[nbatch] : single_contact;
-      // the history is advanced in place, in the neighbor list's page
-      ct.h = reinterpret_cast<tycore::ContactHistory *>(slot);
-      tycore::ContactHistory &h = *ct.h;
-      if (!touch[jj]) {    // first touch at delta >= 0: JKR snap-on, no work done
-        touch[jj] = 1;
-        const double a = ADHESIVE ? tycore::jkr::contact_radius(delta, R, c.E_star, c.Gamma)
-                                  : std::sqrt(R * delta);
-        tycore::begin_contact(h, tycore::jkr::normal_force(a, R, c.E_star, c.Gamma), ADHESIVE);
-        h.radius = a;    // warm start of this step's radius
-      }
-
+      b.R[l] = product * product * inv;
+      b.Rinv[l] = radsum * radsum * inv;
+      b.delta[l] = delta;
+      b.rsq[l] = rsq;
       const double rinv = 1.0 / r;
       const double nx = delx * rinv, ny = dely * rinv, nz = delz * rinv;
-
+      b.n[0][l] = nx, b.n[1][l] = ny, b.n[2][l] = nz;
       // relative velocity of i with respect to j at the contact point (docs/theory.md §5.1)
       double vr1 = v[i][0] - v[j][0];
       double vr2 = v[i][1] - v[j][1];
@@ -864,48 +743,31 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
       const double wr1 = lever_i * omega[i][0] + lever_j * omega[j][0];
       const double wr2 = lever_i * omega[i][1] + lever_j * omega[j][1];
       const double wr3 = lever_i * omega[i][2] + lever_j * omega[j][2];
-      const double vt1 = vr1 - vn * nx + (ny * wr3 - nz * wr2);
-      const double vt2 = vr2 - vn * ny + (nz * wr1 - nx * wr3);
-      const double vt3 = vr3 - vn * nz + (nx * wr2 - ny * wr1);
-
-      ct.i = i;
-      ct.j = j;
-      ct.constants = &constants;
-      ct.n[0] = nx, ct.n[1] = ny, ct.n[2] = nz;
-      ct.del[0] = delx, ct.del[1] = dely, ct.del[2] = delz;
-      ct.rsq = rsq;
-      ct.R = R;
-      ct.lever_i = lever_i, ct.lever_j = lever_j;
-      ct.vn = vn;
-      ct.vt[0] = vt1, ct.vt[1] = vt2, ct.vt[2] = vt3;
-      ct.share = share;
-
-      if (history_update) {
-        const double twist = 0.5 * dt *
-            ((omega[i][0] + omega[j][0]) * nx + (omega[i][1] + omega[j][1]) * ny +
-             (omega[i][2] + omega[j][2]) * nz);
-        // tangential displacement of j relative to i at the contact this step
-        const double ds[3] = {-vt1 * dt, -vt2 * dt, -vt3 * dt};
-        tycore::carry_history(ct.n, twist, h, ct.st);
-        tycore::normal_force_step<ADHESIVE>(constants, R, Rinv, delta, h, ct.st);
-        tycore::begin_tangential<ADHESIVE>(constants, R, ds, h, ct.st);
-        if (++nbatch == BATCH) flush_batch();
-      } else {    // setup: forces at unchanged positions, history kept
-        ct.st.contact_radius = ADHESIVE
-            ? tycore::jkr::contact_radius_warm(delta, R, c.E_star, c.Gamma, h.radius)
-            : std::sqrt(R * delta);
-        ct.st.P = tycore::jkr::normal_force(ct.st.contact_radius, R, c.E_star, c.Gamma);
-        ct.sliding = tycore::slides_without_step(constants, R, ct.st.P, h) ? 1.0 : 0.0;
-        apply_contact(ct, eflag);
-      }
+      b.vn[l] = vn;
+      b.vt[0][l] = vr1 - vn * nx + (ny * wr3 - nz * wr2);
+      b.vt[1][l] = vr2 - vn * ny + (nz * wr1 - nx * wr3);
+      b.vt[2][l] = vr3 - vn * nz + (nx * wr2 - ny * wr1);
+      b.spin_n[l] = (omega[i][0] + omega[j][0]) * nx + (omega[i][1] + omega[j][1]) * ny +
+                    (omega[i][2] + omega[j][2]) * nz;
+      b.m_star[l] = rmass[i] * rmass[j] / (rmass[i] + rmass[j]);
+      b.first_touch[l] = !touch[jj];
+      double *slot = &allhistory[HISTORY_SIZE * jj];
+      tycore::load_history(b, l, slot);
+      bt.i[l] = i, bt.j[l] = j;
+      bt.touch[l] = &touch[jj];
+      bt.slot[l] = slot;
+      bt.del[0][l] = delx, bt.del[1][l] = dely, bt.del[2][l] = delz;
+      bt.share[l] = (newton_pair || j < nlocal) ? 1.0 : 0.5;
+      if (++bt.n == tycore::batch_lanes) run_batch<ADHESIVE, DAMPED>(bt, step, sums);
     }
   }
-  flush_batch();
-  if (tally && newton_pair) tylmp_compat::reverse_comm(comm, this);
+  for (auto &bt : batches)
+    if (bt && bt->n) run_batch<ADHESIVE, DAMPED>(*bt, step, sums);
+  if (tally_cell && newton_pair) tylmp_compat::reverse_comm(comm, this);
 
-  pvector[DISSIPATION_FRICTION] += dissipated_friction;
-  pvector[DISSIPATION_BREAK] += dissipated_break;
-  pvector[DISSIPATION_DAMPING] += dissipated_damping;
+  pvector[DISSIPATION_FRICTION] += sums.friction;
+  pvector[DISSIPATION_BREAK] += sums.breaks;
+  pvector[DISSIPATION_DAMPING] += sums.damping;
 }
 
 template void PairThorntonYin::eval<true, true>(int, int);
@@ -914,28 +776,123 @@ template void PairThorntonYin::eval<false, true>(int, int);
 template void PairThorntonYin::eval<false, false>(int, int);
 
 /* ----------------------------------------------------------------------
+   the contacts of one batch through the core (a step, or in setup the forces without one),
+   then their forces, torques, history and tallies back to LAMMPS
+------------------------------------------------------------------------- */
+
+template <bool ADHESIVE, bool DAMPED>
+void PairThorntonYin::run_batch(Batch &bt, bool step, Sums &sums)
+{
+  tycore::ContactBatch &b = bt.b;
+  const int n = bt.n;
+  bt.n = 0;
+  if (step) tycore::advance_batch<ADHESIVE, DAMPED>(b, n, *bt.constants, bt.p, isa);
+  else tycore::forces_without_step<ADHESIVE, DAMPED>(b, n, *bt.constants, bt.p);
+
+  double **f = atom->f;
+  double **torque = atom->torque;
+  const double *radius = atom->radius;
+  const int nlocal = atom->nlocal;
+  const int newton_pair = force->newton_pair;
+  for (int l = 0; l < n; ++l) {
+    const int i = bt.i[l], j = bt.j[l];
+    const double share = bt.share[l];
+    sums.breaks += share * b.break_energy[l];
+    if (b.broken[l] != 0.0) {    // separated at the break overlap: the contact is forgotten
+      *bt.touch[l] = 0;
+      for (int k = 0; k < HISTORY_SIZE; ++k) bt.slot[l][k] = 0.0;
+      continue;
+    }
+    *bt.touch[l] = 1;
+    tycore::store_history(b, l, bt.slot[l]);
+    sums.friction += share * b.dissipation[l];
+    sums.damping += share * b.damping_dissipation[l];
+
+    const double fx = b.force[0][l], fy = b.force[1][l], fz = b.force[2][l];
+    // a NaN or inf anywhere upstream (velocity, spin, history, ...) reaches the force: stop
+    // here rather than propagate it (one comparison; NaN fails it)
+    if (!(std::fabs(fx + fy + fz) <= DBL_MAX)) contact_fault(i, j, 0.0, true);
+    const bool j_owned = newton_pair || j < nlocal;
+    if (record_contacts && (j_owned || atom->tag[i] < atom->tag[j])) {
+      double Fn, fs[3];
+      tycore::force_parts<DAMPED>(b, l, bt.constants->c, bt.p, Fn, fs);
+      record_contact(bt, l, Fn, fs);
+    }
+    // the tangential force acts at the contact point: levers r - delta/2
+    const double lever_i = radius[i] - 0.5 * b.delta[l];
+    f[i][0] += fx;
+    f[i][1] += fy;
+    f[i][2] += fz;
+    torque[i][0] -= lever_i * b.moment[0][l];
+    torque[i][1] -= lever_i * b.moment[1][l];
+    torque[i][2] -= lever_i * b.moment[2][l];
+    if (j_owned) {
+      const double lever_j = radius[j] - 0.5 * b.delta[l];
+      f[j][0] -= fx;
+      f[j][1] -= fy;
+      f[j][2] -= fz;
+      torque[j][0] -= lever_j * b.moment[0][l];
+      torque[j][1] -= lever_j * b.moment[1][l];
+      torque[j][2] -= lever_j * b.moment[2][l];
+    }
+    if (evflag)
+      ev_tally_xyz(i, j, nlocal, newton_pair, bt.p.energy ? b.energy[l] : 0.0, 0.0, fx, fy, fz,
+                   bt.del[0][l], bt.del[1][l], bt.del[2][l]);
+    if (tally_cell) {    // the servo's sums (docs/theory.md §6.1), each contact once
+      for (int k = 0; k < 6; ++k)
+        cell_tallies[TALLY_STIFFNESS + k] += share * b.affine_stiffness[k][l];
+      cell_tallies[TALLY_CONTACTS] += share;
+      cell_tallies[TALLY_SLIDING] += share * b.slides[l];
+      cell_tallies[TALLY_FORCE] += share * b.force_magnitude[l];
+      contact_count[i] += 1.0;
+      if (j_owned) contact_count[j] += 1.0;
+    }
+  }
+}
+
+/* ----------------------------------------------------------------------
+   zero the servo's cell tallies and the contact records before a force evaluation
+------------------------------------------------------------------------- */
+
+void PairThorntonYin::begin_tallies()
+{
+  if (tally_cell) {
+    for (double &t : cell_tallies) t = 0.0;
+    if (atom->nmax > nmax_count) {
+      memory->destroy(contact_count);
+      nmax_count = atom->nmax;
+      memory->create(contact_count, nmax_count, "pair:contact_count");
+    }
+    const int nall = atom->nlocal + atom->nghost;
+    for (int k = 0; k < nall; ++k) contact_count[k] = 0.0;
+  }
+  if (record_contacts) {
+    records.clear();
+    record_step = update->ntimestep;
+  }
+}
+
+/* ----------------------------------------------------------------------
    one contact for the contact computes, with the force it applied this evaluation
 ------------------------------------------------------------------------- */
 
-void PairThorntonYin::record_contact(const Contact &ct, double Fn, double fs1, double fs2,
-                                     double fs3)
+void PairThorntonYin::record_contact(const Batch &bt, int l, double Fn, const double fs[3])
 {
+  const tycore::ContactBatch &b = bt.b;
   ContactRecord rec;
-  const int i = ct.i, j = ct.j;
+  const int i = bt.i[l], j = bt.j[l];
   rec.id_i = atom->tag[i];
   rec.id_j = atom->tag[j];
   for (int k = 0; k < 3; ++k) {
-    rec.normal_force[k] = Fn * ct.n[k];
-    rec.branch[k] = ct.del[k];
+    rec.normal_force[k] = Fn * b.n[k][l];
+    rec.tangential_force[k] = fs[k];
+    rec.branch[k] = bt.del[k][l];
   }
-  rec.tangential_force[0] = fs1;
-  rec.tangential_force[1] = fs2;
-  rec.tangential_force[2] = fs3;
   rec.P = Fn;
-  rec.overlap = atom->radius[i] + atom->radius[j] - std::sqrt(ct.rsq);
-  rec.contact_radius = ct.st.contact_radius;
-  rec.sliding = ct.sliding;
-  rec.peeling = ct.h->peeling;
+  rec.overlap = b.delta[l];
+  rec.contact_radius = b.contact_radius[l];
+  rec.sliding = b.slides[l];
+  rec.peeling = b.peeling[l];
   rec.mask = atom->mask[i] & atom->mask[j];
   records.push_back(rec);
 }
@@ -1055,7 +1012,10 @@ void PairThorntonYin::read_restart_settings(FILE *) {}
 
 double PairThorntonYin::memory_usage()
 {
-  return Pair::memory_usage();
+  double bytes = Pair::memory_usage();
+  for (const auto &bt : batches)
+    if (bt) bytes += sizeof(Batch);
+  return bytes;
 }
 
 int PairThorntonYin::pack_reverse_comm(int n, int first, double *buf)

@@ -10,8 +10,9 @@
 
 #include "lammps_compat.h"
 
-#include "contact_kernel.hpp"
+#include "contact_batch.hpp"
 
+#include <memory>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -88,6 +89,7 @@ class PairThorntonYin : public tylmp_compat::PairWithHistory {
   double **damp_n, **damp_t;                     // damping ratios beta_n, beta_t; 0 = off
   int adhesive, damped;                          // chosen once per compute()
   int generic_paths;                             // 1: never specialise (benchmarks)
+  tycore::Isa isa;                               // build of the batch law (pair_style isa)
   double *maxrad_type;                           // largest radius per type (init_style)
 
   class FixDummy *fix_dummy;
@@ -108,9 +110,9 @@ class PairThorntonYin : public tylmp_compat::PairWithHistory {
   int record_contacts;                  // a compute thornton/yin/... exists (init_style)
   std::vector<ContactRecord> records;
   bigint record_step;
-  struct Contact;
-  __attribute__((noinline)) void record_contact(const Contact &, double Fn, double fs1,
-                                                double fs2, double fs3);
+  struct Batch;
+  __attribute__((noinline)) void record_contact(const Batch &, int lane, double Fn,
+                                                const double fs[3]);
 
   int tally_cell;
   double cell_tallies[N_TALLY];
@@ -125,17 +127,25 @@ class PairThorntonYin : public tylmp_compat::PairWithHistory {
   double largest_radius(int) const;
   double affine_velocity_gradient(double L[3][3]) const;
 
-  // one contact in flight through the staged kernel (tycore::StepState)
-  struct Contact {
-    int i, j;
+  // contacts of one material pair on their way through tycore::advance_batch: the batch and
+  // where each lane's contact lives (atoms, history slot, branch vector, share of the tallies)
+  struct Batch {
+    tycore::ContactBatch b;
     const tycore::PairConstants *constants;
-    double n[3], del[3], rsq, R, lever_i, lever_j, vn, vt[3], share;
-    tycore::ContactHistory *h;    // the contact's slot in the history page
-    tycore::StepState st;
-    double sliding;               // 1 if at the Coulomb limit in this force evaluation, else 0
+    tycore::BatchParameters p;
+    int n;
+    int i[tycore::batch_lanes], j[tycore::batch_lanes];
+    int *touch[tycore::batch_lanes];
+    double *slot[tycore::batch_lanes];
+    double del[3][tycore::batch_lanes], share[tycore::batch_lanes];
   };
-  static constexpr int BATCH = 16;    // contacts per batch (8 to 64 measured alike)
+  std::vector<std::unique_ptr<Batch>> batches;    // per type pair i <= j, made on first use
+  struct Sums {
+    double friction, breaks, damping;
+  };
 
+  template <bool ADHESIVE, bool DAMPED> void run_batch(Batch &, bool step, Sums &);
+  void begin_tallies();
   template <bool ADHESIVE, bool DAMPED> void eval(int eflag, int vflag);
 };
 
