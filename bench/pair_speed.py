@@ -6,6 +6,7 @@ settings, timestep and step counts.
     /usr/bin/python3 bench/pair_speed.py [--data bench/data/dense_paper_100kPa.data |
         --specimen RESTART] [--steps 2000] [--repeats 5] [--ranks 1]
         [--out bench/results/pair_speed] [--cases NAME ...] [--variant NAME=PATH/tylmp.so ...]
+        [--build-variant NAME=CMAKE_OPTION[,CMAKE_OPTION ...] ...]
         [--liggghts liggghts] [--lmp2025 WRAPPER]
 
 Specimen: every case starts from the same LAMMPS data file, by default the committed
@@ -21,7 +22,7 @@ every case then reads. All cases: `neighbor 1.35e-5 bin`, `neigh_modify every 1 
 yes`, velocities communicated to ghosts, `fix nve/sphere`, the same timestep (0.2 Rayleigh
 times of the smallest sphere, 0.0144 s with the scaled density 2.65e15 kg/m^3).
 
-Cases: thornton/yin with Gamma = 0.6 and 0, with and without `paths generic`; LAMMPS
+Cases: thornton/yin with Gamma = 0.6 and 0; LAMMPS
 `granular` jkr+mindlin and hertz/material+mindlin; LAMMPS `gran/hertz/history`; and
 "liggghts hertz+history": LIGGGHTS `pair_style gran model hertz tangential history` with
 the material in `fix property/global` (youngsModulus 70e9, poissonsRatio 0.3,
@@ -60,7 +61,19 @@ thornton/yin with Gamma = 0.6.
 With --variant (repeatable) every thornton/yin case runs once per build of the library
 (TYLMP_LIBRARY set per run), all in the same alternation, to compare code variants; the
 table then also gives, per case, the median over repeats of the per-repeat time ratio of each
-variant to the first one.
+variant to the first one. --build-variant NAME=OPTIONS (repeatable) first builds such a variant
+with the CMake options given (comma-separated) into build-bench-NAME/ of the repository and
+then runs it as --variant NAME=build-bench-NAME/python/tylmp/tylmp.so; the benchmark builds of
+CMakeLists.txt:
+
+    /usr/bin/python3 bench/pair_speed.py --variant specialised=build/python/tylmp/tylmp.so \
+        --build-variant generic=-DTYLMP_GENERIC_PATHS=ON \
+        --build-variant plumbing=-DTYLMP_BENCH_PLUMBING=ON \
+        --cases "thornton/yin G=0.6" "thornton/yin G=0"
+
+(generic: the adhesive, damped kernel for every scene, what the specialisations gain;
+plumbing: the law replaced by a Hertz normal force, what everything around it costs), and
+--build-variant scalar=-DTYLMP_VECTOR_LAW=OFF for the scalar build of the law.
 Writes OUT.csv (every run), OUT.json (medians and ratios), OUT.png (atom-steps per second of
 every case: median and the range of the repeats) and prints a table.
 
@@ -98,11 +111,7 @@ NEIGHBOR = "neighbor 1.35e-5 bin\nneigh_modify every 1 delay 0 check yes\n"
 
 CASES = {
     "thornton/yin G=0.6": f"pair_style thornton/yin\npair_coeff * * {E} {NU} {MU} {GAMMA}\n",
-    "thornton/yin G=0.6 generic": (f"pair_style thornton/yin paths generic\n"
-                                   f"pair_coeff * * {E} {NU} {MU} {GAMMA}\n"),
     "thornton/yin G=0": f"pair_style thornton/yin\npair_coeff * * {E} {NU} {MU} 0.0\n",
-    "thornton/yin G=0 generic": (f"pair_style thornton/yin paths generic\n"
-                                 f"pair_coeff * * {E} {NU} {MU} 0.0\n"),
     "granular jkr+mindlin": (f"pair_style granular\npair_coeff * * jkr {E} 0.0 {NU} {GAMMA} "
                              f"damping viscoelastic tangential mindlin NULL 0.0 {MU}\n"),
     "granular hertz/material+mindlin": (
@@ -124,6 +133,17 @@ LMP2025_SUFFIX = " @4Feb2025"       # label of a case run with the lmp of --lmp2
 LIGGGHTS_MISSING = ("no LIGGGHTS binary '{}' on PATH: skipping the case 'liggghts hertz+history' "
                     "(install it with 'apt-get install liggghts'; Debian 12: LIGGGHTS-PUBLIC "
                     "3.8.0)")
+
+
+def build_variant(name, options):
+    """Configure and build the plugin with the CMake `options` into build-bench-NAME of the
+    repository; returns the path of its tylmp.so."""
+    build = os.path.join(REPO, f"build-bench-{name}")
+    subprocess.run(["cmake", "-S", REPO, "-B", build, "-DCMAKE_BUILD_TYPE=Release"] + options,
+                   check=True, stdout=subprocess.DEVNULL)
+    subprocess.run(["cmake", "--build", build, "--target", "tylmp", "-j2"], check=True,
+                   stdout=subprocess.DEVNULL)
+    return os.path.join(build, "python", "tylmp", "tylmp.so")
 
 
 def deck(data, pair_lines, steps, measure=None):
@@ -261,6 +281,9 @@ def main(argv=None):
     ap.add_argument("--out", default=os.path.join(REPO, "bench", "results", "pair_speed"))
     ap.add_argument("--variant", action="append", default=[],
                     help="NAME=PATH of a tylmp.so build; thornton/yin cases run once per variant")
+    ap.add_argument("--build-variant", action="append", default=[], metavar="NAME=OPTIONS",
+                    help="build tylmp with these comma-separated CMake options into "
+                         "build-bench-NAME and run it as --variant NAME")
     ap.add_argument("--liggghts", default="liggghts", help="LIGGGHTS executable")
     ap.add_argument("--lmp2025", metavar="WRAPPER",
                     help="also run every LAMMPS case with this lmp of LAMMPS 4 Feb 2025 (the "
@@ -276,6 +299,11 @@ def main(argv=None):
         print("wrote", plot(args.plot, args.png))
         return
     variants = [tuple(v.split("=", 1)) for v in args.variant]
+    for spec in args.build_variant:
+        name, _, options = spec.partition("=")
+        if not name or not options.startswith("-D"):
+            ap.error(f"--build-variant {spec}: expected NAME=-DOPTION=VALUE[,-DOPTION=VALUE ...]")
+        variants.append((name, build_variant(name, options.split(","))))
     if args.lmp2025 and variants:
         ap.error("--variant builds are for one LAMMPS: run --lmp2025 without --variant")
     if args.lmp2025 and not (os.path.isfile(args.lmp2025) and os.access(args.lmp2025, os.X_OK)):

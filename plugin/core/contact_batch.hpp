@@ -334,6 +334,29 @@ inline double scalar_lane(ContactBatch& b, int i, const PairConstants& k, double
   return (st.frictionless || st.peeled_step) ? -1.0 : st.stiffness;
 }
 
+#ifdef TYCORE_BENCH_PLUMBING
+// A benchmark build only (-DTYLMP_BENCH_PLUMBING=ON; docs/performance.md): the law replaced by
+// a Hertz normal force, the history read and written, everything around the law kept (first
+// touch and separation, damping, tallies, energies), to measure what the plumbing costs.
+// Its forces are not the Thornton-Yin law.
+template <bool Adhesive, bool Damped>
+inline void plumbing_only(ContactBatch& b, int n, const PairConstants& k, const BatchParameters& p)
+{
+  touch_or_break<Adhesive>(b, n, k);
+  for (int i = 0; i < n; ++i) {
+    const double delta = std::max(b.delta[i], 0.0);
+    const double a = std::sqrt(b.R[i] * delta);
+    b.contact_radius[i] = a;
+    b.P[i] = (4.0 / 3.0) * k.c.E_star * a * delta;
+    b.T[0][i] += 1e-30 * -b.vt[0][i] * p.dt;
+    b.dissipation[i] = 0.0;
+    if (p.tally) lane_outputs<Adhesive, Damped, true>(b, i, k.c, p, -1.0);
+    else lane_outputs<Adhesive, Damped, false>(b, i, k.c, p, -1.0);
+  }
+  if (p.energy) stored_energies(b, n, k);
+}
+#endif
+
 // the vector builds, contact_batch.cpp (declared with the instruction set they are built for)
 #define TYCORE_AVX512 "avx512f,avx512dq,avx512vl"
 template <bool Adhesive, bool Damped>    // the x86-64 baseline, SSE2
@@ -360,6 +383,10 @@ template <bool Adhesive, bool Damped>
 inline void advance_batch(ContactBatch& b, int n, const PairConstants& k, const BatchParameters& p,
                           Isa isa = best_isa())
 {
+#ifdef TYCORE_BENCH_PLUMBING
+  (void) isa;
+  detail::plumbing_only<Adhesive, Damped>(b, n, k, p);
+#else
   switch (isa) {
     case Isa::avx512: detail::advance_batch_avx512<Adhesive, Damped>(b, n, k, p); break;
     case Isa::avx2: detail::advance_batch_avx2<Adhesive, Damped>(b, n, k, p); break;
@@ -374,6 +401,7 @@ inline void advance_batch(ContactBatch& b, int n, const PairConstants& k, const 
       if (p.energy) detail::stored_energies(b, n, k);
       break;
   }
+#endif
   for (int i = 0; i < n; ++i) b.slides[i] = b.sliding[i];
 }
 

@@ -13,6 +13,7 @@
 ------------------------------------------------------------------------- */
 
 #include "fix_cell_servo.h"
+#include "cell_tally.h"
 
 #include "cell_statistics.hpp"
 #include "pi_plane.hpp"
@@ -63,10 +64,6 @@ std::string continuation_key(LAMMPS *lmp, const char *id)
 {
   return fmt::format("{}/{}", static_cast<const void *>(lmp), id);
 }
-
-// pair thornton/yin cell tallies (pair_thornton_yin.h)
-constexpr int TALLY_STIFFNESS = 0, TALLY_CONTACTS = 6, TALLY_SLIDING = 7, TALLY_FORCE = 8;
-constexpr int N_TALLY = 9;
 
 const char *const OUTPUT_NAMES[] = {
     "eps1", "eps2", "eps3", "eps_v", "eps_q", "eps_d13", "sig1", "sig2", "sig3", "p", "q", "b",
@@ -130,7 +127,7 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
     elapsed_time(0.0), clock_step(0), boundary_work(0.0), restored(0), continued(0),
     continue_previous(1), contacts(0.0), sliding(0.0), force_sum(0.0),
     measured_step(-1), output_step(-1), particle_step(-1), mean_diameter(0.0), mean_density(0.0),
-    solid_volume(0.0), pressure(nullptr), pair(nullptr), tally_flag(nullptr), csv_every(0),
+    solid_volume(0.0), pressure(nullptr), pair(nullptr), csv_every(0),
     wall_start(0.0), step_start(0), saturated_steps(0)
 {
   if (narg < 5) error->all(FLERR, "Illegal fix cell/servo command: expected 'fix ID all cell/servo MODE ...' (modes: iso axes axisym constant_b deviatoric circle triangle polygon)");
@@ -639,14 +636,11 @@ void FixCellServo::init()
       error->all(FLERR, "fix cell/servo cannot be combined with fix {} ({}), which also "
                  "changes the box", modify->fix[i]->id, modify->fix[i]->style);
 
-  pair = force->pair_match("thornton/yin", 1);
+  pair = dynamic_cast<CellTallySource *>(force->pair_match("thornton/yin", 1));
   if (!pair)
     error->all(FLERR, "fix cell/servo requires pair_style thornton/yin (it reads the contact "
                "stiffness and contact counts from it)");
-  int dim;
-  tally_flag = static_cast<int *>(pair->extract("tally_cell", dim));
-  if (!tally_flag) error->all(FLERR, "fix cell/servo: pair thornton/yin has no cell tallies");
-  *tally_flag = 1;    // from the setup force computation on
+  pair->request_cell_tallies();    // from the setup force computation on
 
   const int icompute = modify->find_compute(pressure_id);
   if (icompute < 0) error->all(FLERR, "fix cell/servo: its stress compute was deleted");
@@ -814,14 +808,13 @@ void FixCellServo::measure()
   pressure->addstep(update->ntimestep + 1);
   for (int k = 0; k < 3; ++k) stress[k] = pressure->vector[k];
 
-  int dim;
-  const double *tallies = static_cast<double *>(pair->extract("cell_tallies", dim));
-  double sums[N_TALLY];
-  MPI_Allreduce(const_cast<double *>(tallies), sums, N_TALLY, MPI_DOUBLE, MPI_SUM, world);
-  for (int k = 0; k < 6; ++k) stiffness_sums[k] = sums[TALLY_STIFFNESS + k];
-  contacts = sums[TALLY_CONTACTS];
-  sliding = sums[TALLY_SLIDING];
-  force_sum = sums[TALLY_FORCE];
+  CellTallies total;
+  MPI_Allreduce(const_cast<double *>(pair->cell_tallies().sum), total.sum, CellTallies::SIZE, MPI_DOUBLE, MPI_SUM,
+                world);
+  for (int k = 0; k < 6; ++k) stiffness_sums[k] = total.sum[CellTallies::STIFFNESS + k];
+  contacts = total.sum[CellTallies::CONTACTS];
+  sliding = total.sum[CellTallies::SLIDING];
+  force_sum = total.sum[CellTallies::FORCE];
   measured_step = update->ntimestep;
 }
 
@@ -1033,8 +1026,7 @@ void FixCellServo::compute_particle_outputs()
   if (particle_step == update->ntimestep) return;
   // Z, Zm, unbalanced force, kinetic stress and the kinetic energy of the load-bearing
   // particles (plugin/core/cell_statistics.hpp)
-  int dim;
-  const double *count = static_cast<double *>(pair->extract("contact_count", dim));
+  const double *count = pair->contact_count();
   tycore::ParticleSums local, total;
   for (int i = 0; i < atom->nlocal; ++i)
     local.add(count ? std::lround(count[i]) : 0, atom->f[i], atom->rmass[i], atom->v[i]);

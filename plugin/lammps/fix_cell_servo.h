@@ -115,8 +115,7 @@ class FixCellServo : public Fix {
 
   class Compute *pressure;
   std::string pressure_id;
-  class Pair *pair;
-  int *tally_flag;
+  class CellTallySource *pair;    // pair thornton/yin (cell_tally.h)
 
   // CSV
   std::string csv_path;

@@ -82,14 +82,13 @@ PairThorntonYin::PairThorntonYin(LAMMPS *lmp) : PairWithHistory(lmp)
   tally_cell = 0;
   record_contacts = 0;
   record_step = -1;
-  generic_paths = 0;
   isa = tycore::best_isa();
   for (double &h : box_h) h = 0.0;
   box_step = -1;
   box_from_setup = 1;
   box_rate_warned = 0;
-  for (double &t : cell_tallies) t = 0.0;
-  contact_count = nullptr;
+  for (double &t : tallies.sum) t = 0.0;
+  atom_contacts = nullptr;
   nmax_count = 0;
   comm_reverse = 1;
 
@@ -105,7 +104,7 @@ PairThorntonYin::~PairThorntonYin()
   if (copymode) return;
   delete[] pvector;
   delete[] svector;
-  memory->destroy(contact_count);
+  memory->destroy(atom_contacts);
   if (!fix_history) modify->delete_fix(FIX_DUMMY_ID);
   else modify->delete_fix(FIX_HISTORY_ID);
 
@@ -163,44 +162,34 @@ void PairThorntonYin::allocate()
 
 void PairThorntonYin::settings(int narg, char **arg)
 {
-  // pair_style thornton/yin [isa auto|scalar|sse2|avx2|avx512] [paths specialised|generic]
-  //  isa: the build of the batch law (tycore::advance_batch); auto = the widest this
-  //       processor runs (tycore::best_isa). All builds give the same forces to the bit.
-  //  paths generic: the adhesive, damped kernel for every scene, for benchmarks of the
-  //       specialisations (bench/pair_speed.py)
-  generic_paths = 0;
+  // pair_style thornton/yin [isa auto|scalar|sse2|avx2|avx512]: the build of the batch law
+  // (tycore::advance_batch); auto = the widest this processor runs (tycore::best_isa). All
+  // builds give the same forces to the bit.
   isa = tycore::best_isa();
   for (int iarg = 0; iarg < narg; iarg += 2) {
-    if (iarg + 2 > narg)
-      error->all(FLERR, "pair_style thornton/yin: keyword '{}' needs a value", arg[iarg]);
-    const std::string value = arg[iarg + 1];
-    if (strcmp(arg[iarg], "isa") == 0) {
-      const tycore::Isa isas[] = {tycore::Isa::scalar, tycore::Isa::sse2, tycore::Isa::avx2,
-                                  tycore::Isa::avx512};
-      bool known = value == "auto";
-      for (const tycore::Isa choice : isas)
-        if (value == tycore::isa_name(choice)) {
-          known = true;
-          if (!tycore::isa_supported(choice))
-            error->all(FLERR, "pair_style thornton/yin: isa {}: this processor does not run "
-                       "{} instructions; use 'isa auto' (here: {}) or a narrower build",
-                       value, value, tycore::isa_name(tycore::best_isa()));
-          isa = choice;
-        }
-      if (!known)
-        error->all(FLERR, "pair_style thornton/yin: isa must be auto, scalar, sse2, avx2 or "
-                   "avx512, got '{}'", value);
-    } else if (strcmp(arg[iarg], "paths") == 0) {
-      if (value == "generic") generic_paths = 1;
-      else if (value != "specialised")
-        error->all(FLERR, "pair_style thornton/yin: paths must be 'specialised' or 'generic', "
-                   "got '{}'", value);
-    } else {
+    const std::string keyword = arg[iarg];
+    if (keyword != "isa")
       error->all(FLERR, "pair_style thornton/yin: unknown keyword '{}' (it takes 'isa "
-                 "auto|scalar|sse2|avx2|avx512' and 'paths specialised|generic'); material "
-                 "parameters go in pair_coeff I J E nu mu Gamma [damping beta_n beta_t]",
-                 arg[iarg]);
-    }
+                 "auto|scalar|sse2|avx2|avx512'); material parameters go in pair_coeff I J E "
+                 "nu mu Gamma [damping beta_n beta_t]", keyword);
+    if (iarg + 2 > narg)
+      error->all(FLERR, "pair_style thornton/yin: keyword '{}' needs a value", keyword);
+    const std::string value = arg[iarg + 1];
+    const tycore::Isa isas[] = {tycore::Isa::scalar, tycore::Isa::sse2, tycore::Isa::avx2,
+                                tycore::Isa::avx512};
+    bool known = value == "auto";
+    for (const tycore::Isa choice : isas)
+      if (value == tycore::isa_name(choice)) {
+        known = true;
+        if (!tycore::isa_supported(choice))
+          error->all(FLERR, "pair_style thornton/yin: isa {}: this processor does not run "
+                     "{} instructions; use 'isa auto' (here: {}) or a narrower build",
+                     value, value, tycore::isa_name(tycore::best_isa()));
+        isa = choice;
+      }
+    if (!known)
+      error->all(FLERR, "pair_style thornton/yin: isa must be auto, scalar, sse2, avx2 or "
+                 "avx512, got '{}'", value);
   }
 }
 
@@ -357,6 +346,17 @@ void PairThorntonYin::init_style()
     }
   check_break_against_skin();
   check_timestep_against_rayleigh();
+#if defined(TYLMP_GENERIC_PATHS) || defined(TYCORE_BENCH_PLUMBING)
+  if (comm->me == 0)
+    error->warning(FLERR, "pair thornton/yin: this is a benchmark build of tylmp ({}): {}",
+#ifdef TYCORE_BENCH_PLUMBING
+                   "-DTYLMP_BENCH_PLUMBING=ON", "the contact law is replaced by a Hertz "
+                   "normal force, the results are not the Thornton-Yin law");
+#else
+                   "-DTYLMP_GENERIC_PATHS=ON", "the adhesive, damped kernel runs for every "
+                   "scene (same results, slower)");
+#endif
+#endif
 }
 
 /* ----------------------------------------------------------------------
@@ -638,7 +638,9 @@ void PairThorntonYin::compute(int eflag, int vflag)
       if (surface_energy[i][j] > 0.0) adhesive = 1;
       if (damp_n[i][j] > 0.0 || damp_t[i][j] > 0.0) damped = 1;
     }
-  if (generic_paths) adhesive = damped = 1;
+#ifdef TYLMP_GENERIC_PATHS
+  adhesive = damped = 1;    // a benchmark build: what the specialisations gain (CMakeLists.txt)
+#endif
   if (adhesive) {
     if (damped) eval<true, true>(eflag, vflag);
     else eval<true, false>(eflag, vflag);
@@ -840,12 +842,12 @@ void PairThorntonYin::run_batch(Batch &bt, bool step, Sums &sums)
                    bt.del[0][l], bt.del[1][l], bt.del[2][l]);
     if (tally_cell) {    // the servo's sums (docs/theory.md §6.1), each contact once
       for (int k = 0; k < 6; ++k)
-        cell_tallies[TALLY_STIFFNESS + k] += share * b.affine_stiffness[k][l];
-      cell_tallies[TALLY_CONTACTS] += share;
-      cell_tallies[TALLY_SLIDING] += share * b.slides[l];
-      cell_tallies[TALLY_FORCE] += share * b.force_magnitude[l];
-      contact_count[i] += 1.0;
-      if (j_owned) contact_count[j] += 1.0;
+        tallies.sum[CellTallies::STIFFNESS + k] += share * b.affine_stiffness[k][l];
+      tallies.sum[CellTallies::CONTACTS] += share;
+      tallies.sum[CellTallies::SLIDING] += share * b.slides[l];
+      tallies.sum[CellTallies::FORCE] += share * b.force_magnitude[l];
+      atom_contacts[i] += 1.0;
+      if (j_owned) atom_contacts[j] += 1.0;
     }
   }
 }
@@ -857,14 +859,14 @@ void PairThorntonYin::run_batch(Batch &bt, bool step, Sums &sums)
 void PairThorntonYin::begin_tallies()
 {
   if (tally_cell) {
-    for (double &t : cell_tallies) t = 0.0;
+    for (double &t : tallies.sum) t = 0.0;
     if (atom->nmax > nmax_count) {
-      memory->destroy(contact_count);
+      memory->destroy(atom_contacts);
       nmax_count = atom->nmax;
-      memory->create(contact_count, nmax_count, "pair:contact_count");
+      memory->create(atom_contacts, nmax_count, "pair:contact_count");
     }
     const int nall = atom->nlocal + atom->nghost;
-    for (int k = 0; k < nall; ++k) contact_count[k] = 0.0;
+    for (int k = 0; k < nall; ++k) atom_contacts[k] = 0.0;
   }
   if (record_contacts) {
     records.clear();
@@ -1020,33 +1022,18 @@ double PairThorntonYin::memory_usage()
 
 int PairThorntonYin::pack_reverse_comm(int n, int first, double *buf)
 {
-  for (int k = 0; k < n; ++k) buf[k] = contact_count[first + k];
+  for (int k = 0; k < n; ++k) buf[k] = atom_contacts[first + k];
   return n;
 }
 
 void PairThorntonYin::unpack_reverse_comm(int n, int *list, double *buf)
 {
-  for (int k = 0; k < n; ++k) contact_count[list[k]] += buf[k];
+  for (int k = 0; k < n; ++k) atom_contacts[list[k]] += buf[k];
 }
 
+// mu and Gamma per type pair, for fix adapt (the servo's sums: cell_tally.h)
 void *PairThorntonYin::extract(const char *name, int &dim)
 {
-  if (strcmp(name, "tally_cell") == 0) {
-    dim = 0;
-    return (void *) &tally_cell;
-  }
-  if (strcmp(name, "cell_tallies") == 0) {
-    dim = 1;
-    return (void *) cell_tallies;
-  }
-  if (strcmp(name, "contact_count") == 0) {
-    dim = 1;
-    return (void *) contact_count;
-  }
-  if (strcmp(name, "cut") == 0) {
-    dim = 2;
-    return (void *) cut;
-  }
   if (strcmp(name, "mu") == 0) {
     dim = 2;
     return (void *) friction;

@@ -8,6 +8,7 @@
 #ifndef LMP_PAIR_THORNTON_YIN_H
 #define LMP_PAIR_THORNTON_YIN_H
 
+#include "cell_tally.h"
 #include "lammps_compat.h"
 
 #include "contact_batch.hpp"
@@ -17,7 +18,7 @@
 
 namespace LAMMPS_NS {
 
-class PairThorntonYin : public tylmp_compat::PairWithHistory {
+class PairThorntonYin : public tylmp_compat::PairWithHistory, public CellTallySource {
  public:
   PairThorntonYin(class LAMMPS *);
   ~PairThorntonYin() override;
@@ -38,15 +39,10 @@ class PairThorntonYin : public tylmp_compat::PairWithHistory {
   int pack_reverse_comm(int, int, double *) override;
   void unpack_reverse_comm(int, int *, double *) override;
 
-  // per-rank sums over the contacts of the last compute(), for fix cell/servo (extract
-  // "cell_tallies"; made only while extract "tally_cell" is set to 1)
-  enum {
-    TALLY_STIFFNESS = 0,     // 6 entries: sum l^2 [k_N n_a^2 n_b^2 + k_T (d_ab n_a^2 - n_a^2 n_b^2)]
-    TALLY_CONTACTS = 6,      // number of contacts (touching pairs, tensile ones included)
-    TALLY_SLIDING = 7,       // number of contacts at the sliding limit
-    TALLY_FORCE = 8,         // sum of contact force magnitudes
-    N_TALLY = 9
-  };
+  // the sums for fix cell/servo (cell_tally.h)
+  void request_cell_tallies() override { tally_cell = 1; }
+  const CellTallies &cell_tallies() const override { return tallies; }
+  const double *contact_count() const override { return atom_contacts; }
 
   // indices of pvector (cumulative energies, J; read with compute pair thornton/yin)
   enum { DISSIPATION_FRICTION, DISSIPATION_BREAK, DISSIPATION_DAMPING, N_PVECTOR };
@@ -88,7 +84,6 @@ class PairThorntonYin : public tylmp_compat::PairWithHistory {
 
   double **damp_n, **damp_t;                     // damping ratios beta_n, beta_t; 0 = off
   int adhesive, damped;                          // chosen once per compute()
-  int generic_paths;                             // 1: never specialise (benchmarks)
   tycore::Isa isa;                               // build of the batch law (pair_style isa)
   double *maxrad_type;                           // largest radius per type (init_style)
 
@@ -115,8 +110,8 @@ class PairThorntonYin : public tylmp_compat::PairWithHistory {
                                                 const double fs[3]);
 
   int tally_cell;
-  double cell_tallies[N_TALLY];
-  double *contact_count;    // per atom (local after reverse communication)
+  CellTallies tallies;
+  double *atom_contacts;    // per atom (local after reverse communication)
   int nmax_count;
 
   void allocate();

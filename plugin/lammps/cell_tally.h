@@ -1,0 +1,41 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   Where pair thornton/yin and fix cell/servo meet: the sums the pair makes over the contacts
+   of each force evaluation for the servo, declared once. The fix finds the pair
+   (PairThorntonYin::cell_tally_source) and reads them through this interface.
+------------------------------------------------------------------------- */
+
+#ifndef LMP_TYLMP_CELL_TALLY_H
+#define LMP_TYLMP_CELL_TALLY_H
+
+namespace LAMMPS_NS {
+
+// per-rank sums over the contacts of the last force evaluation (each contact once)
+struct CellTallies {
+  enum {
+    STIFFNESS = 0,    // 6 entries xx yy zz xy xz yz: sum l^2 [k_N n_a^2 n_b^2 +
+                      // k_T (d_ab n_a^2 - n_a^2 n_b^2)], the affine stiffness (docs/theory.md §6.1)
+    CONTACTS = 6,     // number of contacts (touching pairs, tensile ones included)
+    SLIDING = 7,      // number of contacts at the sliding limit
+    FORCE = 8,        // sum of contact force magnitudes
+    SIZE = 9
+  };
+  double sum[SIZE];
+};
+
+// what the servo asks of the pair
+class CellTallySource {
+ public:
+  // make the tallies from the next force evaluation on (off again at the pair's init)
+  virtual void request_cell_tallies() = 0;
+  virtual const CellTallies &cell_tallies() const = 0;
+  // contacts per local atom of the last force evaluation (ghost contributions summed in);
+  // nullptr before the first tallied one
+  virtual const double *contact_count() const = 0;
+
+ protected:
+  ~CellTallySource() = default;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
