@@ -30,18 +30,27 @@ inline constexpr std::uint64_t cube_root_guess_offset = 0x2A9F76253119D328ULL;
 // cube root of x without a libm call, for the hot contact loop. Normal positive x: bit-trick
 // first guess (relative error < 3.3 %), two Halley steps (error ~ e^3 each: < 4e-5, then below
 // 1e-13) and one Newton step (quadratic: to round-off). Agrees with std::cbrt to a few ulps
-// (tests/core/test_jkr.cpp: FastCbrt, <= 1e-15 relative). Zero, negative, subnormal, inf and
-// NaN arguments go to std::cbrt.
+// (tests/core/test_fast_numerics.cpp: FastCbrt, <= 1e-15 relative). Zero, negative,
+// subnormal, inf and NaN arguments go to std::cbrt. From x = 2^1020 on, 2 y^3 and 2x of the
+// Halley steps would overflow (NaN at DBL_MAX): x is scaled by 2^-162 first and the root
+// back by 2^54 (both exact).
+inline constexpr double cube_root_huge = 0x1p1020, cube_root_huge_down = 0x1p-162,
+                        cube_root_huge_up = 0x1p54;
+
 inline double fast_cbrt(double x)
 {
   std::uint64_t bits;
   std::memcpy(&bits, &x, sizeof bits);
   const std::uint64_t biased_exponent = bits >> 52;    // includes the sign bit
   if (biased_exponent == 0 || biased_exponent >= 0x7ff) return std::cbrt(x);
+  const bool huge = x >= cube_root_huge;
+  const double xs = huge ? x * cube_root_huge_down : x;
+  std::memcpy(&bits, &xs, sizeof bits);
   bits = bits / 3 + cube_root_guess_offset;
   double y;
   std::memcpy(&y, &bits, sizeof y);
-  return refine_cube_root(x, y);
+  y = refine_cube_root(xs, y);
+  return huge ? y * cube_root_huge_up : y;
 }
 
 // Pc = 3 pi Gamma R*                                                 (docs/theory.md §0)

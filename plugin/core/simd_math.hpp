@@ -38,20 +38,22 @@ namespace detail {
 }    // namespace detail
 
 // cbrt(x) for x >= 0, bit for bit jkr::fast_cbrt on zero and positive normal numbers (the same
-// first guess from the bits, two Halley steps, one Newton step); subnormal x are scaled by
-// 2^162 first (within a few ulps of std::cbrt), +inf gives +inf. Not for x < 0 or NaN.
+// first guess from the bits, two Halley steps, one Newton step, x >= 2^1020 scaled down as
+// there); subnormal x are scaled by 2^162 first (within a few ulps of std::cbrt), +inf gives
+// +inf. Not for x < 0 or NaN.
 [[gnu::always_inline]] inline double simd_cbrt(double x)
 {
   constexpr double smallest_normal = 2.2250738585072014e-308, up = 0x1p162, down = 0x1p-54;
   const bool subnormal = x < smallest_normal;
-  const double xs = subnormal ? x * up : x;
+  const bool huge = x >= jkr::cube_root_huge;
+  const double xs = subnormal ? x * up : (huge ? x * jkr::cube_root_huge_down : x);
   std::uint64_t bits;
   std::memcpy(&bits, &xs, sizeof bits);
   bits = detail::divide_by_3(bits) + jkr::cube_root_guess_offset;
   double y;
   std::memcpy(&y, &bits, sizeof y);
   y = jkr::refine_cube_root(xs, y);
-  y = subnormal ? y * down : y;
+  y = subnormal ? y * down : (huge ? y * jkr::cube_root_huge_up : y);
   constexpr double inf = __builtin_inf();
   return ((x == 0.0) | (x == inf)) ? x : y;
 }

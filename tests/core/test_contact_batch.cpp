@@ -379,12 +379,19 @@ TEST(SimdCbrt, BitForBitFastCbrtInEveryBuild)
   for (int i = 0; i < n; ++i) x[i] = i % 2 ? std::pow(10.0, exponent(gen)) : unit(gen);
   x[0] = 0.0;
   x[1] = std::numeric_limits<double>::min();
-  x[2] = 1e307;    // (fast_cbrt's y^3 overflows near the largest double)
+  x[2] = 1e307;
   x[3] = 1.0;
+  // near the largest double, where 2 y^3 of the Halley steps overflowed (both scale x down)
+  x[4] = std::numeric_limits<double>::max();
+  x[5] = std::nextafter(0x1p1020, 0.0);
+  x[6] = 0x1p1020;
+  x[7] = 0.6 * std::numeric_limits<double>::max();
   for (Isa isa : supported_isas()) {
     tycore::cube_roots(x.data(), y.data(), n, isa);
     for (int i = 0; i < n; ++i)
       ASSERT_EQ(y[i], tycore::jkr::fast_cbrt(x[i])) << tycore::isa_name(isa) << " x = " << x[i];
+    for (int i = 4; i < 8; ++i)
+      EXPECT_NEAR(y[i], std::cbrt(x[i]), 1e-15 * std::cbrt(x[i])) << tycore::isa_name(isa);
     std::vector<double> special = {std::numeric_limits<double>::denorm_min(),
                                    1e3 * std::numeric_limits<double>::denorm_min(), 1e-310,
                                    std::numeric_limits<double>::infinity()};

@@ -37,6 +37,27 @@ TEST(FastCbrt, MatchesStdCbrtOverTheWholeNormalRange)
   EXPECT_LE(worst, kCbrtTol);
 }
 
+// the top of the range, where 2 y^3 in the Halley steps overflowed (NaN at DBL_MAX before the
+// argument was scaled down there)
+TEST(FastCbrt, MatchesStdCbrtUpToTheLargestDouble)
+{
+  const double largest = std::numeric_limits<double>::max();
+  double worst = 0.0;
+  for (double x : {largest, std::nextafter(largest, 0.0), 0x1p1020, std::nextafter(0x1p1020, 0.0),
+                   0.5 * largest, 1e307, 1e308})
+    worst = std::max(worst, rel(jkr::fast_cbrt(x), std::cbrt(x)));
+  std::mt19937_64 gen(99);
+  std::uniform_real_distribution<double> mantissa(1.0, 2.0);
+  for (int k = 0; k < 100000; ++k) {
+    const double x = std::ldexp(mantissa(gen), 1000 + k % 24);
+    worst = std::max(worst, rel(jkr::fast_cbrt(x), std::cbrt(x)));
+  }
+  EXPECT_LE(worst, kCbrtTol);
+  // cbrt(DBL_MAX) = 5.64380309412236197e102 (30-digit decimal arithmetic: Python's
+  // Decimal(1.7976931348623157e308) ** (Decimal(1) / 3))
+  EXPECT_NEAR(jkr::fast_cbrt(largest), 5.64380309412236197e102, 1e-15 * 5.64380309412236197e102);
+}
+
 TEST(FastCbrt, MatchesStdCbrtOnUnitIntervalAndExactCubes)
 {
   double worst = 0.0;
