@@ -134,7 +134,10 @@ class PairThorntonYin : public tylmp_compat::PairWithHistory, public CellTallySo
     double *slot[tycore::batch_lanes];
     double del[3][tycore::batch_lanes], share[tycore::batch_lanes];
   };
-  std::vector<std::unique_ptr<Batch>> batches;    // per type pair i <= j, made on first use
+  // one batch per type pair i <= j (advance_batch takes one material pair), made on first use;
+  // with one type the contacts reach the atoms in neighbour-list order, with several the
+  // forces on an atom add in another order (the same to round-off)
+  std::vector<std::unique_ptr<Batch>> batches;
   struct Sums {
     double friction, breaks, damping;
   };

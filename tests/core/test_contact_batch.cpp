@@ -8,6 +8,8 @@
 //  * the rest of the step: viscous damping, the servo's affine-stiffness tally
 //    (docs/theory.md §6.1), stored energy, first touch (§1.3) and separation (§1.2, §3.2),
 //    against their formulas, and the vector builds against the scalar build to the last bit;
+//  * the setup pass's entry forces_without_step (forces with the history kept) against the
+//    JKR force, the damping formulas and the Coulomb limit;
 //  * the lane-wide cube root against jkr::fast_cbrt (bit for bit) and std::cbrt.
 #include "contact_batch.hpp"
 #include "contact_kernel.hpp"
@@ -347,6 +349,71 @@ TEST_P(BatchLaw, FirstTouchAndSeparation)
   EXPECT_EQ(b->break_energy[2], 0.0);
   EXPECT_LT(b->P[2], 0.0);    // tensile, near the break
   EXPECT_GT(b->contact_radius[2], tycore::jkr::break_radius(R, kEstar, Gamma));
+}
+
+// The setup pass (tycore::forces_without_step): forces at the overlap with the history kept,
+// sliding judged against the Coulomb limit mu (P + 2Pc) of the mu in force (docs/theory.md §2),
+// nothing dissipated, a contact below delta_f forgotten without booking a break energy
+TEST(BatchForcesWithoutStep, ForcesAtTheOverlapHistoryKept)
+{
+  using namespace glass_pair;
+  const double Gamma = 0.6, R = kRstar, mu = 0.3;
+  const tycore::PairConstants k = tycore::pair_constants(coefficients(mu, Gamma));
+  const double delta = 1e-3 * R, delta_f = tycore::jkr::break_overlap(R, kEstar, Gamma);
+  const double a = tycore::jkr::contact_radius(delta, R, kEstar, Gamma);
+  const double P = tycore::jkr::normal_force(a, R, kEstar, Gamma);
+  const double limit = mu * (P + 2.0 * tycore::jkr::pull_off_force(Gamma, R));
+  tycore::BatchParameters p;
+  p.dt = kDt;
+  p.beta_n = 0.2;
+  p.beta_t = 0.1;
+  auto b = std::make_unique<ContactBatch>();
+  contact_paths::Step s{};
+  s.n = Eigen::Vector3d(0.0, 0.0, 1.0);
+  s.ds = Eigen::Vector3d(-2.0e-9, 0.0, 0.0);    // vt = (1e-9, 0, 0)
+  s.twist = 0.0;
+  s.delta = delta;
+  tycore::ContactHistory h[3];
+  for (int lane = 0; lane < 3; ++lane) {
+    tycore::begin_contact(h[lane], P, true);
+    h[lane].peeling = 0.0;
+    h[lane].radius = 1.01 * a;    // a warm start near the answer
+    h[lane].stored_energy = 1e-15;
+  }
+  h[0].T[0] = 0.5 * limit;    // inside the limit
+  h[1].T[0] = 1.5 * limit;    // beyond it (a smaller mu since the last step)
+  for (int lane = 0; lane < 3; ++lane) {
+    set_lane(*b, lane, s, R, h[lane]);
+    b->m_star[lane] = 1e-9;
+    b->vn[lane] = -1e-6;
+  }
+  b->delta[2] = 1.01 * delta_f;    // below the break overlap
+  tycore::forces_without_step<true, true>(*b, 3, k, p);
+
+  for (int lane = 0; lane < 2; ++lane) {
+    EXPECT_NEAR(b->contact_radius[lane], a, 1e-13 * a);
+    EXPECT_NEAR(b->P[lane], P, 1e-12 * P);
+    const tycore::ContactHistory kept = tycore::stored_history(*b, lane);
+    for (int m = 0; m < tycore::history_size; ++m)
+      EXPECT_EQ((&kept.T[0])[m], (&h[lane].T[0])[m]) << "lane " << lane << " history " << m;
+    EXPECT_EQ(b->dissipation[lane], 0.0);
+    EXPECT_EQ(b->damping_dissipation[lane], 0.0);
+    EXPECT_EQ(b->break_energy[lane], 0.0);
+    // the applied force: P - eta_n vn along n, T - eta_t vt in the plane (damping as a step)
+    const double eta_n = 2.0 * 0.2 * std::sqrt(1e-9 * 2.0 * kEstar * b->contact_radius[lane]);
+    const double eta_t = 2.0 * 0.1 * std::sqrt(1e-9 * 8.0 * kGstar * b->contact_radius[lane]);
+    double Fn, fs[3];
+    tycore::force_parts<true>(*b, lane, k.c, p, Fn, fs);
+    EXPECT_NEAR(Fn, P + eta_n * 1e-6, 1e-12 * P);
+    EXPECT_NEAR(fs[0], h[lane].T[0] - eta_t * 1e-9, 1e-12 * h[lane].T[0]);
+    EXPECT_EQ(b->force[2][lane], Fn);
+    EXPECT_EQ(b->force[0][lane], fs[0]);
+  }
+  EXPECT_EQ(b->slides[0], 0.0);
+  EXPECT_EQ(b->slides[1], 1.0);
+  EXPECT_EQ(b->broken[2], 1.0);
+  EXPECT_EQ(b->break_energy[2], 0.0);    // no step: no energy booked
+  for (int d = 0; d < 3; ++d) EXPECT_EQ(b->force[d][2], 0.0);
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryIsaOfThisProcessor, BatchLaw, ::testing::ValuesIn(supported_isas()),
