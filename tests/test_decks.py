@@ -646,3 +646,34 @@ def test_specimen_that_cannot_be_stored_is_an_error(tmp_path):
     assert (f"ERROR: cannot store the specimen {path.relative_to(tmp_path)} ([Errno 21] Is a "
             "directory") in out
     assert not path.exists() and not os.path.exists(str(path) + ".json")
+
+
+def test_reproduce_runs_resumes_and_draws(tmp_path, specimens):
+    """`tyanalysis reproduce`: the specimens prepared first (here found in its directory and
+    reused), the runs side by side, each record run to its end, the figures drawn from them;
+    a second call finds the records complete and runs nothing again."""
+    shutil.copytree(specimens, tmp_path / "tylmp_specimens")
+    args = ["reproduce", "--scale", "quick", "--dir", str(tmp_path), "--jobs", "2",
+            "--inputs", os.path.join(REPO, "inputs"), "--only", "cdst", "plane_strain_cw",
+            "plane_strain_ccw"]
+    out = cli(*args, cwd=tmp_path)
+    assert "1 preparations, then 3 runs, 2 at a time" in out
+    assert "reusing specimen tylmp_specimens/dense_quick.restart" in (
+        tmp_path / "prepare_dense.log").read_text()
+    for rec in ("cdst_paper.csv", "plane_strain_cw_paper.csv", "plane_strain_ccw_paper.csv"):
+        data, _ = read_csv(tmp_path / rec)
+        assert data["progress"][-1] == pytest.approx(1.0)
+        rows = np.arange(len(data["p"]))
+        assert p_held(data, rows > len(rows) // 10) < 0.01    # the servo held p = 100 kPa
+    assert_png(tmp_path / "fig7_cdst_paper.png")
+    assert_png(tmp_path / "fig8_9_plane_strain_paper.png")
+    assert "not drawn (records missing): tyanalysis axisym" in out
+    again = cli(*args, cwd=tmp_path)
+    assert "0 runs" in again and again.count("is complete, not run again") == 3
+
+
+def test_reproduce_refuses_an_unknown_run(tmp_path):
+    proc = subprocess.run([PY, "-m", "tyanalysis", "reproduce", "--dir", str(tmp_path),
+                           "--only", "axisym_medium"], capture_output=True, text=True, env=_env())
+    assert proc.returncode != 0
+    assert "unknown run(s) axisym_medium; the runs are: axisym_dense, axisym_loose" in proc.stderr

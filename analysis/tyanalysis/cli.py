@@ -13,6 +13,7 @@ from . import compare, figures
 from . import invariants as inv
 from . import io, metrics, paper
 from . import micromechanics as micro
+from . import reproduce
 
 
 def _g(x):
@@ -452,7 +453,33 @@ def build_parser():
     p.add_argument("--radius", type=float, help="sphere radius (m), equal spheres: R* = R/2")
     p.add_argument("--gamma", type=float, default=0.0, help="interface energy Γ (J/m²) for JKR")
     p.set_defaults(func=cmd_two_spheres)
+    p = sub.add_parser("reproduce", help="run the paper's programme (every deck behind the figures "
+                       "of docs/validation.md) and draw its figures and summary table",
+                       description=reproduce.__doc__.split("\n\n")[0])
+    p.add_argument("--scale", choices=("paper", "quick"), default="paper",
+                   help="the decks' scale (paper: 3620 spheres, hours; quick: 500, minutes)")
+    p.add_argument("--dir", default="paper_runs", help="run directory: records, logs, specimens, "
+                   "figures (default paper_runs)")
+    p.add_argument("--jobs", type=int, help="runs at once (default: the number of cores)")
+    p.add_argument("--inputs", help="directory of the decks (default: the repository's inputs/, "
+                   "else the copy installed with tylmp)")
+    p.add_argument("--only", nargs="+", metavar="RUN", help="only these runs: " + ", ".join(
+        reproduce.PROGRAMME))
+    p.add_argument("--every", type=float, default=300.0,
+                   help="seconds between progress lines (300)")
+    p.add_argument("--dry-run", action="store_true", help="print the commands, run nothing")
+    p.set_defaults(func=cmd_reproduce)
     return ap
+
+
+def cmd_reproduce(a):
+    if a.jobs is not None and a.jobs < 1:
+        raise ValueError("--jobs must be at least 1")
+    if not a.every > 0:
+        raise ValueError("--every must be positive")
+    status = reproduce.main(a)
+    if status:
+        raise SystemExit(status)
 
 
 def main(argv=None):

@@ -1,0 +1,239 @@
+"""The paper's programme in one command: every run behind the figures of docs/validation.md,
+as many at once as there are cores, then every figure and the summary table.
+
+    tyanalysis reproduce [--scale paper|quick] [--dir paper_runs] [--jobs N] [--inputs DIR]
+                         [--only NAME ...] [--dry-run]
+
+The runs are the decks of inputs/ with the settings validation.md gives for each figure
+(PROGRAMME below). Both specimens are prepared first (one job each, in DIR/tylmp_specimens,
+reused by every later run and by a later call), then the shear runs start, longest first, at
+most `jobs` at a time (default: the number of cores). Each run writes its CSV record and a
+LAMMPS log in DIR; a run whose record already ends at its target (a finished earlier call)
+is not run again, so an interrupted call resumes where it stopped. Progress: a line when a
+run starts or ends, and every `--every` seconds the progress (fix cell/servo output 27) of each
+running record. Then the figures of validation.md (the `tyanalysis` commands, PNGs in DIR) and
+the summary table paper against ours (summary.md in DIR, `tyanalysis compare`).
+
+`--scale quick` runs the same programme on the decks' quick scale (500 spheres, ten times the
+paper's rates): minutes instead of hours, for checking the machinery.
+"""
+import importlib.util
+import os
+import shlex
+import subprocess
+import sys
+import time
+
+# name -> (deck, {variable: value}, CSV record written, weight = expected core-minutes at
+# paper scale, validation.md). The variables are those of validation.md's commands; `out`
+# gets the record's prefix.
+PROGRAMME = {
+    "axisym_dense": ("axisym.in", {"specimen": "dense", "rate": "1e-5"}, "axisym_dense_paper", 43),
+    "axisym_loose": ("axisym.in", {"specimen": "loose", "rate": "1e-5"}, "axisym_loose_paper", 46),
+    **{f"friction_mu{mu}": ("friction.in", {"mu": mu, "rate": "5e-5"},
+                            f"friction_paper_mu{mu}", w)
+       for mu, w in (("0", 5), ("0.1", 7), ("0.2", 9), ("0.3", 10), ("0.5", 14), ("1.0", 19))},
+    **{f"radial_dense_b{b}": ("radial.in", {"specimen": "dense", "b": b, "strain": "0.10",
+                                            "rate": "1e-5"}, f"radial_paper_b{b}", 16)
+       for b in ("0.25", "0.5", "0.75", "1")},
+    **{f"radial_loose_b{b}": ("radial.in", {"specimen": "loose", "b": b, "strain": "0.30",
+                                            "rate": "1e-5"}, f"radial_loose_paper_1e-5_b{b}", w)
+       for b, w in (("0.25", 16), ("0.5", 22), ("0.75", 18), ("1", 26))},
+    "cdst": ("cdst.in", {}, "cdst_paper", 3),
+    "plane_strain_cw": ("plane_strain.in", {"rotation": "cw"}, "plane_strain_cw_paper", 7),
+    "plane_strain_ccw": ("plane_strain.in", {"rotation": "ccw"}, "plane_strain_ccw_paper", 7),
+}
+SPECIMENS = ("dense", "loose")
+
+
+def record_name(name):
+    """CSV file of a run: the decks with a list variable add _mu<value> / _b<value>."""
+    deck, vars_, out, _ = PROGRAMME[name]
+    if deck == "friction.in":
+        return f"{out.rsplit('_mu', 1)[0]}_mu{vars_['mu']}.csv"
+    if deck == "radial.in":
+        return f"{out.rsplit('_b', 1)[0]}_b{vars_['b']}.csv"
+    return out + ".csv"
+
+
+def command(name, scale, inputs):
+    """lmp command line of a run (cwd: the run directory)."""
+    deck, vars_, out, _ = PROGRAMME[name]
+    if deck in ("friction.in", "radial.in"):    # these decks append _mu<v> / _b<v>
+        out = out.rsplit("_mu" if deck == "friction.in" else "_b", 1)[0]
+    cmd = ["lmp", "-in", os.path.join(inputs, deck), "-var", "scale", scale, "-var", "out", out]
+    for k, v in vars_.items():
+        if scale == "quick" and k == "rate":    # quick scale: the deck's own (faster) rates
+            continue
+        cmd += ["-var", k, v]
+    return cmd + ["-log", f"{name}.log", "-nocite"]
+
+
+def prepare_command(specimen, scale, inputs):
+    return ["lmp", "-in", os.path.join(inputs, "prepare_specimen.in"), "-var", "specimen",
+            specimen, "-var", "scale", scale, "-log", f"prepare_{specimen}.log", "-nocite"]
+
+
+def last_progress(path):
+    """progress column of the last complete row of a fix cell/servo record, or None."""
+    try:
+        with open(path, "rb") as fh:
+            header = fh.readline().decode().strip().split(",")
+            fh.seek(0, 2)
+            size = fh.tell()
+            fh.seek(max(0, size - 4096))
+            lines = fh.read().decode(errors="replace").split("\n")
+    except OSError:
+        return None
+    rows = [ln for ln in lines[:-1] if ln and not ln.startswith(header[0])]    # whole lines
+    if "progress" not in header or not rows:
+        return None
+    cells = rows[-1].split(",")
+    try:
+        return float(cells[header.index("progress")])
+    except (ValueError, IndexError):
+        return None
+
+
+def finished(path):
+    p = last_progress(path)
+    return p is not None and p >= 1.0 - 1e-9
+
+
+def find_inputs():
+    """The decks: the repository's inputs/ beside this package when run from a checkout, else
+    the copy installed with the tylmp package."""
+    here = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(
+        os.path.abspath(__file__)))), "inputs")
+    if os.path.isfile(os.path.join(here, "axisym.in")):
+        return here
+    spec = importlib.util.find_spec("tylmp")
+    if spec and spec.origin:
+        installed = os.path.join(os.path.dirname(spec.origin), "inputs")
+        if os.path.isfile(os.path.join(installed, "axisym.in")):
+            return installed
+    raise SystemExit("tyanalysis reproduce: no decks found (give --inputs DIR, the "
+                     "repository's inputs/)")
+
+
+def figure_commands(d):
+    """The tyanalysis commands of validation.md on the records in d (files that exist)."""
+    def f(name):
+        return os.path.join(d, name)
+    rec = {n: f(record_name(n)) for n in PROGRAMME}
+    cmds = [
+        ["axisym", rec["axisym_dense"], rec["axisym_loose"], "--labels", "dense", "loose",
+         "--out", f("fig1_2_axisym_paper.png")],
+        ["friction"] + [rec[n] for n in PROGRAMME if n.startswith("friction_")] +
+        ["--out", f("fig3_friction_paper.png")],
+        ["radial", rec["axisym_dense"]] + [rec[f"radial_dense_b{b}"] for b in
+                                           ("0.25", "0.5", "0.75", "1")] +
+        ["--labels", "b=0 (axisym)", "b=0.25", "b=0.5", "b=0.75", "b=1",
+         "--out", f("fig4_6_radial_dense_paper.png")],
+        ["radial", rec["axisym_loose"]] + [rec[f"radial_loose_b{b}"] for b in
+                                           ("0.25", "0.5", "0.75", "1")] +
+        ["--labels", "b=0 (axisym)", "b=0.25", "b=0.5", "b=0.75", "b=1",
+         "--out", f("fig4_6_radial_loose_paper.png")],
+        ["pi-plane", rec["cdst"], "--out", f("fig7_cdst_paper.png")],
+        ["pi-plane", rec["plane_strain_cw"], rec["plane_strain_ccw"],
+         "--out", f("fig8_9_plane_strain_paper.png")],
+        ["compare", "--dense", rec["axisym_dense"], "--loose", rec["axisym_loose"],
+         "--radial"] + [rec[f"radial_dense_b{b}"] for b in ("0.25", "0.5", "0.75", "1")] +
+        ["--cdst", rec["cdst"], "--plane-strain", rec["plane_strain_cw"],
+         "--out", f("summary.md")],
+    ]
+    return cmds
+
+
+class Job:
+    def __init__(self, name, cmd, record, weight):
+        self.name, self.cmd, self.record, self.weight = name, cmd, record, weight
+        self.proc = self.start = None
+
+
+def run_jobs(jobs, workdir, width, every, log):
+    """Run Job objects, at most `width` at once, longest first; returns the failed ones."""
+    pending = sorted(jobs, key=lambda j: -j.weight)
+    running, failed, done = [], [], 0
+    total = len(jobs)
+    last_report = time.monotonic()
+    while pending or running:
+        while pending and len(running) < width:
+            j = pending.pop(0)
+            j.start = time.monotonic()
+            j.proc = subprocess.Popen(j.cmd, cwd=workdir, stdout=subprocess.DEVNULL,
+                                      stderr=subprocess.STDOUT)
+            running.append(j)
+            log(f"started {j.name}: {shlex.join(j.cmd)}")
+        time.sleep(0.5)
+        for j in list(running):
+            rc = j.proc.poll()
+            if rc is None:
+                continue
+            running.remove(j)
+            done += 1
+            took = time.monotonic() - j.start
+            status = "done" if rc == 0 else f"FAILED (exit {rc}; see {j.cmd[-3]})"
+            if rc != 0:
+                failed.append(j)
+            log(f"[{done}/{total}] {status} {j.name} in {took / 60:.1f} min")
+        if running and time.monotonic() - last_report >= every:
+            last_report = time.monotonic()
+            parts = []
+            for j in running:
+                p = last_progress(os.path.join(workdir, j.record)) if j.record else None
+                parts.append(f"{j.name} {'preparing' if p is None else f'{100 * p:.0f} %'}")
+            log("running: " + ", ".join(parts))
+    return failed
+
+
+def main(args):
+    inputs = os.path.abspath(args.inputs) if args.inputs else find_inputs()
+    width = args.jobs or os.cpu_count() or 1
+    os.makedirs(args.dir, exist_ok=True)
+    workdir = os.path.abspath(args.dir)
+    names = list(PROGRAMME)
+    if args.only:
+        unknown = [n for n in args.only if n not in PROGRAMME]
+        if unknown:
+            raise SystemExit(f"tyanalysis reproduce: unknown run(s) {', '.join(unknown)}; "
+                             f"the runs are: {', '.join(PROGRAMME)}")
+        names = args.only
+    t0 = time.monotonic()
+
+    def log(text):
+        print(f"[{(time.monotonic() - t0) / 60:6.1f} min] {text}", flush=True)
+
+    prep = [Job(f"prepare_{s}", prepare_command(s, args.scale, inputs), None, 12)
+            for s in SPECIMENS if any(PROGRAMME[n][1].get("specimen", "dense") == s
+                                      for n in names)]
+    shear = []
+    for n in names:
+        record = record_name(n)
+        if finished(os.path.join(workdir, record)):
+            log(f"{n}: {record} is complete, not run again")
+            continue
+        shear.append(Job(n, command(n, args.scale, inputs), record, PROGRAMME[n][3]))
+    if args.dry_run:
+        for j in prep + shear:
+            print(shlex.join(j.cmd))
+        for c in figure_commands(workdir):
+            print(shlex.join(["tyanalysis"] + c))
+        return 0
+    log(f"{len(prep)} preparations, then {len(shear)} runs, {width} at a time, in {workdir}")
+    failed = run_jobs(prep, workdir, width, args.every, log)
+    if failed:
+        log("a preparation failed: no shear runs")
+        return 1
+    failed = run_jobs(shear, workdir, width, args.every, log)
+    from .cli import main as cli_main
+    drawn = 0
+    for c in figure_commands(workdir):
+        files = [a for a in c if a.endswith(".csv")]
+        if all(os.path.exists(p) for p in files):
+            cli_main(c)
+            drawn += 1
+        else:
+            log(f"not drawn (records missing): tyanalysis {c[0]} ... {c[-1]}")
+    log(f"{drawn} figures/tables in {workdir}; {len(failed)} run(s) failed")
+    return 1 if failed else 0
