@@ -22,7 +22,8 @@ every case then reads. All cases: `neighbor 1.35e-5 bin`, `neigh_modify every 1 
 yes`, velocities communicated to ghosts, `fix nve/sphere`, the same timestep (0.2 Rayleigh
 times of the smallest sphere, 0.0144 s with the scaled density 2.65e15 kg/m^3).
 
-Cases: thornton/yin with Gamma = 0.6 and 0; LAMMPS
+Cases: thornton/yin with Gamma = 0.6 and 0, each also through the scalar build of the law
+(`isa scalar`); LAMMPS
 `granular` jkr+mindlin and hertz/material+mindlin; LAMMPS `gran/hertz/history`; and
 "liggghts hertz+history": LIGGGHTS `pair_style gran model hertz tangential history` with
 the material in `fix property/global` (youngsModulus 70e9, poissonsRatio 0.3,
@@ -112,6 +113,12 @@ NEIGHBOR = "neighbor 1.35e-5 bin\nneigh_modify every 1 delay 0 check yes\n"
 CASES = {
     "thornton/yin G=0.6": f"pair_style thornton/yin\npair_coeff * * {E} {NU} {MU} {GAMMA}\n",
     "thornton/yin G=0": f"pair_style thornton/yin\npair_coeff * * {E} {NU} {MU} 0.0\n",
+    # the same law through the scalar build of the batch entry (pair_style keyword isa): what
+    # the SIMD builds gain in situ (the results are bitwise the same)
+    "thornton/yin G=0.6 isa scalar": (f"pair_style thornton/yin isa scalar\n"
+                                      f"pair_coeff * * {E} {NU} {MU} {GAMMA}\n"),
+    "thornton/yin G=0 isa scalar": (f"pair_style thornton/yin isa scalar\n"
+                                    f"pair_coeff * * {E} {NU} {MU} 0.0\n"),
     "granular jkr+mindlin": (f"pair_style granular\npair_coeff * * jkr {E} 0.0 {NU} {GAMMA} "
                              f"damping viscoelastic tangential mindlin NULL 0.0 {MU}\n"),
     "granular hertz/material+mindlin": (
