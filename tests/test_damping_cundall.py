@@ -90,3 +90,11 @@ def test_non_finite_coefficient_is_refused_naming_it(tmp_path, values, argument)
                        tmp_path)
     assert rc != 0 or "ERROR" in out
     assert f"fix damping/cundall: {argument} must be a finite number" in out, out[-2000:]
+
+
+def test_text_coefficient_is_refused_naming_it(tmp_path):
+    from lmprun import run_deck
+    rc, out = run_deck(one_sphere(5e-3, 5e-3, 5e-3) + "fix damp all damping/cundall abc 0.3\n",
+                       tmp_path)
+    assert rc != 0 or "ERROR" in out
+    assert "fix damping/cundall: lambda_linear must be a number, got 'abc'" in out, out[-2000:]

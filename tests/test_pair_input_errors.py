@@ -60,6 +60,10 @@ for _name, _args in COEFF_ARGUMENTS:
         CASES[f"{_name.split()[-1]}_{_value}"] = (
             dict(pair_coeff="pair_coeff * * " + _args.format(_value)),
             f"pair_coeff thornton/yin: {_name} must be a finite number, got '{_value}'")
+    # text that is no number at all is named too (utils::numeric would not say which)
+    CASES[f"{_name.split()[-1]}_text"] = (
+        dict(pair_coeff="pair_coeff * * " + _args.format("7O")),
+        f"pair_coeff thornton/yin: {_name} must be a number, got '7O'")
 
 
 @pytest.mark.parametrize("name", sorted(CASES))

@@ -16,6 +16,7 @@
 #include "cell_tally.h"
 
 #include "cell_statistics.hpp"
+#include "tylmp_numeric.h"
 #include "pi_plane.hpp"
 
 #include "atom.h"
@@ -90,14 +91,7 @@ static_assert(sizeof(OUTPUT_NAMES) / sizeof(OUTPUT_NAMES[0]) == FixCellServo::N_
 // and its message does not say which argument was wrong
 double finite_number(LAMMPS *lmp, const char *text, const std::string &what)
 {
-  char *end = nullptr;
-  const double value = strtod(text, &end);
-  if (end == text || *end != '\0')
-    lmp->error->all(FLERR, "fix cell/servo: {} must be a number, got '{}'", what, text);
-  if (!std::isfinite(value))
-    lmp->error->all(FLERR, "fix cell/servo: {} = '{}' is not a finite number (inf, nan or a "
-                    "value that overflows)", what, text);
-  return value;
+  return tylmp::finite_numeric(FLERR, text, "fix cell/servo: " + what, lmp);
 }
 
 int positive_integer(LAMMPS *lmp, const char *text, const std::string &what)

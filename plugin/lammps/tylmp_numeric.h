@@ -1,7 +1,7 @@
 /* -*- c++ -*- ----------------------------------------------------------
    Numbers of tylmp's input commands. utils::numeric turns "1e400" into inf and refuses
-   "inf" and "nan" without saying which argument it was; finite_numeric() refuses all three
-   naming the argument, and leaves any other text to utils::numeric.
+   "inf", "nan" and "abc" without saying which argument it was; finite_numeric() refuses all
+   of them naming the argument. The one parser of every style of the plugin.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_TYLMP_NUMERIC_H
@@ -24,12 +24,14 @@ inline double finite_numeric(const char *file, int line, const char *text, const
 {
   char *end = nullptr;
   const double parsed = std::strtod(text, &end);
-  if (end != text && *end == '\0' && !std::isfinite(parsed)) {
+  if (end == text || *end != '\0')
+    lmp->error->all(file, line, "{} must be a number, got '{}'", what, text);
+  if (!std::isfinite(parsed)) {
     const bool overflow = !std::isnan(parsed) && !std::strpbrk(text, "iI");    // not "inf"
     lmp->error->all(file, line, "{} must be a finite number, got '{}'{}", what, text,
                     overflow ? " (it overflows to infinity)" : "");
   }
-  return LAMMPS_NS::utils::numeric(file, line, text, false, lmp);
+  return parsed;
 }
 
 }    // namespace tylmp
