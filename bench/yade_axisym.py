@@ -37,8 +37,9 @@ columns it does not compute, e.g. sliding_fraction and the equilibrium flags, ar
 Z = 2C/N from the real interactions, Zm from YADE's utils.avgNumInteractions(skipFree=True)),
 written append-only and flushed row by row, every 10 steps up to step 2000 (to resolve the
 first 0.01 % of strain), then every --every steps, and at the last step; --check, a JSON file with the scene's
-solid fraction and contact counts at step 0 (the interactions of the first step are those of
-the step-0 positions) and YADE's steps per second of the run (wall clock of O.run).
+solid fraction, contact counts and mean stress at step 0 (the interactions of the first step
+are those of the step-0 positions), the largest tangential force and the mean ratio
+|F_s|/|F_n| of the last step, and YADE's steps per second of the run (wall clock of O.run).
 """
 import argparse
 import json
@@ -283,7 +284,14 @@ def main():
     steps = O.iter - steps0
     if test.fh:
         test.fh.close()
+    shear = [(i.phys.shearForce.norm(), i.phys.normalForce.norm()) for i in O.interactions
+             if i.isReal]
     result = {"step0": state0, "law": args.law, "dt": O.dt, "steps": O.iter,
+              # tangential forces of the last step: Law2_ScGeom_MindlinPhys_MindlinDeresiewitz
+              # of YADE 2023.02a applies none (docs/fidelity.md, "Cross-check against YADE")
+              "end_max_shear_force_N": max((fs for fs, _ in shear), default=0.0),
+              "end_mean_shear_to_normal": (sum(fs / fn for fs, fn in shear if fn > 0)
+                                           / max(1, sum(1 for _, fn in shear if fn > 0))),
               "wall_s": wall, "steps_per_s": steps / wall if wall > 0 else None,
               "eps_d13_end": float(test.strains()[0] - test.strains()[2])}
     print("yade_axisym:", json.dumps(result), flush=True)

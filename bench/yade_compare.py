@@ -6,8 +6,9 @@ fix cell/servo column layout.
     /usr/bin/python3 bench/yade_compare.py --ref LABEL=CSV --other LABEL=CSV [--other ...]
         [--out bench/results/yade_axisym]
 
-Writes OUT.json (per run: q at eps1 - eps3 = 0.01 % and 0.1 %, peak sinphi and the strain
-where it occurs, eps_v at 5 % and 10 %, Z and Zm at 0, 1, 5 and 10 %, p held; and every
+Writes OUT.json (per run: q at eps1 - eps3 = 0.01 %, 0.1 % and 0.285 %, peak sinphi, the strain
+where it occurs and the strain range where sinphi is within 1 % of it, eps_v at 5 % and 10 %,
+the largest dilation rate -d eps_v/d(eps1 - eps3) over intervals of 0.25 % and where, Z and Zm at 0, 1, 5 and 10 %, p held; and every
 other run's differences from --ref), OUT_curves.csv (q/p, eps_v, Z, Zm against eps1 - eps3 of
 every run, one long table: run, eps_d13, q_over_p, eps_v, Z, Zm) and OUT.png (q/p, eps_v, Z
 against eps1 - eps3, and the first 0.5 % of q). A response a run does not reach is null.
@@ -25,9 +26,10 @@ from tyanalysis import metrics  # noqa: E402
 from tyanalysis.io import read_servo_csv, write_json  # noqa: E402
 
 NEEDED = ("step", "time", "eps1", "eps2", "eps3", "sig1", "sig2", "sig3", "Z", "Zm")
-Q_AT = (0.0001, 0.001)          # eps1 - eps3 of the initial-stiffness responses
+Q_AT = (0.0001, 0.001, 0.00285)  # eps1 - eps3 of the initial-stiffness responses (0.285 %: the paper's pre-strain)
 EPS_V_AT = (0.05, 0.10)
 Z_AT = (0.0, 0.01, 0.05, 0.10)
+DILATION_STEP = 0.0025      # intervals of eps1 - eps3 for the dilation rate
 
 
 def responses(path):
@@ -40,6 +42,9 @@ def responses(path):
            "eps_d13_end_pct": float(ed[-1] * 100),
            "sinphi_max": float(s[i]), "eps_d13_at_sinphi_max_pct": float(ed[i] * 100),
            "peak_inside_record": bool(i < len(s) - 1),
+           # the peak is broad: the strain range over which sinphi stays within 1 % of its maximum
+           "eps_d13_sinphi_within_1pct_from_pct": float(ed[np.argmax(s >= 0.99 * s[i])] * 100),
+           "eps_d13_sinphi_within_1pct_to_pct": float(ed[len(s) - 1 - np.argmax(s[::-1] >= 0.99 * s[i])] * 100),
            "p_min_kPa": float(np.min(d["p"]) / 1e3), "p_max_kPa": float(np.max(d["p"]) / 1e3),
            "lateral_mismatch_max_kPa": float(np.max(np.abs(t["sig2"] - t["sig3"])) / 1e3)}
     for x in Q_AT:
@@ -48,6 +53,13 @@ def responses(path):
     for x in EPS_V_AT:
         v = metrics.value_at(ed, ev, x)
         out[f"eps_v_at_{x * 100:g}pct_pct"] = None if v is None else v * 100
+    grid = np.arange(0.0, ed[-1], DILATION_STEP)
+    mono = np.maximum.accumulate(ed)
+    rate = -np.diff(np.interp(grid, mono, ev)) / DILATION_STEP
+    x_mid = 0.5 * (grid[1:] + grid[:-1])
+    k = int(np.argmax(rate))
+    out["dilation_rate_max"] = float(rate[k])
+    out["eps_d13_at_dilation_rate_max_pct"] = float(x_mid[k] * 100)
     for x in Z_AT:
         for col in ("Z", "Zm"):
             out[f"{col}_at_{x * 100:g}pct"] = metrics.value_at(ed, t[col], x) if x > 0 else float(t[col][0])
@@ -68,14 +80,14 @@ def plot(curves, png):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(2, 2, figsize=(10, 7.5))
-    for label, c in curves.items():
-        x = 100 * c["eps_d13"]
-        ax[0, 0].plot(x, c["q_over_p"], lw=1, label=label)
-        ax[0, 1].plot(x, 100 * c["eps_v"], lw=1, label=label)
-        ax[1, 0].plot(x, c["Z"], lw=1, label=f"{label} Z")
-        ax[1, 0].plot(x, c["Zm"], lw=1, ls="--", label=f"{label} Z_m")
+    for k, (label, c) in enumerate(curves.items()):
+        x, col = 100 * c["eps_d13"], f"C{k}"
+        ax[0, 0].plot(x, c["q_over_p"], lw=0.8, color=col, label=label)
+        ax[0, 1].plot(x, 100 * c["eps_v"], lw=0.8, color=col, label=label)
+        ax[1, 0].plot(x, c["Z"], lw=0.8, color=col, label=f"{label} Z")
+        ax[1, 0].plot(x, c["Zm"], lw=0.8, color=col, ls="--", label=f"{label} Z_m")
         early = x <= 0.5
-        ax[1, 1].plot(x[early], c["q"][early] / 1e3, lw=1, marker=".", ms=2, label=label)
+        ax[1, 1].plot(x[early], c["q"][early] / 1e3, lw=0.8, color=col, label=label)
     ax[0, 0].set_ylabel("q/p")
     ax[0, 1].set_ylabel("ε_v (%), compression > 0")
     ax[1, 0].set_ylabel("coordination")
