@@ -6,12 +6,13 @@ fix cell/servo column layout.
     /usr/bin/python3 bench/yade_compare.py --ref LABEL=CSV --other LABEL=CSV [--other ...]
         [--out bench/results/yade_axisym]
 
-Writes OUT.json (per run: q at eps1 - eps3 = 0.01 %, 0.1 % and 0.285 %, peak sinphi, the strain
-where it occurs and the strain range where sinphi is within 1 % of it, eps_v at 5 % and 10 %,
-the largest dilation rate -d eps_v/d(eps1 - eps3) over intervals of 0.25 % and where, Z and Zm at 0, 1, 5 and 10 %, p held; and every
-other run's differences from --ref), OUT_curves.csv (q/p, eps_v, Z, Zm against eps1 - eps3 of
+Writes OUT.json (per run: the secant q/(eps1 - eps3) at 0.001 %, q at eps1 - eps3 = 0.01 %,
+0.1 % and 0.285 %, peak sinphi, the strain where it occurs and the strain range where sinphi
+is within 1 % of it, eps_v at 5 % and 10 %, the largest dilation rate -d eps_v/d(eps1 - eps3)
+over intervals of 0.25 % and where, Z and Zm at 0, 1, 5 and 10 %, the range of p past 0.5 %;
+and every other run's differences from --ref), OUT_curves.csv (q/p, eps_v, Z, Zm against eps1 - eps3 of
 every run, one long table: run, eps_d13, q_over_p, eps_v, Z, Zm) and OUT.png (q/p, eps_v, Z
-against eps1 - eps3, and the first 0.5 % of q). A response a run does not reach is null.
+against eps1 - eps3, and q over the first 0.05 %). A response a run does not reach is null.
 """
 import argparse
 import csv
@@ -30,6 +31,7 @@ Q_AT = (0.0001, 0.001, 0.00285)  # eps1 - eps3 of the initial-stiffness response
 EPS_V_AT = (0.05, 0.10)
 Z_AT = (0.0, 0.01, 0.05, 0.10)
 DILATION_STEP = 0.0025      # intervals of eps1 - eps3 for the dilation rate
+EARLY_PCT = 0.05            # the small-strain panel of the figure: q over the first 0.05 %
 
 
 def responses(path):
@@ -46,7 +48,11 @@ def responses(path):
            "eps_d13_sinphi_within_1pct_from_pct": float(ed[np.argmax(s >= 0.99 * s[i])] * 100),
            "eps_d13_sinphi_within_1pct_to_pct": float(ed[len(s) - 1 - np.argmax(s[::-1] >= 0.99 * s[i])] * 100),
            "p_min_kPa": float(np.min(d["p"]) / 1e3), "p_max_kPa": float(np.max(d["p"]) / 1e3),
+           "p_past_0.5pct_min_kPa": float(np.min(d["p"][ed > 0.005]) / 1e3),
+           "p_past_0.5pct_max_kPa": float(np.max(d["p"][ed > 0.005]) / 1e3),
            "lateral_mismatch_max_kPa": float(np.max(np.abs(t["sig2"] - t["sig3"])) / 1e3)}
+    v = metrics.value_at(ed, q, 1e-5)
+    out["secant_q_over_eps_d13_at_0.001pct_MPa"] = None if v is None else v / 1e-5 / 1e6
     for x in Q_AT:
         v = metrics.value_at(ed, q, x)
         out[f"q_at_{x * 100:g}pct_kPa"] = None if v is None else v / 1e3
@@ -86,13 +92,13 @@ def plot(curves, png):
         ax[0, 1].plot(x, 100 * c["eps_v"], lw=0.8, color=col, label=label)
         ax[1, 0].plot(x, c["Z"], lw=0.8, color=col, label=f"{label} Z")
         ax[1, 0].plot(x, c["Zm"], lw=0.8, color=col, ls="--", label=f"{label} Z_m")
-        early = x <= 0.5
+        early = x <= EARLY_PCT
         ax[1, 1].plot(x[early], c["q"][early] / 1e3, lw=0.8, color=col, label=label)
     ax[0, 0].set_ylabel("q/p")
     ax[0, 1].set_ylabel("ε_v (%), compression > 0")
     ax[1, 0].set_ylabel("coordination")
     ax[1, 1].set_ylabel("q (kPa)")
-    ax[1, 1].set_xlabel("ε1 − ε3 (%), first 0.5 %")
+    ax[1, 1].set_xlabel(f"ε1 − ε3 (%), first {EARLY_PCT:g} %")
     for a in ax.flat:
         a.grid(alpha=0.3)
         a.legend(fontsize=7)
