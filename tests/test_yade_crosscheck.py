@@ -78,3 +78,41 @@ def test_lammps_deck_at_step_0_is_the_data_file(data_state, tmp_path):
     assert t["Zm"][0] == pytest.approx(data_state["Zm"], rel=1e-9)
     assert t["p"][0] == pytest.approx(data_state["p"], rel=1e-9)
     assert t["sliding_fraction"][0] == 0        # fresh contacts: no tangential force yet
+
+
+def _load_compare():
+    import importlib.util
+    spec = importlib.util.spec_from_file_location(
+        "yade_compare", os.path.join(REPO, "bench", "yade_compare.py"))
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_compare_reads_the_responses_of_a_known_record(tmp_path):
+    # a synthetic axisymmetric record: eps1 - eps3 = d, eps_v = -0.3 d (constant dilation
+    # rate 0.3), p = 100 kPa, q = min(5e8 d, 90 kPa), Z falling linearly from 5 to 4 over 10 %
+    from tyanalysis.io import write_servo_csv
+    d = np.concatenate([np.linspace(0, 0.002, 201), np.linspace(0.0021, 0.12, 1190)])
+    ev = -0.3 * d
+    e3 = (ev - d) / 3
+    p, q = 1e5, np.minimum(5e8 * d, 9e4)
+    z = 5 - 10 * np.minimum(d, 0.1)
+    path = tmp_path / "synthetic.csv"
+    write_servo_csv(str(path), {"step": np.arange(len(d)) * 10.0, "time": np.arange(len(d)) * 0.1,
+                                "eps1": e3 + d, "eps2": e3, "eps3": e3,
+                                "sig1": p + 2 * q / 3, "sig2": p - q / 3, "sig3": p - q / 3,
+                                "Z": z, "Zm": z + 1})
+    out, _ = _load_compare().responses(str(path))
+    assert out["secant_q_over_eps_d13_at_0.001pct_MPa"] == pytest.approx(500, rel=1e-9)
+    assert out["q_at_0.01pct_kPa"] == pytest.approx(50, rel=1e-9)
+    assert out["q_at_0.1pct_kPa"] == pytest.approx(90, rel=1e-9)
+    assert out["sinphi_max"] == pytest.approx(9e4 / (2 * p + 9e4 / 3), rel=1e-12)
+    # sinphi = q/(2p + q/3) reaches 0.99 of its maximum at q = 88.96 kPa, d = 0.01779 %
+    assert out["eps_d13_sinphi_within_1pct_from_pct"] == pytest.approx(0.018, abs=0.0005)
+    assert out["eps_d13_sinphi_within_1pct_to_pct"] == pytest.approx(12.0, rel=1e-9)
+    assert out["eps_v_at_5pct_pct"] == pytest.approx(-1.5, rel=1e-9)
+    assert out["eps_v_at_10pct_pct"] == pytest.approx(-3.0, rel=1e-9)
+    assert out["dilation_rate_max"] == pytest.approx(0.3, rel=1e-9)
+    assert out["Z_at_5pct"] == pytest.approx(4.5, rel=1e-9)
+    assert out["Zm_at_1pct"] == pytest.approx(5.9, rel=1e-9)
