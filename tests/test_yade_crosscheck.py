@@ -1,0 +1,118 @@
+"""The YADE cross-check (docs/fidelity.md, "Cross-check against YADE"): both engines start from
+the same specimen. YADE's scene (bench/yade_axisym.py) and the LAMMPS deck
+(bench/yade_axisym.in) must hold, at step 0, the solid fraction, contacts and mean stress of
+the data file, computed here independently: contacts as geometric overlaps by a periodic
+KD-tree (tyanalysis.metrics.contacts), the stress as the Love-Weber mean stress of Hertz
+forces F = (4/3) E* sqrt(R*) delta^(3/2) on those overlaps (Gamma = 0, no tangential force at a
+fresh start). The YADE test is skipped without `yade` (Debian: apt-get install yade)."""
+import json
+import os
+import shutil
+import subprocess
+
+import numpy as np
+import pytest
+
+from tyanalysis import metrics
+from tyanalysis.io import read_servo_csv, read_sphere_data
+
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+DATA = os.path.join(REPO, "bench", "data", "dense_paper_100kPa.data")
+E, NU = 70e9, 0.3
+
+
+@pytest.fixture(scope="module")
+def data_state():
+    lo, hi, _, d, x = read_sphere_data(DATA)
+    box = hi - lo
+    i, j, rel = metrics.contacts(box, d, x - lo)
+    co = metrics.coordination(metrics.counts_per_sphere(i, j, len(d)))
+    r = 0.5 * d
+    sumr = r[i] + r[j]
+    delta = rel * sumr
+    e_star = E / (2 * (1 - NU ** 2))
+    force = 4.0 / 3.0 * e_star * np.sqrt(r[i] * r[j] / sumr) * delta ** 1.5
+    volume = float(np.prod(box))
+    p = float(np.sum(force * (sumr - delta))) / (3 * volume)
+    phi = float(np.sum(np.pi / 6 * d ** 3)) / volume
+    return {"solid_fraction": phi, "two_C": 2 * len(i), "N0": co["N0"], "N1": co["N1"],
+            "Z": co["Z"], "Zm": co["Zm"], "p": p}
+
+
+def test_data_file_state_is_the_documented_one(data_state):
+    # docs/fidelity.md, "Coordination": phi 0.6490, 2C = 19316, N0 = 361, N1 = 18; the data
+    # file's preparation ended at a virial pressure of 99999.20 Pa (bench/data/README.md)
+    assert round(data_state["solid_fraction"], 4) == 0.6490
+    assert (data_state["two_C"], data_state["N0"], data_state["N1"]) == (19316, 361, 18)
+    assert data_state["p"] == pytest.approx(99999.20, abs=0.01)
+
+
+@pytest.mark.skipif(shutil.which("yade") is None, reason="yade not installed (apt-get install yade)")
+def test_yade_scene_at_step_0_is_the_data_file(data_state, tmp_path):
+    out = tmp_path / "check.json"
+    proc = subprocess.run(
+        ["yade", "-n", "-x", os.path.join(REPO, "bench", "yade_axisym.py"), "--max-steps", "1",
+         "--check", str(out)], cwd=str(tmp_path), capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 0 and out.exists(), proc.stdout[-2000:] + proc.stderr[-2000:]
+    s0 = json.loads(out.read_text())["step0"]
+    assert s0["solid_fraction"] == pytest.approx(data_state["solid_fraction"], rel=1e-12)
+    for key in ("two_C", "N0", "N1"):
+        assert s0[key] == data_state[key], key
+    assert s0["Zm"] == pytest.approx(data_state["Zm"], rel=1e-12)
+    # Hertz normal law of Ip2_FrictMat_FrictMat_MindlinPhys = the closed form; the cell has
+    # moved by one step (strain 7e-7) when YADE's stress is read
+    assert s0["p"] == pytest.approx(data_state["p"], rel=1e-5)
+
+
+def test_lammps_deck_at_step_0_is_the_data_file(data_state, tmp_path):
+    prefix = tmp_path / "start"
+    proc = subprocess.run(
+        ["lmp", "-in", "bench/yade_axisym.in", "-log", "none", "-nocite", "-var", "out",
+         str(prefix), "-var", "strain", "1e-6"], cwd=REPO, capture_output=True, text=True,
+        timeout=600)
+    assert proc.returncode == 0 and "ERROR" not in proc.stdout, proc.stdout[-3000:]
+    t = read_servo_csv(f"{prefix}.csv")
+    assert t["step"][0] == 0
+    assert t["solid_fraction"][0] == pytest.approx(data_state["solid_fraction"], rel=1e-9)
+    assert t["Z"][0] * 3620 == pytest.approx(data_state["two_C"], abs=1e-6)
+    assert t["Zm"][0] == pytest.approx(data_state["Zm"], rel=1e-9)
+    assert t["p"][0] == pytest.approx(data_state["p"], rel=1e-9)
+    assert t["sliding_fraction"][0] == 0        # fresh contacts: no tangential force yet
+
+
+def _load_compare():
+    import importlib.util
+    spec = importlib.util.spec_from_file_location(
+        "yade_compare", os.path.join(REPO, "bench", "yade_compare.py"))
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_compare_reads_the_responses_of_a_known_record(tmp_path):
+    # a synthetic axisymmetric record: eps1 - eps3 = d, eps_v = -0.3 d (constant dilation
+    # rate 0.3), p = 100 kPa, q = min(5e8 d, 90 kPa), Z falling linearly from 5 to 4 over 10 %
+    from tyanalysis.io import write_servo_csv
+    d = np.concatenate([np.linspace(0, 0.002, 201), np.linspace(0.0021, 0.12, 1190)])
+    ev = -0.3 * d
+    e3 = (ev - d) / 3
+    p, q = 1e5, np.minimum(5e8 * d, 9e4)
+    z = 5 - 10 * np.minimum(d, 0.1)
+    path = tmp_path / "synthetic.csv"
+    write_servo_csv(str(path), {"step": np.arange(len(d)) * 10.0, "time": np.arange(len(d)) * 0.1,
+                                "eps1": e3 + d, "eps2": e3, "eps3": e3,
+                                "sig1": p + 2 * q / 3, "sig2": p - q / 3, "sig3": p - q / 3,
+                                "Z": z, "Zm": z + 1})
+    out, _ = _load_compare().responses(str(path))
+    assert out["secant_q_over_eps_d13_at_0.001pct_MPa"] == pytest.approx(500, rel=1e-9)
+    assert out["q_at_0.01pct_kPa"] == pytest.approx(50, rel=1e-9)
+    assert out["q_at_0.1pct_kPa"] == pytest.approx(90, rel=1e-9)
+    assert out["sinphi_max"] == pytest.approx(9e4 / (2 * p + 9e4 / 3), rel=1e-12)
+    # sinphi = q/(2p + q/3) reaches 0.99 of its maximum at q = 88.96 kPa, d = 0.01779 %
+    assert out["eps_d13_sinphi_within_1pct_from_pct"] == pytest.approx(0.018, abs=0.0005)
+    assert out["eps_d13_sinphi_within_1pct_to_pct"] == pytest.approx(12.0, rel=1e-9)
+    assert out["eps_v_at_5pct_pct"] == pytest.approx(-1.5, rel=1e-9)
+    assert out["eps_v_at_10pct_pct"] == pytest.approx(-3.0, rel=1e-9)
+    assert out["dilation_rate_max"] == pytest.approx(0.3, rel=1e-9)
+    assert out["Z_at_5pct"] == pytest.approx(4.5, rel=1e-9)
+    assert out["Zm_at_1pct"] == pytest.approx(5.9, rel=1e-9)
