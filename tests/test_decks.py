@@ -499,18 +499,30 @@ def _complete(path):
     return os.path.isfile(path) and os.path.getsize(path) == _record(path)["bytes"]
 
 
-@pytest.mark.parametrize("deck,name,value,allowed", [
-    ("axisym", "specimen", "lose", "dense, loose"),
-    ("friction", "scale", "papers", "quick, paper"),
-    ("cdst", "rotation", "clockwise", "cw, ccw"),
-    ("plane_strain", "plane", "strain", "total, deviatoric"),
-    ("axisym", "distribution", "lognormal", "maxent, geometric, mean-only, volume-mean"),
-    ("radial", "prep_protocol", "fast", "damped, two_stage")])
-def test_unknown_choice_is_an_error(tmp_path, deck, name, value, allowed):
+@pytest.mark.parametrize("deck,name,value,message", [
+    (deck, name, value, f"unknown value; {name} is one of {allowed}")
+    for deck, name, value, allowed in [
+        ("axisym", "specimen", "lose", "dense, loose"),
+        ("friction", "scale", "papers", "quick, paper"),
+        ("cdst", "rotation", "clockwise", "cw, ccw"),
+        ("plane_strain", "plane", "strain", "total, deviatoric"),
+        ("axisym", "distribution", "lognormal", "maxent, geometric, mean-only, volume-mean"),
+        ("radial", "prep_protocol", "fast", "damped, two_stage")]] + [
+    # the numeric options (tylmp.decks.NUMBERS)
+    ("axisym", "seed", "-1", "must be at least 0; seed is the specimen generator's seed"),
+    ("axisym", "seed", "2.5", "not an integer; seed is the specimen generator's seed"),
+    ("radial", "nspheres", "50", "must be at least 100; nspheres is the number of spheres"),
+    ("cdst", "settle", "inf", "not an integer; settle is the steps of isotropic settling"),
+    ("plane_strain", "gamma", "nan", "not a finite number; gamma is the interface energy "
+                                     "during shear"),
+    ("cyclic", "gamma", "-0.1", "must be at least 0; gamma is the interface energy"),
+    ("friction", "prep_gamma", "1e400", "not a finite number; prep_gamma is the interface "
+                                        "energy during the preparation")])
+def test_bad_option_is_an_error(tmp_path, deck, name, value, message):
     os.symlink(os.path.join(REPO, "inputs"), tmp_path / "inputs")
     rc, out = _run(f"inputs/{deck}.in", tmp_path, {name: value})
     assert rc != 0
-    assert f"ERROR: -var {name} {value}: unknown value; {name} is one of {allowed}" in out
+    assert f"ERROR: -var {name} {value}: {message}" in out
     assert not (tmp_path / "tylmp_specimens").exists()      # nothing prepared
 
 
@@ -663,24 +675,6 @@ def _run_echo(deck, cwd, variables=None):
     return proc.returncode, proc.stdout + proc.stderr
 
 
-@pytest.mark.parametrize("deck,name,value,message", [
-    ("axisym", "seed", "-1", "must be at least 0; seed is the specimen generator's seed"),
-    ("axisym", "seed", "2.5", "not an integer; seed is the specimen generator's seed"),
-    ("radial", "nspheres", "50", "must be at least 100; nspheres is the number of spheres"),
-    ("cdst", "settle", "inf", "not an integer; settle is the steps of isotropic settling"),
-    ("plane_strain", "gamma", "nan", "not a finite number; gamma is the interface energy "
-                                     "during shear"),
-    ("cyclic", "gamma", "-0.1", "must be at least 0; gamma is the interface energy"),
-    ("friction", "prep_gamma", "1e400", "not a finite number; prep_gamma is the interface "
-                                        "energy during the preparation")])
-def test_bad_number_is_an_error(tmp_path, deck, name, value, message):
-    os.symlink(os.path.join(REPO, "inputs"), tmp_path / "inputs")
-    rc, out = _run(f"inputs/{deck}.in", tmp_path, {name: value})
-    assert rc != 0
-    assert f"ERROR: -var {name} {value}: {message}" in out
-    assert not (tmp_path / "tylmp_specimens").exists()      # nothing prepared
-
-
 def test_generator_options_reach_the_specimen(tmp_path):
     """seed, distribution and nspheres go to tylmp.specimen.generate: the preparation's data
     file holds nspheres spheres of the geometric series' five sizes (middle size
@@ -737,7 +731,9 @@ def test_prep_gamma_reaches_the_preparation(tmp_path):
 def test_settle_runs_before_the_shear(tmp_path_factory, specimens):
     """-var settle N: N steps at p = 100 kPa with the shearing coefficients, then the shear
     test starts from the settled cell: its record begins N steps later than without settling,
-    at zero strain, with p held at 100 kPa through the settling (within 2 %)."""
+    at zero strain. Switching Gamma from 0 to 0.6 J/m2 lowers the contact stress (JKR contacts
+    carry less force than Hertz ones at the same overlap): without settling the shear starts
+    more than 3 % below 100 kPa, after settling within 1 % of it."""
     starts = {}
     for settle in (0, 2000):
         work = _workdir(tmp_path_factory, f"settle{settle}", specimens)
@@ -747,14 +743,18 @@ def test_settle_runs_before_the_shear(tmp_path_factory, specimens):
         data, _ = read_csv(work / "axisym.csv")
         starts[settle] = data["step"][0]
         assert data["eps1"][0] == 0 and data["eps_v"][0] == 0
-        assert abs(data["p"][0] - P0) < 0.02 * P0
+        if settle:
+            assert abs(data["p"][0] - P0) < 0.01 * P0
+        else:
+            assert data["p"][0] < 0.97 * P0
     assert starts[2000] == starts[0] + 2000
 
 
 def test_two_stage_preparation(tmp_path):
     """prep_protocol two_stage (loose, quick): stage 1 compresses the cell at the prescribed
-    strain rate (the paper's 1e-4 1/s on all three axes while p is far below 100 kPa), stage 2
-    holds p until the quasi-equilibrium criteria hold; one record, its own cached specimen."""
+    strain rate (the servo's cap, the paper's 1e-4 1/s: while p is below half the target the
+    fastest axis is at it and no axis is faster), stage 2 holds p until the quasi-equilibrium
+    criteria hold; one record, its own cached specimen."""
     os.symlink(os.path.join(REPO, "inputs"), tmp_path / "inputs")
     rc, out = _run("inputs/axisym.in", tmp_path,
                    dict(SHORT, specimen="loose", prep_protocol="two_stage"))
@@ -768,8 +768,12 @@ def test_two_stage_preparation(tmp_path):
     data, _ = read_csv(str(path) + ".csv")
     early = (data["step"] > 0) & (data["step"] < stage1) & (data["p"] < 0.5 * P0)
     assert early.sum() > 10
-    for axis in ("rate1", "rate2", "rate3"):
-        assert np.allclose(data[axis][early], 1e-4, rtol=1e-12)
+    # each axis is servo-driven towards sigma_i = 100 kPa, the servo part scaled down as a whole
+    # to the cap: the fastest axis at the cap in every such row, the mean above 0.8 x cap
+    rate = np.stack([data["rate1"][early], data["rate2"][early], data["rate3"][early]], axis=1)
+    assert np.all(rate > 0) and np.all(rate <= 1e-4 * (1 + 1e-12))
+    assert np.allclose(rate.max(axis=1), 1e-4, rtol=1e-12)
+    assert rate.mean() > 0.8e-4
     assert np.all(np.diff(data["step"]) > 0)          # one record, appended
     assert data["step"][-1] > stage1
     assert abs(data["p"][-1] - P0) < 5e-3 * P0
