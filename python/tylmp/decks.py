@@ -5,8 +5,9 @@ Every deck starts with
     python tylmp_deck input 1 SELF format p here "from tylmp.decks import begin as tylmp_deck"
     python tylmp_deck invoke
 
-which checks the deck's `-var` choices against CHOICES and sets `tylmp_common`, the directory
-of the shared fragments (inputs/common/*.in), then includes `${tylmp_common}/specimen.in`. That
+which checks the deck's `-var` choices against CHOICES and its numeric options against
+NUMBERS and sets `tylmp_common`, the directory of the shared fragments (inputs/common/*.in),
+then includes `${tylmp_common}/specimen.in`. That
 fragment calls `specimen_cache`, which decides whether the cached specimen can be reused, and
 inputs/common/prepare.in ends with `specimen_commit`, which moves the freshly written restart
 file onto its final name. docs/specimen.md ("Decks and the specimen cache") describes the cache.
