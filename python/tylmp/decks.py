@@ -25,8 +25,8 @@ import re
 
 from . import specimen as _specimen
 
-__all__ = ["CHOICES", "NUMBERS", "check_number", "begin", "specimen_cache", "specimen_commit", "check_cached",
-           "fragments_dir", "prep_key"]
+__all__ = ["CHOICES", "NUMBERS", "check_number", "begin", "specimen_cache", "specimen_commit",
+           "check_cached", "fragments_dir", "prep_key"]
 
 # the enumerated -var options of the decks: variable -> allowed values (first: the default)
 CHOICES = {
