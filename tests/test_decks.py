@@ -499,16 +499,30 @@ def _complete(path):
     return os.path.isfile(path) and os.path.getsize(path) == _record(path)["bytes"]
 
 
-@pytest.mark.parametrize("deck,name,value,allowed", [
-    ("axisym", "specimen", "lose", "dense, loose"),
-    ("friction", "scale", "papers", "quick, paper"),
-    ("cdst", "rotation", "clockwise", "cw, ccw"),
-    ("plane_strain", "plane", "strain", "total, deviatoric")])
-def test_unknown_choice_is_an_error(tmp_path, deck, name, value, allowed):
+@pytest.mark.parametrize("deck,name,value,message", [
+    (deck, name, value, f"unknown value; {name} is one of {allowed}")
+    for deck, name, value, allowed in [
+        ("axisym", "specimen", "lose", "dense, loose"),
+        ("friction", "scale", "papers", "quick, paper"),
+        ("cdst", "rotation", "clockwise", "cw, ccw"),
+        ("plane_strain", "plane", "strain", "total, deviatoric"),
+        ("axisym", "distribution", "lognormal", "maxent, geometric, mean-only, volume-mean"),
+        ("radial", "prep_protocol", "fast", "damped, two_stage")]] + [
+    # the numeric options (tylmp.decks.NUMBERS)
+    ("axisym", "seed", "-1", "must be at least 0; seed is the specimen generator's seed"),
+    ("axisym", "seed", "2.5", "not an integer; seed is the specimen generator's seed"),
+    ("radial", "nspheres", "50", "must be at least 100; nspheres is the number of spheres"),
+    ("cdst", "settle", "inf", "not an integer; settle is the steps of isotropic settling"),
+    ("plane_strain", "gamma", "nan", "not a finite number; gamma is the interface energy "
+                                     "during shear"),
+    ("cyclic", "gamma", "-0.1", "must be at least 0; gamma is the interface energy"),
+    ("friction", "prep_gamma", "1e400", "not a finite number; prep_gamma is the interface "
+                                        "energy during the preparation")])
+def test_bad_option_is_an_error(tmp_path, deck, name, value, message):
     os.symlink(os.path.join(REPO, "inputs"), tmp_path / "inputs")
     rc, out = _run(f"inputs/{deck}.in", tmp_path, {name: value})
     assert rc != 0
-    assert f"ERROR: -var {name} {value}: unknown value; {name} is one of {allowed}" in out
+    assert f"ERROR: -var {name} {value}: {message}" in out
     assert not (tmp_path / "tylmp_specimens").exists()      # nothing prepared
 
 
@@ -677,3 +691,120 @@ def test_reproduce_refuses_an_unknown_run(tmp_path):
                            "--only", "axisym_medium"], capture_output=True, text=True, env=_env())
     assert proc.returncode != 0
     assert "unknown run(s) axisym_medium; the runs are: axisym_dense, axisym_loose" in proc.stderr
+
+# ---------------------------------------------------------------------------------------------
+# the options of the trace study (issue 11, docs/fidelity.md): generator seed, size distribution
+# and specimen size, Gamma during preparation and shear, settling before the shear, and the
+# two-stage preparation
+
+
+def _run_echo(deck, cwd, variables=None):
+    """As _run, with the commands echoed after variable substitution."""
+    proc = subprocess.run(_lmp_cmd(deck, variables) + ["-echo", "screen"], cwd=str(cwd),
+                          capture_output=True, text=True, timeout=TIMEOUT, env=_env())
+    return proc.returncode, proc.stdout + proc.stderr
+
+
+def test_generator_options_reach_the_specimen(tmp_path):
+    """seed, distribution and nspheres go to tylmp.specimen.generate: the preparation's data
+    file holds nspheres spheres of the geometric series' five sizes (middle size
+    sqrt(0.135 x 0.4) mm, against 0.2675 mm for the default even spacing), number mean 0.26 mm,
+    at solid fraction 0.5 in its cell, placed by seed 2; the specimen is cached under its own
+    key with these settings."""
+    from tylmp import specimen
+    variables = dict(SHORT, **QUICK_PREP, seed=2, distribution="geometric", nspheres=300)
+    path, _ = _prepared_variant(tmp_path, variables)
+    assert path.name.startswith("dense_quick_")
+    settings = _record(path)["settings"]
+    assert (settings["seed"], settings["distribution"], settings["nspheres"]) == \
+        ("2", "geometric", "300")
+    box, diam, _, pos = specimen.read_data(str(path)[:-len(".restart")] + ".data")
+    assert len(diam) == 300
+    sizes = np.unique(diam)
+    assert len(sizes) == 5
+    assert sizes[0] == pytest.approx(0.135e-3, rel=1e-12)
+    assert sizes[-1] == pytest.approx(0.4e-3, rel=1e-12)
+    assert sizes[2] == pytest.approx(np.sqrt(0.135e-3 * 0.4e-3), rel=2e-3)
+    assert diam.mean() == pytest.approx(0.26e-3, rel=1e-9)
+    assert np.sum(np.pi * diam**3 / 6) / np.prod(box) == pytest.approx(0.5, rel=1e-9)
+    for seed, same in ((2, True), (1, False)):
+        _, _, expected = specimen.generate(300, 0.5, seed=seed, distribution="geometric")
+        assert np.array_equal(pos, expected) == same      # atom ids in the generator's order
+
+
+@pytest.mark.parametrize("deck,variables", [
+    ("axisym", SHORT),
+    ("radial", {"b": 0, "strain": 0.0005}),
+    ("cdst", {"prestrain": 0.0005, "sweep": 20}),
+    ("plane_strain", {"prestrain": 0.0002}),
+    ("cyclic", {"amplitude": 0.0002, "cycles": 1})])
+def test_shear_gamma_reaches_the_pair(tmp_path_factory, specimens, deck, variables):
+    """-var gamma G sets the interface energy of the shear's pair_coeff (mu = 0.3)."""
+    work = _workdir(tmp_path_factory, f"gamma_{deck}", specimens)
+    rc, out = _run_echo(f"inputs/{deck}.in", work, dict(variables, gamma=0.25))
+    _check(rc, out, f"{deck}.in -var gamma 0.25")
+    assert "pair_coeff      * * 70e9 0.3 0.3 0.25\n" in out
+    assert "pair_coeff      * * 70e9 0.3 0.3 0.6\n" not in out
+
+
+def test_prep_gamma_reaches_the_preparation(tmp_path):
+    """-var prep_gamma G sets the interface energy of the preparation's pair_coeff (dense:
+    mu = 0) and keys the cached specimen."""
+    os.symlink(os.path.join(REPO, "inputs"), tmp_path / "inputs")
+    rc, out = _run_echo("inputs/axisym.in", tmp_path, dict(SHORT, **QUICK_PREP, prep_gamma=0.3))
+    _check(rc, out, "axisym.in -var prep_gamma 0.3")
+    assert "pair_coeff      * * 70e9 0.3 0 0.3\n" in out        # mu_prep = 0
+    (path,) = (tmp_path / "tylmp_specimens").glob("dense_quick_*.restart")
+    assert _record(path)["settings"]["prep_gamma"] == "0.3"
+
+
+def test_settle_runs_before_the_shear(tmp_path_factory, specimens):
+    """-var settle N: N steps at p = 100 kPa with the shearing coefficients, then the shear
+    test starts from the settled cell: its record begins N steps later than without settling,
+    at zero strain. Switching Gamma from 0 to 0.6 J/m2 lowers the contact stress (JKR contacts
+    carry less force than Hertz ones at the same overlap): without settling the shear starts
+    more than 3 % below 100 kPa, after settling within 1 % of it."""
+    starts = {}
+    for settle in (0, 2000):
+        work = _workdir(tmp_path_factory, f"settle{settle}", specimens)
+        rc, out = _run("inputs/axisym.in", work, dict(SHORT, settle=settle))
+        _check(rc, out, f"axisym.in -var settle {settle}")
+        assert ("settling: 2000 steps at p = 100 kPa" in out) == (settle > 0)
+        data, _ = read_csv(work / "axisym.csv")
+        starts[settle] = data["step"][0]
+        assert data["eps1"][0] == 0 and data["eps_v"][0] == 0
+        if settle:
+            assert abs(data["p"][0] - P0) < 0.01 * P0
+        else:
+            assert data["p"][0] < 0.97 * P0
+    assert starts[2000] == starts[0] + 2000
+
+
+def test_two_stage_preparation(tmp_path):
+    """prep_protocol two_stage (loose, quick): stage 1 compresses the cell at the prescribed
+    strain rate (the servo's cap, the paper's 1e-4 1/s: while p is below half the target the
+    fastest axis is at it and no axis is faster), stage 2 holds p until the quasi-equilibrium
+    criteria hold; one record, its own cached specimen."""
+    os.symlink(os.path.join(REPO, "inputs"), tmp_path / "inputs")
+    rc, out = _run("inputs/axisym.in", tmp_path,
+                   dict(SHORT, specimen="loose", prep_protocol="two_stage"))
+    _check(rc, out, "axisym.in -var prep_protocol two_stage")
+    stage1 = int(re.search(r"two-stage preparation: stage 1 ended at step (\d+)", out).group(1))
+    assert "preparation reached quasi-equilibrium" in out
+    (path,) = (tmp_path / "tylmp_specimens").glob("loose_quick_*.restart")
+    settings = _record(path)["settings"]
+    assert (settings["prep_protocol"], settings["prep_max_rate"], settings["prep_damping"],
+            settings["prep_hold_damping"]) == ("two_stage", "1e-4", "0", "0.1")
+    data, _ = read_csv(str(path) + ".csv")
+    early = (data["step"] > 0) & (data["step"] < stage1) & (data["p"] < 0.5 * P0)
+    assert early.sum() > 10
+    # each axis is servo-driven towards sigma_i = 100 kPa, the servo part scaled down as a whole
+    # to the cap: the fastest axis at the cap in every such row, the mean above 0.8 x cap
+    rate = np.stack([data["rate1"][early], data["rate2"][early], data["rate3"][early]], axis=1)
+    assert np.all(rate > 0) and np.all(rate <= 1e-4 * (1 + 1e-12))
+    assert np.allclose(rate.max(axis=1), 1e-4, rtol=1e-12)
+    assert rate.mean() > 0.8e-4
+    assert np.all(np.diff(data["step"]) > 0)          # one record, appended
+    assert data["step"][-1] > stage1
+    assert abs(data["p"][-1] - P0) < 5e-3 * P0
+    assert data["unbalanced"][-1] < 0.05

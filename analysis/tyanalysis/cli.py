@@ -68,6 +68,7 @@ def cmd_axisym(a):
     for t, lab in zip(tables, labels):
         s = metrics.summarize(t)
         _kv(lab, [("q_peak_kPa", s["q_peak_kPa"]), ("eps_d13_at_q_peak_pct", s["eps_d13_at_q_peak_pct"]),
+                  ("eps_d13_q_plateau_mid_pct", s["eps_d13_q_plateau_mid_pct"]),
                   ("dev_stress_peak_kPa", s["dev_stress_peak_kPa"]), ("sinphi_max", s["sinphi_max"]),
                   ("sinphi_end", s["sinphi_end"]), ("void_ratio_end", s.get("void_ratio_end")),
                   ("void_ratio_at_30pct", s.get("void_ratio_at_30pct")),

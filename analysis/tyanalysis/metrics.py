@@ -110,6 +110,31 @@ def curve_spread(curves, levels):
     return worst
 
 
+PLATEAU_TOL = 0.01      # the peak plateau: q within 1 % of its largest value
+
+
+def peak_plateau(xs, ys, tol=PLATEAU_TOL):
+    """The strain range of a broad peak: (lo, hi, mid), lo and hi the first and the last x at
+    which y reaches (1 - tol) max y (crossings interpolated linearly between rows), mid their
+    midpoint. On a broad, noisy peak the position of the largest row wanders over the whole
+    plateau, while mid moves only as the plateau's edges do (docs/fidelity.md, response R2)."""
+    xs, ys = np.asarray(xs, float), np.asarray(ys, float)
+    ok = np.isfinite(xs) & np.isfinite(ys)
+    xs, ys = xs[ok], ys[ok]
+    if len(ys) == 0:
+        return None, None, None
+    level = (1.0 - tol) * float(np.max(ys))
+    above = np.flatnonzero(ys >= level)
+    i, j = int(above[0]), int(above[-1])
+
+    def crossing(a, b):         # rows a (below the level) and b (at or above it)
+        return float(xs[a] + (xs[b] - xs[a]) * (level - ys[a]) / (ys[b] - ys[a]))
+
+    lo = crossing(i - 1, i) if i > 0 else float(xs[i])
+    hi = crossing(j + 1, j) if j + 1 < len(ys) else float(xs[j])
+    return lo, hi, 0.5 * (lo + hi)
+
+
 def _f(x, scale=1.0):
     return None if x is None or not np.isfinite(x) else float(x) * scale
 
@@ -130,6 +155,9 @@ def summarize(table):
         "eps_v_end_pct": _f(d["eps_v"][-1], 100),
         "q_peak_kPa": _f(q[iq], 1e-3), "eps_d13_at_q_peak_pct": _f(d["eps_d13"][iq], 100),
         "eps_q_at_q_peak_pct": _f(d["eps_q"][iq], 100),
+        **dict(zip(("eps_d13_q_plateau_lo_pct", "eps_d13_q_plateau_hi_pct",
+                    "eps_d13_q_plateau_mid_pct"),
+                   (_f(v, 100) for v in peak_plateau(d["eps_d13"], q)))),
         "dev_stress_peak_kPa": _f(np.nanmax(d["dev_stress"]), 1e-3),
         "sinphi_max": _f(s[i_s]), "eps_d13_at_sinphi_max_pct": _f(d["eps_d13"][i_s], 100),
         "b_at_sinphi_max": _f(d["b"][i_s]), "lode_at_sinphi_max_deg": _f(d["lode_deg"][i_s]),

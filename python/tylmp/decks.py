@@ -5,8 +5,9 @@ Every deck starts with
     python tylmp_deck input 1 SELF format p here "from tylmp.decks import begin as tylmp_deck"
     python tylmp_deck invoke
 
-which checks the deck's `-var` choices against CHOICES and sets `tylmp_common`, the directory
-of the shared fragments (inputs/common/*.in), then includes `${tylmp_common}/specimen.in`. That
+which checks the deck's `-var` choices against CHOICES and its numeric options against
+NUMBERS and sets `tylmp_common`, the directory of the shared fragments (inputs/common/*.in),
+then includes `${tylmp_common}/specimen.in`. That
 fragment calls `specimen_cache`, which decides whether the cached specimen can be reused, and
 inputs/common/prepare.in ends with `specimen_commit`, which moves the freshly written restart
 file onto its final name. docs/specimen.md ("Decks and the specimen cache") describes the cache.
@@ -18,11 +19,14 @@ exit status 1 (LAMMPS 29 Sep 2021 has no library call to raise a LAMMPS error fr
 import ast
 import hashlib
 import json
+import math
 import os
 import re
 
-__all__ = ["CHOICES", "begin", "specimen_cache", "specimen_commit", "check_cached",
-           "fragments_dir", "prep_key"]
+from . import specimen as _specimen
+
+__all__ = ["CHOICES", "NUMBERS", "check_number", "begin", "specimen_cache", "specimen_commit",
+           "check_cached", "fragments_dir", "prep_key"]
 
 # the enumerated -var options of the decks: variable -> allowed values (first: the default)
 CHOICES = {
@@ -31,11 +35,28 @@ CHOICES = {
     "rotation": ("cw", "ccw"),
     "plane": ("total", "deviatoric"),
     "control": ("strain", "stress"),
+    # the size distributions of tylmp.specimen, its default first
+    "distribution": (_specimen.DEFAULT_DISTRIBUTION,) + tuple(
+        sorted(set(_specimen.DISTRIBUTIONS) - {_specimen.DEFAULT_DISTRIBUTION})),
+    "prep_protocol": ("damped", "two_stage"),
+}
+
+# the numeric -var options: variable -> (integer?, smallest allowed value, what it is); each
+# must be a finite number (inf, nan, 1e400 refused) not below its bound
+NUMBERS = {
+    "seed": (True, 0, "the specimen generator's seed"),
+    # at least 100: a 1.3 mm cell at phi0 = 0.5, 1.2 mm at phi = 0.66; fix cell/servo refuses a
+    # cell narrower than twice the neighbour cutoff (0.83 mm), which fewer than about 40
+    # spheres reach, and a few dozen spheres are no assembly
+    "nspheres": (True, 100, "the number of spheres"),
+    "settle": (True, 0, "the steps of isotropic settling at the shearing mu and Gamma"),
+    "gamma": (False, 0.0, "the interface energy during shear, J/m2"),
+    "prep_gamma": (False, 0.0, "the interface energy during the preparation, J/m2"),
 }
 
 # fragments whose text (comments and blank lines dropped) is part of the specimen key: the
 # preparation recipe and the numerics it uses
-RECIPE = ("prepare.in", "numerics.in")
+RECIPE = ("prepare.in", "prepare_damped.in", "prepare_two_stage.in", "numerics.in")
 # variables the cache itself sets or that do not change the prepared state
 NOT_KEYED = {"specimen_file", "specimen_tmp", "specimen_stem", "specimen_dir", "tylmp_common",
              "tylmp_prepare", "servo"}
@@ -132,15 +153,34 @@ def fragments_dir(deck=None):
     return os.path.join(os.path.dirname(os.path.abspath(__file__)), "inputs", "common")
 
 
+def check_number(name, value):
+    """None if `value` (a string) is allowed for the numeric option `name`, else why not."""
+    integer, lowest, what = NUMBERS[name]
+    try:
+        number = int(value) if integer else float(value)
+    except ValueError:
+        return (f"-var {name} {value}: not {'an integer' if integer else 'a number'}; "
+                f"{name} is {what}")
+    if not math.isfinite(number):
+        return f"-var {name} {value}: not a finite number; {name} is {what}"
+    if number < lowest:
+        return f"-var {name} {value}: must be at least {lowest:g}; {name} is {what}"
+    return None
+
+
 def begin(ptr):
-    """Check the deck's enumerated -var choices; set tylmp_common (unless the user did)."""
+    """Check the deck's enumerated and numeric -var options; set tylmp_common (unless the
+    user did)."""
     L = _lmp(ptr)
-    present = _defined(L, list(CHOICES) + ["tylmp_common"])
+    present = _defined(L, list(CHOICES) + list(NUMBERS) + ["tylmp_common"])
     values = _values(L, present)
     for name in present:
         if name in CHOICES and values[name] not in CHOICES[name]:
             _fail(L, f"-var {name} {values[name]}: unknown value; {name} is one of "
                      f"{', '.join(CHOICES[name])}")
+        why = check_number(name, values[name]) if name in NUMBERS else None
+        if why:
+            _fail(L, why)
     if "tylmp_common" in values:
         common = values["tylmp_common"]
     else:
@@ -189,8 +229,7 @@ def prep_key(settings, common):
     for name in RECIPE:
         with open(os.path.join(common, name), encoding="utf-8") as fh:
             h.update(_strip_comments(fh.read()).encode())
-    from . import specimen
-    h.update(_code_without_docstrings(specimen.__file__).encode())
+    h.update(_code_without_docstrings(_specimen.__file__).encode())
     return h.hexdigest()
 
 
