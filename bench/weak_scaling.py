@@ -59,10 +59,10 @@ def parse(out):
         raise RuntimeError(f"no loop time\n{out[-2000:]}")
     row = {"loop_s": float(m.group(1)), "procs": int(m.group(2)), "steps": int(m.group(3)),
            "atoms": int(m.group(4))}
-    for sec in SECTIONS:    # "Pair    | min | avg | max | %varavg | %total"
-        s = re.search(rf"^{sec}\s*\|\s*([0-9.eE+-]+)\s*\|\s*([0-9.eE+-]+)\s*\|\s*([0-9.eE+-]+)"
-                      rf"\s*\|\s*([0-9.eE+-]+)\s*\|\s*([0-9.eE+-]+)", out, re.M)
-        row[f"pct_{sec.lower()}"] = float(s.group(5)) if s else float("nan")
+    for sec in SECTIONS:    # "Pair | min | avg | max | %varavg | %total" ("Other": avg, %total)
+        s = re.search(rf"^{sec}\s*\|(.*)$", out, re.M)
+        total = s.group(1).split("|")[-1].strip() if s else ""
+        row[f"pct_{sec.lower()}"] = float(total) if total else float("nan")
     mem = re.search(r"Per MPI rank memory allocation \(min/avg/max\) = ([0-9.eE+-]+) \| "
                     r"([0-9.eE+-]+) \| ([0-9.eE+-]+) Mbytes", out)
     row["lammps_mbytes_per_rank"] = float(mem.group(3)) if mem else float("nan")
