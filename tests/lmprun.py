@@ -21,21 +21,27 @@ def reduce_local(name, *values, mode="sum"):
     return f'if "$(version) >= 20231121" then "{base} inputs local" else "{base}"\n'
 
 
-def two_spheres_box(x2, diameter, density, types=1):
-    """Two equal spheres in a 2 mm box with fixed boundaries: atom 1 (type 1) at the origin,
-    atom 2 (type `types`) at (x2, 0, 0); groups `one` and `two`."""
+def two_spheres_box(x2, diameter, density, types=1, second=None,
+                    block="-1e-3 1e-3 -1e-3 1e-3 -1e-3 1e-3"):
+    """Two spheres in a box with fixed boundaries (by default 2 mm wide): atom 1 (type 1) at
+    the origin, atom 2 (type `types`) at (x2, 0, 0); groups `one` and `two`. Both spheres get
+    `diameter` and `density`, or sphere 2 gets `second` = (diameter, density)."""
+    if second is None:
+        sizes = f"set atom * diameter {diameter!r} density {density!r}\n"
+    else:
+        sizes = (f"set atom 1 diameter {diameter!r} density {density!r}\n"
+                 f"set atom 2 diameter {second[0]!r} density {second[1]!r}\n")
     return f"""
 units si
 atom_style sphere
 atom_modify map array
 boundary f f f
 comm_modify vel yes
-region box block -1e-3 1e-3 -1e-3 1e-3 -1e-3 1e-3
+region box block {block}
 create_box {types} box
 create_atoms 1 single 0 0 0
 create_atoms {types} single {x2!r} 0 0
-set atom * diameter {diameter!r} density {density!r}
-group one id 1
+{sizes}group one id 1
 group two id 2
 """
 

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import jkr_reference as ref
-from lmprun import LOAD_TYLMP, read_table, run_ok
+from lmprun import LOAD_TYLMP, read_table, run_ok, two_spheres_box
 
 
 def impact_deck(R1, R2, E1, nu1, E2, nu2, rho1, rho2, mu, Gamma, v1, v2, dt, nsteps,
@@ -19,20 +19,8 @@ def impact_deck(R1, R2, E1, nu1, E2, nu2, rho1, rho2, mu, Gamma, v1, v2, dt, nst
     lo = -2 * R1 - 2 * gap
     hi = x2 + R2 + 2 * R1
     integrate = "fix nve one nve/sphere" if fixed_second else "fix nve all nve/sphere"
-    return f"""
-units si
-atom_style sphere
-atom_modify map array
-boundary f f f
-comm_modify vel yes
-region box block {lo} {hi} {-hi} {hi} {-hi} {hi}
-create_box 2 box
-create_atoms 1 single 0 0 0
-create_atoms 2 single {x2} 0 0
-set atom 1 diameter {2 * R1} density {rho1}
-set atom 2 diameter {2 * R2} density {rho2}
-group one id 1
-group two id 2
+    return two_spheres_box(x2, 2 * R1, rho1, types=2, second=(2 * R2, rho2),
+                           block=f"{lo} {hi} {-hi} {hi} {-hi} {hi}") + f"""\
 velocity one set {v1[0]} {v1[1]} {v1[2]}
 velocity two set {v2[0]} {v2[1]} {v2[2]}
 {LOAD_TYLMP}
