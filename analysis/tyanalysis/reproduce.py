@@ -24,43 +24,38 @@ import subprocess
 import sys
 import time
 
-# name -> (deck, {variable: value}, CSV record written, weight = expected core-minutes at
-# paper scale, validation.md). The variables are those of validation.md's commands; `out`
-# gets the record's prefix.
+# name -> (deck, {variable: value}, the deck's `out` prefix, weight = expected core-minutes at
+# paper scale, validation.md). The variables are those of validation.md's commands.
 PROGRAMME = {
     "axisym_dense": ("axisym.in", {"specimen": "dense", "rate": "1e-5"}, "axisym_dense_paper", 43),
     "axisym_loose": ("axisym.in", {"specimen": "loose", "rate": "1e-5"}, "axisym_loose_paper", 46),
-    **{f"friction_mu{mu}": ("friction.in", {"mu": mu, "rate": "5e-5"},
-                            f"friction_paper_mu{mu}", w)
+    **{f"friction_mu{mu}": ("friction.in", {"mu": mu, "rate": "5e-5"}, "friction_paper", w)
        for mu, w in (("0", 5), ("0.1", 7), ("0.2", 9), ("0.3", 10), ("0.5", 14), ("1.0", 19))},
     **{f"radial_dense_b{b}": ("radial.in", {"specimen": "dense", "b": b, "strain": "0.10",
-                                            "rate": "1e-5"}, f"radial_paper_b{b}", 16)
+                                            "rate": "1e-5"}, "radial_paper", 16)
        for b in ("0.25", "0.5", "0.75", "1")},
     **{f"radial_loose_b{b}": ("radial.in", {"specimen": "loose", "b": b, "strain": "0.30",
-                                            "rate": "1e-5"}, f"radial_loose_paper_1e-5_b{b}", w)
+                                            "rate": "1e-5"}, "radial_loose_paper_1e-5", w)
        for b, w in (("0.25", 16), ("0.5", 22), ("0.75", 18), ("1", 26))},
     "cdst": ("cdst.in", {}, "cdst_paper", 3),
     "plane_strain_cw": ("plane_strain.in", {"rotation": "cw"}, "plane_strain_cw_paper", 7),
     "plane_strain_ccw": ("plane_strain.in", {"rotation": "ccw"}, "plane_strain_ccw_paper", 7),
 }
 SPECIMENS = ("dense", "loose")
+# decks that run a list of values and name each record PREFIX_<variable><value>.csv
+LIST_VARIABLE = {"friction.in": "mu", "radial.in": "b"}
 
 
 def record_name(name):
-    """CSV file of a run: the decks with a list variable add _mu<value> / _b<value>."""
+    """CSV file of a run."""
     deck, vars_, out, _ = PROGRAMME[name]
-    if deck == "friction.in":
-        return f"{out.rsplit('_mu', 1)[0]}_mu{vars_['mu']}.csv"
-    if deck == "radial.in":
-        return f"{out.rsplit('_b', 1)[0]}_b{vars_['b']}.csv"
-    return out + ".csv"
+    key = LIST_VARIABLE.get(deck)
+    return f"{out}_{key}{vars_[key]}.csv" if key else out + ".csv"
 
 
 def command(name, scale, inputs):
     """lmp command line of a run (cwd: the run directory)."""
     deck, vars_, out, _ = PROGRAMME[name]
-    if deck in ("friction.in", "radial.in"):    # these decks append _mu<v> / _b<v>
-        out = out.rsplit("_mu" if deck == "friction.in" else "_b", 1)[0]
     cmd = ["lmp", "-in", os.path.join(inputs, deck), "-var", "scale", scale, "-var", "out", out]
     for k, v in vars_.items():
         if scale == "quick" and k == "rate":    # quick scale: the deck's own (faster) rates
