@@ -15,7 +15,7 @@
 // increments of 1e-10 m per step, after 50 warm-up steps; three scenes: Hertz-Mindlin
 // (Gamma = 0, contacts in micro-slip), adhesive in micro-slip, adhesive while peeling
 // (Gamma = 0.6 J/m^2, the state of contacts formed under adhesion in a static packing). Every
-// variant restarts from the same states; median of 15 timings of one sweep over all contacts.
+// variant restarts from the same states; median of 201 timings of one sweep over all contacts.
 #include "contact_batch.hpp"
 #include "contact_kernel.hpp"
 #include "thornton_yin.hpp"
@@ -37,7 +37,7 @@ struct Scene {
   bool peeling;
 };
 
-constexpr int kContacts = 4096, kRepeats = 15;
+constexpr int kContacts = 4096, kRepeats = 201;
 constexpr double kR = 6.5e-5;
 
 double median(std::vector<double> v)
