@@ -540,6 +540,9 @@ def test_cache_keyed_on_preparation_settings(tmp_path_factory, specimens):
     keyed = [f for f in os.listdir(work / "tylmp_specimens")
              if f.startswith("dense_quick_") and f.endswith(".restart")]
     assert len(keyed) == 1 and f"preparing specimen tylmp_specimens/{keyed[0]}: none cached" in out
+    # 3000 steps end the default two-stage preparation while it still compresses: no
+    # equilibrium check has run (the fix's criterion outputs are NaN), and the deck says so
+    assert "no equilibrium check yet: the compression had not reached p = 1e5 Pa" in out
     assert standard.stat().st_mtime == before
     assert _record(work / "tylmp_specimens" / keyed[0])["settings"]["prep_max_steps"] == "3000"
     rc, out = _run("inputs/axisym.in", work, dict(SHORT, **QUICK_PREP))
@@ -671,7 +674,7 @@ def test_reproduce_runs_resumes_and_draws(tmp_path, specimens):
             "--inputs", os.path.join(REPO, "inputs"), "--only", "cdst", "plane_strain_cw",
             "plane_strain_ccw"]
     out = cli(*args, cwd=tmp_path)
-    assert "1 preparations, then 3 runs, 2 at a time" in out
+    assert "1 preparations and 3 runs, 2 at a time" in out
     assert "reusing specimen tylmp_specimens/dense_quick.restart" in (
         tmp_path / "prepare_dense.log").read_text()
     for rec in ("cdst_paper.csv", "plane_strain_cw_paper.csv", "plane_strain_ccw_paper.csv"):
@@ -684,6 +687,35 @@ def test_reproduce_runs_resumes_and_draws(tmp_path, specimens):
     assert "not drawn (records missing): tyanalysis axisym" in out
     again = cli(*args, cwd=tmp_path)
     assert "0 runs" in again and again.count("is complete, not run again") == 3
+
+
+def test_reproduce_starts_a_run_when_its_specimen_is_ready(tmp_path):
+    """run_jobs: a run waits for its own preparation only (two slots: the loose run starts
+    while the dense preparation still goes), and the runs of a failed preparation are skipped
+    while the others run. The jobs are shell commands that stamp their start and end times."""
+    sys.path.insert(0, os.path.join(REPO, "analysis"))
+    from tyanalysis.reproduce import Job, run_jobs
+
+    def job(name, seconds, needs=None, rc=0, weight=1):
+        cmd = ["sh", "-c", f"date +%s.%N > {name}.start; sleep {seconds}; "
+                           f"date +%s.%N > {name}.end; exit {rc}"]
+        return Job(name, cmd, None, weight, needs)
+
+    dense = job("prep_dense", 1.5, weight=15)
+    loose = job("prep_loose", 0.2, weight=5)
+    broken = job("prep_broken", 0.1, rc=3)
+    runs = [job("run_dense", 0.2, dense, weight=40), job("run_loose", 0.2, loose),
+            job("run_broken", 0.2, broken)]
+    lines = []
+    failed = run_jobs([dense, loose, broken] + runs, str(tmp_path), 2, 60.0, lines.append)
+    t = {f.split(".")[0] + "." + f.split(".")[1]: float((tmp_path / f).read_text())
+         for f in os.listdir(tmp_path)}
+    assert t["run_loose.start"] >= t["prep_loose.end"]
+    assert t["run_loose.start"] < t["prep_dense.end"]        # did not wait for the dense one
+    assert t["run_dense.start"] >= t["prep_dense.end"]
+    assert "run_broken.start" not in t
+    assert {j.name: j.state for j in failed} == {"prep_broken": "failed", "run_broken": "skipped"}
+    assert any("skipped run_broken: prep_broken failed" in ln for ln in lines)
 
 
 def test_reproduce_refuses_an_unknown_run(tmp_path):

@@ -279,12 +279,16 @@ def cmd_compare(a):
     ours = {}
     if a.json:
         ours.update(compare.load_results(a.json))
+    axisym = {}
     for role in ("dense", "loose"):
         f = getattr(a, role)
         if f:
-            ours.update(compare.from_axisym(io.read_servo_csv(f), role))
-    if a.radial:
-        ours.update(compare.from_radial([io.read_servo_csv(f) for f in a.radial]))
+            axisym[role] = io.read_servo_csv(f)
+            ours.update(compare.from_axisym(axisym[role], role))
+    for role, files in (("dense", a.radial), ("loose", a.radial_loose)):
+        if files:
+            ours.update(compare.from_radial([io.read_servo_csv(f) for f in files], role,
+                                            axisym.get(role)))
     if a.cdst:
         ours.update(compare.from_nonradial(io.read_servo_csv(a.cdst), "cdst", a.p_target))
     if a.plane_strain:
@@ -436,7 +440,10 @@ def build_parser():
     p.add_argument("--json", help="JSON object of our values")
     p.add_argument("--dense", help="dense axisymmetric compression CSV")
     p.add_argument("--loose", help="loose axisymmetric compression CSV")
-    p.add_argument("--radial", nargs="+", help="radial b-test CSVs")
+    p.add_argument("--radial", nargs="+", help="radial b-test CSVs of the dense specimen "
+                   "(with --dense, its b = 0 joins them)")
+    p.add_argument("--radial-loose", nargs="+", help="radial b-test CSVs of the loose specimen "
+                   "(with --loose, its b = 0 joins them)")
     p.add_argument("--cdst", help="constant deviatoric strain test CSV")
     p.add_argument("--plane-strain", help="multi-axial plane-strain test CSV")
     p.add_argument("--p-target", type=float, default=100.0, help="target mean stress, kPa (100)")

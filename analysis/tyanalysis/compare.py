@@ -1,5 +1,5 @@
-"""The markdown comparison table (quantity | paper | ours | difference) of our records against
-the paper's numbers (tyanalysis/paper.py)."""
+"""The markdown comparison table (quantity | paper | ours | difference | band | inside) of our
+records against the paper's numbers and bands (tyanalysis/paper.py)."""
 import json
 import math
 
@@ -9,6 +9,7 @@ from . import invariants as inv
 from . import metrics, paper
 
 PAPER = paper.VALUES          # the paper's numbers: one table, tyanalysis/paper.py
+BANDS = paper.BANDS
 
 
 def _num(x):
@@ -27,29 +28,43 @@ def _fmt(x):
     return f"{x:.4g}"
 
 
-def rows(ours, paper=PAPER):
-    """(quantity, paper, ours, difference, source) for every paper entry and any extra key of
-    `ours`; difference = ours − paper (and relative, %)."""
+def _band(key, mine, bands):
+    """(band text, 'yes'/'no'/'—') of one quantity."""
+    if key not in bands:
+        return "—", "—"
+    lo, hi = bands[key]
+    text = f"> {_fmt(lo)}" if math.isinf(hi) else f"{_fmt(lo)}–{_fmt(hi)}"
+    if not _num(mine):
+        return text, "—"
+    return text, "yes" if lo <= mine <= hi else "no"
+
+
+def rows(ours, paper=PAPER, bands=BANDS):
+    """(quantity, paper, ours, difference, band, inside, source) for every paper entry and any
+    extra key of `ours`; difference = ours − paper (and relative, %); band and inside from
+    paper.BANDS."""
     out = []
     for key, (value, unit, source, note) in paper.items():
         mine = ours.get(key)
-        if _num(mine):
+        if _num(mine) and _num(value):
             diff = mine - value
             rel = f" ({100 * diff / value:+.1f} %)" if value else ""
             d = f"{diff:+.4g}{rel}"
         else:
             d = "—"
         label = f"{key} [{unit}]" if unit else key
-        out.append((label, _fmt(value), _fmt(mine), d, f"{source}: {note}"))
+        out.append((label, _fmt(value), _fmt(mine), d, *_band(key, mine, bands),
+                    f"{source}: {note}"))
     for key, mine in ours.items():
         if key not in paper:
-            out.append((key, "—", _fmt(mine), "—", "not reported in the paper"))
+            out.append((key, "—", _fmt(mine), "—", "—", "—", "not reported in the paper"))
     return out
 
 
-def markdown_table(ours, paper=PAPER):
-    lines = ["| quantity | paper | ours | difference | source |", "|---|---|---|---|---|"]
-    for r in rows(ours, paper):
+def markdown_table(ours, paper=PAPER, bands=BANDS):
+    lines = ["| quantity | paper | ours | difference | band | inside | source |",
+             "|---|---|---|---|---|---|---|"]
+    for r in rows(ours, paper, bands):
         lines.append("| " + " | ".join(r) + " |")
     return "\n".join(lines)
 
@@ -74,15 +89,31 @@ def from_axisym(table, role):
            f"void_ratio_30pct_{role}": s.get("void_ratio_at_30pct"),
            f"sinphi_max_{role}": s["sinphi_max"], f"sinphi_end_{role}": s["sinphi_end"],
            f"q_peak_{role}_kPa": s["q_peak_kPa"]}
+    # the dense peak: the midpoint of the range where q is within 1 % of its maximum; the loose
+    # "constant deviator stress from about 15 %": where q first reaches that range
+    # (metrics.peak_plateau; docs/fidelity.md, responses R2 and R3)
     if role == "dense":
-        out["eps_d13_at_peak_dense_pct"] = s["eps_d13_at_q_peak_pct"]
+        out["eps_d13_at_peak_dense_pct"] = s["eps_d13_q_plateau_mid_pct"]
+    else:
+        out["eps_d13_steady_loose_pct"] = s["eps_d13_q_plateau_lo_pct"]
     return {k: v for k, v in out.items() if v is not None}
 
 
-def from_radial(tables):
-    """b of the record with the largest sinphi_max."""
-    best = max((metrics.summarize(t) for t in tables), key=lambda s: s["sinphi_max"])
-    return {"b_at_max_sinphi": best["b_median"], "sinphi_max_radial": best["sinphi_max"]}
+def from_radial(tables, role="dense", compression=None):
+    """b of the record with the largest sinphi_max among the radial records `tables` (with the
+    axisymmetric compression record `compression`, b = 0, if given), and sinphi_max(b = 1)
+    minus sinphi_max(b = 0) when both are there. Keys of the dense set carry no suffix for b."""
+    radial = [metrics.summarize(t) for t in tables]
+    comp = ([metrics.summarize(compression)] if compression is not None
+            else [s for s in radial if abs(s["b_median"]) < 0.05])
+    best = max(radial + comp, key=lambda s: s["sinphi_max"])
+    suffix = "" if role == "dense" else f"_{role}"
+    out = {f"b_at_max_sinphi{suffix}": best["b_median"],
+           f"sinphi_max_radial{suffix}": best["sinphi_max"]}
+    ext = [s for s in radial if abs(s["b_median"] - 1.0) < 0.05]
+    if ext and comp:
+        out[f"extension_minus_compression_{role}"] = ext[0]["sinphi_max"] - comp[0]["sinphi_max"]
+    return out
 
 
 def prestrain_end(table, tol_deg=1e-6):

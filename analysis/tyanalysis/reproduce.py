@@ -5,9 +5,9 @@ as many at once as there are cores, then every figure and the summary table.
                          [--only NAME ...] [--dry-run]
 
 The runs are the decks of inputs/ with the settings validation.md gives for each figure
-(PROGRAMME below). Both specimens are prepared first (one job each, in DIR/tylmp_specimens,
-reused by every later run and by a later call), then the shear runs start, longest first, at
-most `jobs` at a time (default: the number of cores). Each run writes its CSV record and a
+(PROGRAMME below). Each specimen is prepared once (one job each, in DIR/tylmp_specimens,
+reused by every later run and by a later call); a shear run starts as soon as its specimen is
+ready, longest first, at most `jobs` runs at a time (default: the number of cores). Each run writes its CSV record and a
 LAMMPS log in DIR; a run whose record already ends at its target (a finished earlier call)
 is not run again, so an interrupted call resumes where it stopped. Progress: a line when a
 run starts or ends, and every `--every` seconds the progress (fix cell/servo output 27) of each
@@ -42,6 +42,14 @@ PROGRAMME = {
     "plane_strain_ccw": ("plane_strain.in", {"rotation": "ccw"}, "plane_strain_ccw_paper", 7),
 }
 SPECIMENS = ("dense", "loose")
+# expected core-minutes of each preparation at paper scale (the two-stage protocol,
+# docs/fidelity.md "Preparation protocol"): preparations start before any run
+PREP_WEIGHT = {"dense": 15, "loose": 5}
+
+
+def specimen_of(name):
+    """The specimen a run shears (the decks' default: dense)."""
+    return PROGRAMME[name][1].get("specimen", "dense")
 # decks that run a list of values and name each record PREFIX_<variable><value>.csv
 LIST_VARIABLE = {"friction.in": "mu", "radial.in": "b"}
 
@@ -134,6 +142,7 @@ def figure_commands(d):
          "--out", f("fig8_9_plane_strain_paper.png")],
         ["compare", "--dense", rec["axisym_dense"], "--loose", rec["axisym_loose"],
          "--radial"] + [rec[f"radial_dense_b{b}"] for b in ("0.25", "0.5", "0.75", "1")] +
+        ["--radial-loose"] + [rec[f"radial_loose_b{b}"] for b in ("0.25", "0.5", "0.75", "1")] +
         ["--cdst", rec["cdst"], "--plane-strain", rec["plane_strain_cw"],
          "--out", f("summary.md")],
     ]
@@ -141,20 +150,36 @@ def figure_commands(d):
 
 
 class Job:
-    def __init__(self, name, cmd, record, weight):
+    def __init__(self, name, cmd, record, weight, needs=None):
         self.name, self.cmd, self.record, self.weight = name, cmd, record, weight
+        self.needs = needs            # a Job that must have succeeded first, or None
         self.proc = self.start = None
+        self.state = "pending"        # pending, running, done, failed, skipped
 
 
 def run_jobs(jobs, workdir, width, every, log):
-    """Run Job objects, at most `width` at once, longest first; returns the failed ones."""
-    pending = sorted(jobs, key=lambda j: -j.weight)
+    """Run Job objects, at most `width` at once: of the jobs whose prerequisite has succeeded,
+    preparations first, then the longest; a job whose prerequisite failed is skipped. Returns
+    the failed and the skipped jobs."""
+    pending = sorted(jobs, key=lambda j: (j.needs is not None, -j.weight))
     running, failed, done = [], [], 0
     total = len(jobs)
     last_report = time.monotonic()
     while pending or running:
-        while pending and len(running) < width:
-            j = pending.pop(0)
+        for j in [j for j in pending if j.needs is not None and j.needs.state in ("failed",
+                                                                                   "skipped")]:
+            pending.remove(j)
+            j.state = "skipped"
+            failed.append(j)
+            done += 1
+            log(f"[{done}/{total}] skipped {j.name}: {j.needs.name} failed")
+        while len(running) < width:
+            ready = [j for j in pending if j.needs is None or j.needs.state == "done"]
+            if not ready:
+                break
+            j = ready[0]
+            pending.remove(j)
+            j.state = "running"
             j.start = time.monotonic()
             j.proc = subprocess.Popen(j.cmd, cwd=workdir, stdout=subprocess.DEVNULL,
                                       stderr=subprocess.STDOUT)
@@ -169,6 +194,7 @@ def run_jobs(jobs, workdir, width, every, log):
             done += 1
             took = time.monotonic() - j.start
             status = "done" if rc == 0 else f"FAILED (exit {rc}; see {j.cmd[-3]})"
+            j.state = "done" if rc == 0 else "failed"
             if rc != 0:
                 failed.append(j)
             log(f"[{done}/{total}] {status} {j.name} in {took / 60:.1f} min")
@@ -199,28 +225,24 @@ def main(args):
     def log(text):
         print(f"[{(time.monotonic() - t0) / 60:6.1f} min] {text}", flush=True)
 
-    prep = [Job(f"prepare_{s}", prepare_command(s, args.scale, inputs), None, 12)
-            for s in SPECIMENS if any(PROGRAMME[n][1].get("specimen", "dense") == s
-                                      for n in names)]
+    prep = {s: Job(f"prepare_{s}", prepare_command(s, args.scale, inputs), None, PREP_WEIGHT[s])
+            for s in SPECIMENS if any(specimen_of(n) == s for n in names)}
     shear = []
     for n in names:
         record = record_name(n)
         if finished(os.path.join(workdir, record)):
             log(f"{n}: {record} is complete, not run again")
             continue
-        shear.append(Job(n, command(n, args.scale, inputs), record, PROGRAMME[n][3]))
+        shear.append(Job(n, command(n, args.scale, inputs), record, PROGRAMME[n][3],
+                         needs=prep[specimen_of(n)]))
     if args.dry_run:
-        for j in prep + shear:
+        for j in list(prep.values()) + shear:
             print(shlex.join(j.cmd))
         for c in figure_commands(workdir):
             print(shlex.join(["tyanalysis"] + c))
         return 0
-    log(f"{len(prep)} preparations, then {len(shear)} runs, {width} at a time, in {workdir}")
-    failed = run_jobs(prep, workdir, width, args.every, log)
-    if failed:
-        log("a preparation failed: no shear runs")
-        return 1
-    failed = run_jobs(shear, workdir, width, args.every, log)
+    log(f"{len(prep)} preparations and {len(shear)} runs, {width} at a time, in {workdir}")
+    failed = run_jobs(list(prep.values()) + shear, workdir, width, args.every, log)
     from .cli import main as cli_main
     drawn = 0
     for c in figure_commands(workdir):

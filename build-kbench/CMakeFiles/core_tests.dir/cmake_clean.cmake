@@ -1,0 +1,40 @@
+file(REMOVE_RECURSE
+  "CMakeFiles/core_tests.dir/plugin/core/contact_batch.cpp.o"
+  "CMakeFiles/core_tests.dir/plugin/core/contact_batch.cpp.o.d"
+  "CMakeFiles/core_tests.dir/tests/core/test_cell_servo.cpp.o"
+  "CMakeFiles/core_tests.dir/tests/core/test_cell_servo.cpp.o.d"
+  "CMakeFiles/core_tests.dir/tests/core/test_cell_statistics.cpp.o"
+  "CMakeFiles/core_tests.dir/tests/core/test_cell_statistics.cpp.o.d"
+  "CMakeFiles/core_tests.dir/tests/core/test_contact_batch.cpp.o"
+  "CMakeFiles/core_tests.dir/tests/core/test_contact_batch.cpp.o.d"
+  "CMakeFiles/core_tests.dir/tests/core/test_contact_kernel.cpp.o"
+  "CMakeFiles/core_tests.dir/tests/core/test_contact_kernel.cpp.o.d"
+  "CMakeFiles/core_tests.dir/tests/core/test_csv_record.cpp.o"
+  "CMakeFiles/core_tests.dir/tests/core/test_csv_record.cpp.o.d"
+  "CMakeFiles/core_tests.dir/tests/core/test_fast_numerics.cpp.o"
+  "CMakeFiles/core_tests.dir/tests/core/test_fast_numerics.cpp.o.d"
+  "CMakeFiles/core_tests.dir/tests/core/test_hertz_lattice.cpp.o"
+  "CMakeFiles/core_tests.dir/tests/core/test_hertz_lattice.cpp.o.d"
+  "CMakeFiles/core_tests.dir/tests/core/test_jkr.cpp.o"
+  "CMakeFiles/core_tests.dir/tests/core/test_jkr.cpp.o.d"
+  "CMakeFiles/core_tests.dir/tests/core/test_law_domain.cpp.o"
+  "CMakeFiles/core_tests.dir/tests/core/test_law_domain.cpp.o.d"
+  "CMakeFiles/core_tests.dir/tests/core/test_local_damping.cpp.o"
+  "CMakeFiles/core_tests.dir/tests/core/test_local_damping.cpp.o.d"
+  "CMakeFiles/core_tests.dir/tests/core/test_mindlin_deresiewicz.cpp.o"
+  "CMakeFiles/core_tests.dir/tests/core/test_mindlin_deresiewicz.cpp.o.d"
+  "CMakeFiles/core_tests.dir/tests/core/test_pi_plane.cpp.o"
+  "CMakeFiles/core_tests.dir/tests/core/test_pi_plane.cpp.o.d"
+  "CMakeFiles/core_tests.dir/tests/core/test_strain_path.cpp.o"
+  "CMakeFiles/core_tests.dir/tests/core/test_strain_path.cpp.o.d"
+  "CMakeFiles/core_tests.dir/tests/core/test_thornton_yin.cpp.o"
+  "CMakeFiles/core_tests.dir/tests/core/test_thornton_yin.cpp.o.d"
+  "core_tests"
+  "core_tests.pdb"
+  "core_tests[1]_tests.cmake"
+)
+
+# Per-language clean rules from dependency scanning.
+foreach(lang CXX)
+  include(CMakeFiles/core_tests.dir/cmake_clean_${lang}.cmake OPTIONAL)
+endforeach()

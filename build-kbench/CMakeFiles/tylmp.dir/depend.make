@@ -1,0 +1,2 @@
+# Empty dependencies file for tylmp.
+# This may be replaced when dependencies are built.

@@ -1,0 +1,339 @@
+"""Support of the shipped decks (inputs/*.in), called from LAMMPS with the `python` command.
+
+Every deck starts with
+
+    python tylmp_deck input 1 SELF format p here "from tylmp.decks import begin as tylmp_deck"
+    python tylmp_deck invoke
+
+which checks the deck's `-var` choices against CHOICES and its numeric options against
+NUMBERS and sets `tylmp_common`, the directory of the shared fragments (inputs/common/*.in),
+then includes `${tylmp_common}/specimen.in`. That
+fragment calls `specimen_cache`, which decides whether the cached specimen can be reused, and
+inputs/common/prepare.in ends with `specimen_commit`, which moves the freshly written restart
+file onto its final name. docs/specimen.md ("Decks and the specimen cache") describes the cache.
+
+Errors are LAMMPS-style lines "ERROR: ..." on the screen and in the log, and the run stops with
+exit status 1 (LAMMPS 29 Sep 2021 has no library call to raise a LAMMPS error from Python).
+"""
+
+import ast
+import hashlib
+import json
+import math
+import os
+import re
+
+from . import specimen as _specimen
+
+__all__ = ["CHOICES", "NUMBERS", "check_number", "begin", "specimen_cache", "specimen_commit",
+           "check_cached", "fragments_dir", "prep_key"]
+
+# the enumerated -var options of the decks: variable -> allowed values (first: the default)
+CHOICES = {
+    "specimen": ("dense", "loose"),
+    "scale": ("quick", "paper"),
+    "rotation": ("cw", "ccw"),
+    "plane": ("total", "deviatoric"),
+    "control": ("strain", "stress"),
+    # the size distributions of tylmp.specimen, its default first
+    "distribution": (_specimen.DEFAULT_DISTRIBUTION,) + tuple(
+        sorted(set(_specimen.DISTRIBUTIONS) - {_specimen.DEFAULT_DISTRIBUTION})),
+    "prep_protocol": ("damped", "two_stage"),
+}
+
+# the numeric -var options: variable -> (integer?, smallest allowed value, what it is); each
+# must be a finite number (inf, nan, 1e400 refused) not below its bound
+NUMBERS = {
+    "seed": (True, 0, "the specimen generator's seed"),
+    # at least 100: a 1.3 mm cell at phi0 = 0.5, 1.2 mm at phi = 0.66; fix cell/servo refuses a
+    # cell narrower than twice the neighbour cutoff (0.83 mm), which fewer than about 40
+    # spheres reach, and a few dozen spheres are no assembly
+    "nspheres": (True, 100, "the number of spheres"),
+    "settle": (True, 0, "the steps of isotropic settling at the shearing mu and Gamma"),
+    "gamma": (False, 0.0, "the interface energy during shear, J/m2"),
+    "prep_gamma": (False, 0.0, "the interface energy during the preparation, J/m2"),
+}
+
+# fragments whose text (comments and blank lines dropped) is part of the specimen key: the
+# preparation recipe and the numerics it uses
+RECIPE = ("prepare.in", "prepare_damped.in", "prepare_two_stage.in", "numerics.in")
+# variables the cache itself sets or that do not change the prepared state
+NOT_KEYED = {"specimen_file", "specimen_tmp", "specimen_stem", "specimen_dir", "tylmp_common",
+             "tylmp_prepare", "servo"}
+# the named outputs of fix cell/servo (v_p, v_eps_d13, ...) are read, not settings
+OUTPUTS = "outputs.in"
+
+_collected = []
+_pending = {}           # specimen path -> key and settings, for specimen_commit
+
+
+def _collect(*values):
+    """Receives variable values from LAMMPS (see _values)."""
+    _collected[:] = values
+
+
+def _lmp(ptr):
+    from lammps import lammps
+    return lammps(ptr=ptr)
+
+
+def _defined(L, names):
+    """The subset of names that are LAMMPS variables now."""
+    out = []
+    for name in names:
+        L.command(f"variable tylmp_defined equal is_defined(variable,{name})")
+        if L.extract_variable("tylmp_defined") == 1.0:
+            out.append(name)
+    L.command("variable tylmp_defined delete")
+    return out
+
+
+def _values(L, names):
+    """Current values (strings) of LAMMPS variables of any style: the `python` command passes
+    v_name arguments as their values, whatever the style (the library cannot read strings)."""
+    if not names:
+        return {}
+    args = " ".join(f"v_{n}" for n in names)
+    L.command(f'python tylmp_values input {len(names)} {args} format {"s" * len(names)} '
+              'here "from tylmp.decks import _collect as tylmp_values"')
+    L.command("python tylmp_values invoke")
+    return dict(zip(names, _collected))
+
+
+def _print(L, text):
+    # triple quotes: no variable substitution, quotes allowed
+    L.command('print """' + text.replace('"""', "'''") + '"""')
+
+
+def _fail(L, text):
+    """An error met by every rank alike: the message, then exit status 1."""
+    _print(L, "ERROR: " + text)
+    L.command("quit 1")
+    raise SystemExit(1)         # not reached: quit ends the process
+
+
+def _fail_one(L, text):
+    """An error met by one rank: the message, then a Python exception, which LAMMPS turns into
+    an error on that rank (MPI_Abort), so that no other rank waits for it."""
+    _print(L, "ERROR: " + text)
+    raise RuntimeError(text)
+
+
+def _rank(L):
+    return L.extract_setting("world_rank")
+
+
+# ---- deck start: choices and the fragments directory ------------------------------------------
+
+def _argv():
+    """The command line of this process (lmp's, the python command runs inside it)."""
+    try:
+        with open("/proc/self/cmdline", "rb") as fh:
+            return [a.decode(errors="replace") for a in fh.read().split(b"\0") if a]
+    except OSError:
+        return []
+
+
+def _deck_path():
+    """The deck given with -in/-i to this process, from its command line (None for stdin)."""
+    argv = _argv()
+    for k, arg in enumerate(argv[:-1]):
+        if arg in ("-in", "-i"):
+            return os.path.abspath(argv[k + 1])
+    return None
+
+
+def fragments_dir(deck=None):
+    """Directory of the shared fragments: common/ beside the deck if it has one (the
+    repository's inputs/), else the copy installed with this package (tylmp/inputs/common)."""
+    if deck:
+        beside = os.path.join(os.path.dirname(os.path.abspath(deck)), "common")
+        if os.path.isfile(os.path.join(beside, "specimen.in")):
+            return beside
+    return os.path.join(os.path.dirname(os.path.abspath(__file__)), "inputs", "common")
+
+
+def check_number(name, value):
+    """None if `value` (a string) is allowed for the numeric option `name`, else why not."""
+    integer, lowest, what = NUMBERS[name]
+    try:
+        number = int(value) if integer else float(value)
+    except ValueError:
+        return (f"-var {name} {value}: not {'an integer' if integer else 'a number'}; "
+                f"{name} is {what}")
+    if not math.isfinite(number):
+        return f"-var {name} {value}: not a finite number; {name} is {what}"
+    if number < lowest:
+        return f"-var {name} {value}: must be at least {lowest:g}; {name} is {what}"
+    return None
+
+
+def begin(ptr):
+    """Check the deck's enumerated and numeric -var options; set tylmp_common (unless the
+    user did)."""
+    L = _lmp(ptr)
+    present = _defined(L, list(CHOICES) + list(NUMBERS) + ["tylmp_common"])
+    values = _values(L, present)
+    for name in present:
+        if name in CHOICES and values[name] not in CHOICES[name]:
+            _fail(L, f"-var {name} {values[name]}: unknown value; {name} is one of "
+                     f"{', '.join(CHOICES[name])}")
+        why = check_number(name, values[name]) if name in NUMBERS else None
+        if why:
+            _fail(L, why)
+    if "tylmp_common" in values:
+        common = values["tylmp_common"]
+    else:
+        common = fragments_dir(_deck_path())
+        L.command(f'variable tylmp_common string "{common}"')
+    _print(L, f"deck fragments: {common}")
+    if not os.path.isfile(os.path.join(common, "specimen.in")):
+        _fail(L, f"tylmp_common = {common}: the deck fragments (specimen.in, prepare.in, "
+                 "numerics.in) are not there")
+
+
+# ---- the specimen cache --------------------------------------------------------------------------
+
+def _strip_comments(text):
+    lines = (line.split("#", 1)[0].rstrip() for line in text.splitlines())
+    return "\n".join(line for line in lines if line)
+
+
+def _code_without_docstrings(path):
+    """The generator's code as an AST dump without docstrings: edits of its prose do not
+    invalidate caches, any change of code does."""
+    with open(path, encoding="utf-8") as fh:
+        tree = ast.parse(fh.read())
+    for node in ast.walk(tree):
+        body = getattr(node, "body", None)
+        if (isinstance(body, list) and body and isinstance(body[0], ast.Expr)
+                and isinstance(getattr(body[0], "value", None), ast.Constant)
+                and isinstance(body[0].value.value, str)):
+            node.body = body[1:] or [ast.Pass()]
+    return ast.dump(tree)
+
+
+def _referenced(text):
+    """Variable names a fragment reads (${name}, v_name), less the equal-style formulas it
+    defines itself (derived from the others: the fragment's text is hashed)."""
+    text = _strip_comments(text)
+    read = set(re.findall(r"\$\{(\w+)\}", text)) | set(re.findall(r"\bv_(\w+)", text))
+    return read - set(re.findall(r"\bvariable\s+(\w+)\s+equal\b", text))
+
+
+def prep_key(settings, common):
+    """Hash of the settings and of the recipe (fragments and generator): equal keys, equal
+    prepared specimens."""
+    h = hashlib.sha256()
+    h.update(json.dumps(settings, sort_keys=True).encode())
+    for name in RECIPE:
+        with open(os.path.join(common, name), encoding="utf-8") as fh:
+            h.update(_strip_comments(fh.read()).encode())
+    h.update(_code_without_docstrings(_specimen.__file__).encode())
+    return h.hexdigest()
+
+
+def _sha256(path):
+    h = hashlib.sha256()
+    with open(path, "rb") as fh:
+        for chunk in iter(lambda: fh.read(1 << 20), b""):
+            h.update(chunk)
+    return h.hexdigest()
+
+
+def check_cached(path, key, settings=None):
+    """None if `path` is a complete specimen prepared with `key`, else why it is not."""
+    record = path + ".json"
+    if not os.path.exists(path):
+        return "none cached"
+    try:
+        with open(record, encoding="utf-8") as fh:
+            meta = json.load(fh)
+    except (OSError, ValueError):
+        return f"{os.path.basename(record)}, the record of its settings, is missing or unreadable"
+    size = os.path.getsize(path)
+    if size != meta.get("bytes"):
+        return f"the cached file is torn: {size} bytes, its record says {meta.get('bytes')}"
+    if _sha256(path) != meta.get("sha256"):
+        return "the cached file does not match its record (sha256 differs)"
+    if meta.get("key") != key:
+        old, new = meta.get("settings", {}), settings or {}
+        changed = [f"{k} {old.get(k)} -> {new.get(k)}"
+                   for k in sorted(set(old) | set(new)) if old.get(k) != new.get(k)]
+        if changed:
+            return "it was prepared with other settings (" + ", ".join(changed) + ")"
+        return "it was prepared by another version of the preparation recipe"
+    return None
+
+
+def _command_line_vars():
+    argv = _argv()
+    return {argv[k + 1] for k, a in enumerate(argv[:-1]) if a in ("-var", "-v")}
+
+
+def specimen_cache(ptr, common):
+    """Decide between reusing and preparing the specimen; set specimen_file, specimen_stem,
+    specimen_tmp and tylmp_prepare (1: include prepare.in)."""
+    L = _lmp(ptr)
+    names = set()
+    for name in RECIPE:
+        with open(os.path.join(common, name), encoding="utf-8") as fh:
+            names.update(_referenced(fh.read()))
+    with open(os.path.join(common, OUTPUTS), encoding="utf-8") as fh:
+        names -= set(re.findall(r"\bvariable\s+(\w+)\s+equal\b", fh.read()))
+    names = _defined(L, sorted((names | {"specimen", "scale"}) - NOT_KEYED))
+    settings = _values(L, names)
+    directory = _values(L, ["specimen_dir"])["specimen_dir"]
+    key = prep_key(settings, common)
+    # the standard preparation keeps the short name; a setting given on the command line
+    # gets its own file, so that variants do not overwrite one another
+    stem = f"{settings['specimen']}_{settings['scale']}"
+    if set(settings) & _command_line_vars() - {"specimen", "scale"}:
+        stem += "_" + key[:10]
+    path = os.path.join(directory, stem + ".restart")
+    why = check_cached(path, key, settings)
+    summary = ", ".join(f"{k} {v}" for k, v in sorted(settings.items()))
+    if why is None:
+        _print(L, f"reusing specimen {path} ({summary})")
+    else:
+        # every rank alike (a failure is then the same on all of them); a leftover path.tmp of
+        # a killed run is overwritten by write_restart
+        try:
+            os.makedirs(directory or ".", exist_ok=True)
+            for stale in (path, path + ".json"):
+                try:
+                    os.remove(stale)
+                except FileNotFoundError:
+                    pass
+        except OSError as err:
+            _fail(L, f"specimen_dir {directory}: cannot prepare the specimen there ({err})")
+        _print(L, f"preparing specimen {path}: {why} ({summary})")
+    L.command(f'variable specimen_file string "{path}"')
+    L.command(f'variable specimen_stem string "{os.path.join(directory, stem)}"')
+    L.command(f'variable specimen_tmp string "{path}.tmp"')
+    L.command(f"variable tylmp_prepare equal {0 if why is None else 1}")
+    _pending[path] = {"key": key, "settings": settings}
+
+
+
+def specimen_commit(ptr, tmp, path):
+    """After `write_restart tmp`: record the file's size, hash and settings next to it, then
+    rename it onto `path` (a run killed before this leaves no file under the final name)."""
+    L = _lmp(ptr)
+    if _rank(L) == 0:
+        try:
+            meta = dict(_pending.get(path, {}), bytes=os.path.getsize(tmp), sha256=_sha256(tmp))
+            record_tmp = path + ".json.tmp"
+            with open(record_tmp, "w", encoding="utf-8") as fh:
+                json.dump(meta, fh, indent=1, sort_keys=True)
+                fh.write("\n")
+                fh.flush()
+                os.fsync(fh.fileno())
+            with open(tmp, "rb") as fh:
+                os.fsync(fh.fileno())
+            os.replace(record_tmp, path + ".json")
+            os.replace(tmp, path)
+        except OSError as err:
+            _fail_one(L, f"cannot store the specimen {path} ({err}); nothing was put under that "
+                         "name")
+    _print(L, f"wrote specimen {path}")
