@@ -802,3 +802,36 @@ def test_axisym_figure_labels_records_by_their_parameter(files, drawn, tmp_path)
     fig = drawn("axisym", *names, "--out", tmp_path / "mu.png")
     curves = [k for k in _axes(fig, "Fig. 1")["lines"] if not k.startswith("paper")]
     assert curves == ["μ = 0.1", "μ = 0.3", "μ = 0.5"]
+
+
+def test_fidelity_table_shifts_from_the_base(tmp_path):
+    """tyanalysis fidelity: each factor's responses and their shifts from the base, from the
+    records named as reproduce --programme fidelity names them. Synthetic axisymmetric
+    records: void ratio e0 + 0.3 x, so e at 30 % is e0 + 0.09; solid fraction 1/(1 + e0)."""
+    from tyanalysis import fidelity, reproduce
+    prog = reproduce.PROGRAMMES["fidelity"]
+    for factor, e0 in (("base", 0.515), ("seed2", 0.525)):
+        name = fidelity.run_name(factor, "axisym_dense")
+        io.write_servo_csv(tmp_path / reproduce.record_name(name, prog),
+                           axisym_record(kmax=0.4, kcv=0.25, e0=e0, e_slope=0.3))
+    text = fidelity.table(str(tmp_path))
+    rows = {r.split("|")[1].strip().split(":")[0]: [c.strip() for c in r.split("|")[2:-1]]
+            for r in text.splitlines()[2:]}
+    head = [c.strip() for c in text.splitlines()[0].split("|")[2:-1]]
+    e30 = head.index("R4 e at 30 %, dense")
+    phi = head.index("R1 dense φ")
+    assert set(rows) == {"base", "seed2"}
+    assert float(rows["base"][e30]) == pytest.approx(0.515 + 0.09, rel=1e-3)
+    value, shift = rows["seed2"][e30].split()
+    assert float(value) == pytest.approx(0.525 + 0.09, rel=1e-3)
+    assert float(shift.strip("()")) == pytest.approx(0.010, rel=1e-2)
+    value, shift = rows["seed2"][phi].split()
+    assert float(shift.strip("()")) == pytest.approx(1 / 1.525 - 1 / 1.515, rel=1e-2)
+    # no record of a response, no column: the loose runs are missing
+    assert "R4 e at 30 %, loose" not in head
+    # the runs of the programme: every factor's runs, each with its preparation variables
+    assert prog["seed2_axisym_loose"][4] == {"seed": "2"}
+    assert prog["n8000_axisym_dense"][1]["strain"] == "0.80"
+    assert "n8000_plane_strain_cw" not in prog and "hold_undamped_axisym_dense" not in prog
+    cmd = reproduce.command("seed2_axisym_loose", "paper", "inputs", prog)
+    assert cmd[cmd.index("seed") + 1] == "2" and cmd[cmd.index("specimen") + 1] == "loose"

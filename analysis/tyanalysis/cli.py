@@ -13,7 +13,7 @@ from . import compare, figures
 from . import invariants as inv
 from . import io, metrics, paper
 from . import micromechanics as micro
-from . import reproduce
+from . import fidelity, reproduce
 
 
 def _g(x):
@@ -471,13 +471,31 @@ def build_parser():
     p.add_argument("--jobs", type=int, help="runs at once (default: the number of cores)")
     p.add_argument("--inputs", help="directory of the decks (default: the repository's inputs/, "
                    "else the copy installed with tylmp)")
-    p.add_argument("--only", nargs="+", metavar="RUN", help="only these runs: " + ", ".join(
-        reproduce.PROGRAMME))
+    p.add_argument("--programme", choices=tuple(reproduce.PROGRAMMES), default="paper",
+                   help="paper: every run behind the figures of docs/validation.md (default); "
+                   "fidelity: the trace study of docs/fidelity.md, one factor at a time, and "
+                   "its table (tyanalysis fidelity)")
+    p.add_argument("--only", nargs="+", metavar="RUN", help="only these runs (--dry-run lists "
+                   "them); paper: " + ", ".join(reproduce.PROGRAMME))
     p.add_argument("--every", type=float, default=300.0,
                    help="seconds between progress lines (300)")
     p.add_argument("--dry-run", action="store_true", help="print the commands, run nothing")
     p.set_defaults(func=cmd_reproduce)
+    p = sub.add_parser("fidelity", help="the trace study's table: every response of every factor "
+                       "and its shift from the base (records of reproduce --programme fidelity)")
+    p.add_argument("dir", help="the run directory of tyanalysis reproduce --programme fidelity")
+    p.add_argument("--out", help="also write the table to this markdown file")
+    p.set_defaults(func=cmd_fidelity)
     return ap
+
+
+def cmd_fidelity(a):
+    text = fidelity.table(a.dir)
+    print(text)
+    if a.out:
+        with open(a.out + ".tmp", "w", encoding="utf-8") as fh:
+            fh.write(text + "\n")
+        os.replace(a.out + ".tmp", a.out)
 
 
 def cmd_reproduce(a):

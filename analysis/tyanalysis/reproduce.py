@@ -24,6 +24,8 @@ import subprocess
 import sys
 import time
 
+from . import fidelity
+
 # name -> (deck, {variable: value}, the deck's `out` prefix, weight = expected core-minutes at
 # paper scale, validation.md). The variables are those of validation.md's commands.
 PROGRAMME = {
@@ -45,36 +47,56 @@ SPECIMENS = ("dense", "loose")
 # expected core-minutes of each preparation at paper scale (the two-stage protocol,
 # docs/fidelity.md "Preparation protocol"): preparations start before any run
 PREP_WEIGHT = {"dense": 15, "loose": 5}
-
-
-def specimen_of(name):
-    """The specimen a run shears (the decks' default: dense)."""
-    return PROGRAMME[name][1].get("specimen", "dense")
 # decks that run a list of values and name each record PREFIX_<variable><value>.csv
 LIST_VARIABLE = {"friction.in": "mu", "radial.in": "b"}
+# the programmes: the paper's figures, and the trace study of docs/fidelity.md, whose entries
+# carry a fifth element, the preparation variables of the run's specimen
+PROGRAMMES = {"paper": PROGRAMME, "fidelity": fidelity.programme()}
 
 
-def record_name(name):
+def entry(name, prog=PROGRAMME):
+    """(deck, variables, out prefix, weight, preparation variables) of a run."""
+    deck, vars_, out, weight, *prep = prog[name]
+    return deck, vars_, out, weight, (prep[0] if prep else {})
+
+
+def specimen_of(name, prog=PROGRAMME):
+    """The specimen a run shears (the decks' default: dense) and its preparation variables."""
+    deck, vars_, _, _, prep = entry(name, prog)
+    return vars_.get("specimen", "dense"), tuple(sorted(prep.items()))
+
+
+def record_name(name, prog=PROGRAMME):
     """CSV file of a run."""
-    deck, vars_, out, _ = PROGRAMME[name]
+    deck, vars_, out, _, _ = entry(name, prog)
     key = LIST_VARIABLE.get(deck)
     return f"{out}_{key}{vars_[key]}.csv" if key else out + ".csv"
 
 
-def command(name, scale, inputs):
+def command(name, scale, inputs, prog=PROGRAMME):
     """lmp command line of a run (cwd: the run directory)."""
-    deck, vars_, out, _ = PROGRAMME[name]
+    deck, vars_, out, _, prep = entry(name, prog)
     cmd = ["lmp", "-in", os.path.join(inputs, deck), "-var", "scale", scale, "-var", "out", out]
-    for k, v in vars_.items():
+    for k, v in list(prep.items()) + list(vars_.items()):
         if scale == "quick" and k == "rate":    # quick scale: the deck's own (faster) rates
             continue
         cmd += ["-var", k, v]
     return cmd + ["-log", f"{name}.log", "-nocite"]
 
 
+def prepare_name(specimen):
+    """Job name of the preparation of (specimen, preparation variables)."""
+    name, prep = specimen
+    return "prepare_" + "_".join([name] + [f"{k}{v}" for k, v in prep])
+
+
 def prepare_command(specimen, scale, inputs):
-    return ["lmp", "-in", os.path.join(inputs, "prepare_specimen.in"), "-var", "specimen",
-            specimen, "-var", "scale", scale, "-log", f"prepare_{specimen}.log", "-nocite"]
+    name, prep = specimen
+    cmd = ["lmp", "-in", os.path.join(inputs, "prepare_specimen.in"), "-var", "specimen",
+           name, "-var", "scale", scale]
+    for k, v in prep:
+        cmd += ["-var", k, v]
+    return cmd + ["-log", f"{prepare_name(specimen)}.log", "-nocite"]
 
 
 def last_progress(path):
@@ -213,36 +235,54 @@ def main(args):
     width = args.jobs or os.cpu_count() or 1
     os.makedirs(args.dir, exist_ok=True)
     workdir = os.path.abspath(args.dir)
-    names = list(PROGRAMME)
+    programme = getattr(args, "programme", "paper")
+    prog = PROGRAMMES[programme]
+    names = list(prog)
     if args.only:
-        unknown = [n for n in args.only if n not in PROGRAMME]
+        unknown = [n for n in args.only if n not in prog]
         if unknown:
             raise SystemExit(f"tyanalysis reproduce: unknown run(s) {', '.join(unknown)}; "
-                             f"the runs are: {', '.join(PROGRAMME)}")
+                             f"the runs are: {', '.join(prog)}")
         names = args.only
     t0 = time.monotonic()
 
     def log(text):
         print(f"[{(time.monotonic() - t0) / 60:6.1f} min] {text}", flush=True)
 
-    prep = {s: Job(f"prepare_{s}", prepare_command(s, args.scale, inputs), None, PREP_WEIGHT[s])
-            for s in SPECIMENS if any(specimen_of(n) == s for n in names)}
+    prep = {}
+    for n in names:
+        s = specimen_of(n, prog)
+        if s not in prep:
+            prep[s] = Job(prepare_name(s), prepare_command(s, args.scale, inputs), None,
+                          PREP_WEIGHT[s[0]])
     shear = []
     for n in names:
-        record = record_name(n)
+        record = record_name(n, prog)
         if finished(os.path.join(workdir, record)):
             log(f"{n}: {record} is complete, not run again")
             continue
-        shear.append(Job(n, command(n, args.scale, inputs), record, PROGRAMME[n][3],
-                         needs=prep[specimen_of(n)]))
+        shear.append(Job(n, command(n, args.scale, inputs, prog), record, entry(n, prog)[3],
+                         needs=prep[specimen_of(n, prog)]))
     if args.dry_run:
         for j in list(prep.values()) + shear:
             print(shlex.join(j.cmd))
-        for c in figure_commands(workdir):
-            print(shlex.join(["tyanalysis"] + c))
+        if programme == "paper":
+            for c in figure_commands(workdir):
+                print(shlex.join(["tyanalysis"] + c))
+        else:
+            print(shlex.join(["tyanalysis", "fidelity", workdir]))
         return 0
     log(f"{len(prep)} preparations and {len(shear)} runs, {width} at a time, in {workdir}")
     failed = run_jobs(list(prep.values()) + shear, workdir, width, args.every, log)
+    if programme != "paper":
+        path = os.path.join(workdir, "fidelity_table.md")
+        text = fidelity.table(workdir) + "\n"
+        with open(path + ".tmp", "w", encoding="utf-8") as fh:
+            fh.write(text)
+        os.replace(path + ".tmp", path)
+        print(text, end="")
+        log(f"wrote {path}; {len(failed)} run(s) failed")
+        return 1 if failed else 0
     from .cli import main as cli_main
     drawn = 0
     for c in figure_commands(workdir):
