@@ -814,13 +814,17 @@ def test_fidelity_table_shifts_from_the_base(tmp_path):
         name = fidelity.run_name(factor, "axisym_dense")
         io.write_servo_csv(tmp_path / reproduce.record_name(name, prog),
                            axisym_record(kmax=0.4, kcv=0.25, e0=e0, e_slope=0.3))
+    # the paper programme's record of the same test is the strain-rate factor
+    io.write_servo_csv(tmp_path / reproduce.record_name("axisym_dense"),
+                       axisym_record(kmax=0.4, kcv=0.25, e0=0.505, e_slope=0.3))
     text = fidelity.table(str(tmp_path))
     rows = {r.split("|")[1].strip().split(":")[0]: [c.strip() for c in r.split("|")[2:-1]]
             for r in text.splitlines()[2:]}
     head = [c.strip() for c in text.splitlines()[0].split("|")[2:-1]]
     e30 = head.index("R4 e at 30 %, dense")
     phi = head.index("R1 dense φ")
-    assert set(rows) == {"base", "seed2"}
+    assert set(rows) == {"base", "seed2", "rate_1e-5"}
+    assert float(rows["rate_1e-5"][e30].split()[1].strip("()")) == pytest.approx(-0.010, rel=1e-2)
     assert float(rows["base"][e30]) == pytest.approx(0.515 + 0.09, rel=1e-3)
     value, shift = rows["seed2"][e30].split()
     assert float(value) == pytest.approx(0.525 + 0.09, rel=1e-3)

@@ -18,12 +18,12 @@ from . import compare, io, metrics
 BASE_RUNS = {
     "axisym_dense": ("axisym.in", {"specimen": "dense", "rate": "5e-5"}),
     "axisym_loose": ("axisym.in", {"specimen": "loose", "rate": "5e-5"}),
-    "radial_loose_b1": ("radial.in", {"specimen": "loose", "b": "1", "strain": "0.30",
-                                      "rate": "5e-5"}),
+    "radial_loose": ("radial.in", {"specimen": "loose", "b": "1", "strain": "0.30",
+                                   "rate": "5e-5"}),
     "plane_strain_cw": ("plane_strain.in", {"rotation": "cw"}),
 }
 # expected core-minutes of each base run at paper scale (docs/fidelity.md)
-BASE_WEIGHT = {"axisym_dense": 4, "axisym_loose": 5, "radial_loose_b1": 5, "plane_strain_cw": 2}
+BASE_WEIGHT = {"axisym_dense": 4, "axisym_loose": 5, "radial_loose": 5, "plane_strain_cw": 2}
 
 # factor -> (preparation variables, shear variables, runs (None: all of BASE_RUNS), weight
 # factor, what it changes). Preparation variables go to the preparation and to each of its
@@ -39,7 +39,7 @@ FACTORS = {
                     "size distribution volume-mean"),
     "damped": ({"prep_protocol": "damped"}, {}, None, 1.0,
                "the earlier protocol: compression and hold under damping 0.7"),
-    "hold_undamped": ({"prep_hold_damping": "0"}, {}, ("axisym_loose", "radial_loose_b1"), 1.0,
+    "hold_undamped": ({"prep_hold_damping": "0"}, {}, ("axisym_loose", "radial_loose"), 1.0,
                       "two-stage without damping in the hold (loose only: a frictionless "
                       "packing never settles without dissipation)"),
     "settle": ({}, {"settle": "50000"}, None, 1.0,
@@ -51,19 +51,21 @@ FACTORS = {
 }
 
 
+# the strain-rate factor: the paper programme's runs at 1e-5 1/s (reproduce.PROGRAMME names) in
+# place of the base set's at 5e-5, when both programmes ran in one directory (the plane-strain
+# test runs at 1e-5 in both)
+RATE_FACTOR = "rate_1e-5"
+RATE_RUNS = {"axisym_dense": "axisym_dense", "axisym_loose": "axisym_loose",
+             "radial_loose": "radial_loose_b1"}
+RATE_TEXT = "strain rate 1e-5 1/s, the paper's (base 5e-5): the paper programme's records"
+
+
 def run_name(factor, run):
     return f"{factor}_{run}"
 
 
 def out_prefix(factor, run):
     return f"fid_{factor}_{run}"
-
-
-def record_name(factor, run):
-    """CSV record of a run of the study (radial.in appends _b<value>)."""
-    deck, shear = BASE_RUNS[run]
-    prefix = out_prefix(factor, run)
-    return f"{prefix}_b{shear['b']}.csv" if deck == "radial.in" else prefix + ".csv"
 
 
 def programme():
@@ -103,10 +105,19 @@ def _void_ratio_at_eps1(table, eps1):
 
 def responses(directory, factor):
     """Every response of one factor that its records in `directory` give."""
+    from .reproduce import PROGRAMMES, record_name      # reproduce imports this module
     out = {}
 
     def read(run):
-        path = os.path.join(directory, record_name(factor, run))
+        if factor == RATE_FACTOR:
+            if run not in RATE_RUNS:
+                return None
+            path = os.path.join(directory, record_name(RATE_RUNS[run], PROGRAMMES["paper"]))
+        else:
+            name = run_name(factor, run)
+            if name not in PROGRAMMES["fidelity"]:
+                return None
+            path = os.path.join(directory, record_name(name, PROGRAMMES["fidelity"]))
         return io.read_servo_csv(path) if os.path.exists(path) else None
 
     for role in ("dense", "loose"):
@@ -124,7 +135,7 @@ def responses(directory, factor):
         else:
             out["steady_loose"] = s.get("eps_d13_q_plateau_lo_pct")
             out["sinphi_loose_b0"] = s.get("sinphi_max")
-    t = read("radial_loose_b1")
+    t = read("radial_loose")
     if t is not None:
         out["sinphi_loose_b1"] = metrics.summarize(t).get("sinphi_max")
     t = read("plane_strain_cw")
@@ -147,7 +158,7 @@ def _cell(value, base):
 def table(directory):
     """Markdown: one row per factor with its records present, a column per response that some
     factor has; each cell the value and, but for the base, its shift from the base."""
-    values = {f: responses(directory, f) for f in FACTORS}
+    values = {f: responses(directory, f) for f in list(FACTORS) + [RATE_FACTOR]}
     values = {f: v for f, v in values.items() if v}
     base = values.get("base", {})
     keys = [(label, k) for label, k in RESPONSES if any(k in v for v in values.values())]
@@ -155,5 +166,6 @@ def table(directory):
              "|---|" + "---|" * len(keys)]
     for f, v in values.items():
         cells = [_cell(v.get(k), None if f == "base" else base.get(k)) for _, k in keys]
-        lines.append(f"| {f}: {FACTORS[f][4]} | " + " | ".join(cells) + " |")
+        text = RATE_TEXT if f == RATE_FACTOR else FACTORS[f][4]
+        lines.append(f"| {f}: {text} | " + " | ".join(cells) + " |")
     return "\n".join(lines)
