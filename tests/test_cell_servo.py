@@ -222,6 +222,38 @@ def test_axes_mode_mixed_stress_and_rate(specimen, tmp_path):
     assert np.max(np.abs(late["sig3"] / 1.2e5 - 1.0)) < 0.01
 
 
+# a servo at its strain-rate cap whose stress error does not shrink has lost control: the fix
+# warns; at the cap while the error shrinks (a slow approach to a far target, as in the two-stage
+# preparation's compression) it only sets the pace, and the fix stays silent
+CAP_WARNING = "WARNING: fix cell/servo: the servo has been at its strain-rate cap"
+
+
+def test_cap_warning_when_the_servo_loses_control(specimen, tmp_path):
+    # axial compression at 1e-3 1/s with the lateral servo capped at 1e-8 1/s: Poisson's
+    # stresses of the axial strain outgrow what the capped lateral axes can relieve
+    out = shear_run(specimen, tmp_path, "fix sh all cell/servo axisym x 1e-3 "
+                    f"{P0} max_rate 1e-8", 2100)
+    assert out.count(CAP_WARNING) == 1, out[-3000:]
+    assert "and its stress error grew from" in out
+    assert "raise max_rate or lower the prescribed rate (said once per run)" in out
+    # the same with cap_warning no: silent (a deck that runs at the cap on purpose)
+    out = shear_run(specimen, tmp_path, "fix sh all cell/servo axisym x 1e-3 "
+                    f"{P0} max_rate 1e-8 cap_warning no", 2100, name="in.quiet")
+    assert CAP_WARNING not in out, out[-3000:]
+
+
+def test_no_cap_warning_while_the_error_shrinks(specimen, tmp_path):
+    # from 100 kPa towards 300 kPa at 1e-6 1/s: at the cap throughout (the stiffness would
+    # take the servo there in a few steps), the error shrinking every check
+    out = shear_run(specimen, tmp_path, "fix sh all cell/servo iso 3e5 max_rate 1e-6 "
+                    "csv sh.csv 100", 3000)
+    rows = read_csv(tmp_path / "sh.csv")
+    fastest = np.max(np.abs([rows[f"rate{k}"][1:] for k in (1, 2, 3)]), axis=0)
+    assert np.all(np.abs(fastest - 1e-6) < 1e-12)                  # at the cap throughout
+    assert np.all(np.diff(rows["p"]) > 0) and rows["p"][-1] < 2e5  # still far from 300 kPa
+    assert CAP_WARNING not in out, out[-3000:]
+
+
 # ---------------------------------------------------------------------------------------------
 # 6. circular strain path in the Pi-plane at constant p
 

@@ -65,8 +65,11 @@ def test_preparation_reports_the_failed_criteria(tmp_path):
     """Stopped before quasi-equilibrium, the preparation names each criterion that failed
     with its value and limit (issue 14: the kinetic-energy one used to be missing)."""
     os.symlink(os.path.join(REPO, "inputs"), tmp_path / "inputs")
+    # the damped protocol checks from its first steps (the two-stage one only after its
+    # compression: 3000 steps end before any check, tests/test_decks.py)
     (tmp_path / "in.short").write_text("variable specimen index loose\n"
                                        "variable scale index quick\n"
+                                       "variable prep_protocol index damped\n"
                                        "variable prep_max_steps index 3000\n"
                                        "include inputs/common/specimen.in\n")
     out = _lmp(tmp_path, "in.short", {})

@@ -182,6 +182,7 @@ struct MixedControl {
 struct ServoCommand {
   Eigen::Vector3d strain_rate;   // principal strain rates for the next step [1/s]
   bool saturated;                // the strain-rate cap limited the servo part
+  double stress_error = 0.0;     // largest |target - stress| of the held stresses [Pa]
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -316,6 +317,8 @@ inline ServoCommand servo_step(const MixedControl& control, const CellMeasuremen
       control.stress_rows.topRows(m) * C * control.actuators.leftCols(m);
   Eigen::Vector3d error = Eigen::Vector3d::Zero(), feed_forward = Eigen::Vector3d::Zero();
   error.head(m) = control.stress_targets.head(m) - control.stress_rows.topRows(m) * cell.stress;
+  for (int k = 0; k < m; ++k)
+    command.stress_error = std::max(command.stress_error, std::abs(error(k)));
   feed_forward.head(m) = control.stress_rows.topRows(m) * C * prescribed_step;
 
   const Eigen::FullPivLU<Eigen::Matrix3d> lu(response);

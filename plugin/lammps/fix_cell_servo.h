@@ -154,6 +154,9 @@ class FixCellServo : public Fix {
   void choose_rate_cap();
   double prescribed_rate() const;
   bigint saturated_steps;
+  double saturated_error;         // the stress error when the servo reached its cap
+  bool saturation_warned;         // the cap warning has been given in this run
+  bool cap_warning;               // keyword cap_warning yes|no
   static constexpr int SATURATION_WARN_STEPS = 1000;
   double current_strain(int axis) const;
 };

@@ -185,6 +185,31 @@ TEST(CellServo, CapScalesTheServoPartOnly)
   EXPECT_EQ(memory.integral, Eigen::Vector3d::Zero());
 }
 
+// the command reports the largest error of the held stresses, what fix cell/servo's warning
+// compares along a streak at the cap: for the isotropic target the largest |p* - sigma_i|
+TEST(CellServo, CommandReportsTheLargestHeldStressError)
+{
+  Plant plant = make_plant(1.0, 0.0);
+  plant.stress = {2e4, 7e4, 1.3e5};
+  ServoMemory memory;
+  const ServoCommand c = servo_step(isotropic_compression_control(p_target), plant.measure(),
+                                    settings_with_cap(1e-3), dt, memory);
+  EXPECT_DOUBLE_EQ(c.stress_error, p_target - 2e4);
+  // a slew-limited approach at the cap: the error shrinks every step though the cap binds
+  double last = c.stress_error;
+  plant.stress = Eigen::Vector3d::Constant(1e3);
+  for (int k = 0; k < 50; ++k) {
+    const ServoCommand step = servo_step(isotropic_compression_control(p_target),
+                                         plant.measure(), settings_with_cap(1e-6), dt, memory);
+    EXPECT_TRUE(step.saturated);
+    if (k > 0) {
+      EXPECT_LT(step.stress_error, last);
+    }
+    last = step.stress_error;
+    plant.apply(step.strain_rate, dt);
+  }
+}
+
 // following the Pi-plane circle at constant p: radius and mean stress held
 TEST(CellServo, CirclePathAtConstantMeanStress)
 {
