@@ -124,9 +124,14 @@ def check_held(rows):
 
 
 def cycle_work(rows, a, b):
+    """Work per unit volume over rows a..b from the record's stresses and strains: with the
+    lateral stresses held equal (sigma2 = sigma3), sigma:deps = p deps_v + q (deps1 - deps_v/3)
+    whatever the two lateral strains do (the form (2/3) q d(eps1 - eps3) would also need
+    eps2 = eps3, which an anisotropic packing does not keep)."""
     seg = slice(a, b + 1)
-    return (2.0 / 3.0 * np.trapz(signed_q(rows)[seg], rows["eps_d13"][seg])
-            + np.trapz(rows["p"][seg], rows["eps_v"][seg]))
+    ev = rows["eps_v"][seg]
+    return (np.trapz(signed_q(rows)[seg], rows["eps1"][seg] - ev / 3.0)
+            + np.trapz(rows["p"][seg], ev))
 
 
 def check_dissipation(rows, t):
