@@ -402,6 +402,12 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
         error->all(FLERR, "fix cell/servo: keyword '{}' needs a value", key);
       return arg[iarg + k];
     };
+    auto yes_no = [&]() {
+      const std::string v = value();
+      if (v != "yes" && v != "no")
+        error->all(FLERR, "fix cell/servo: {} must be yes or no, got '{}'", key, v);
+      return v == "yes";
+    };
     auto path_only = [&]() {
       if (mode != Mode::PATH)
         error->all(FLERR, "fix cell/servo: keyword '{}' applies only to circle, triangle and "
@@ -423,10 +429,7 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
       iarg += 2;
     } else if (key == "prestrain_leg") {
       path_only();
-      const std::string v = value();
-      if (v != "yes" && v != "no")
-        error->all(FLERR, "fix cell/servo: prestrain_leg must be yes or no, got '{}'", v);
-      with_prestrain = v == "yes";
+      with_prestrain = yes_no();
       iarg += 2;
     } else if (key == "sweep") {
       if (path_kind != "circle")
@@ -437,10 +440,7 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
     } else if (key == "close") {
       if (path_kind != "polygon")
         error->all(FLERR, "fix cell/servo: keyword 'close' applies only to the polygon path");
-      const std::string v = value();
-      if (v != "yes" && v != "no")
-        error->all(FLERR, "fix cell/servo: close must be yes or no, got '{}'", v);
-      close_polygon = v == "yes";
+      close_polygon = yes_no();
       iarg += 2;
     } else if (key == "plane_strain") {
       path_only();
@@ -512,16 +512,10 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
                    name);
       iarg += 3;
     } else if (key == "cap_warning") {
-      const std::string v = value();
-      if (v != "yes" && v != "no")
-        error->all(FLERR, "fix cell/servo: cap_warning must be yes or no, got '{}'", v);
-      cap_warning = v == "yes";
+      cap_warning = yes_no();
       iarg += 2;
     } else if (key == "continue") {
-      const std::string v = value();
-      if (v != "yes" && v != "no")
-        error->all(FLERR, "fix cell/servo: continue must be yes or no, got '{}'", v);
-      continue_previous = v == "yes";
+      continue_previous = yes_no();
       iarg += 2;
     } else if (key == "equilibrium") {
       equilibrium_every = positive_integer(lmp, value(), "equilibrium interval N");
