@@ -270,8 +270,7 @@ def _emit_table(ours, out):
     text = compare.markdown_table(ours)
     print(text)
     if out:
-        with open(out, "w", encoding="utf-8") as fh:
-            fh.write(text + "\n")
+        io.write_text(out, text + "\n")
         _wrote(out)
 
 
@@ -493,9 +492,8 @@ def cmd_fidelity(a):
     text = fidelity.table(a.dir)
     print(text)
     if a.out:
-        with open(a.out + ".tmp", "w", encoding="utf-8") as fh:
-            fh.write(text + "\n")
-        os.replace(a.out + ".tmp", a.out)
+        io.write_text(a.out, text + "\n")
+        _wrote(a.out)
 
 
 def cmd_reproduce(a):

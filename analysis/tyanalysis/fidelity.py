@@ -3,7 +3,7 @@
 Each factor changes the preparation, the shear, or both, of the base set: the dense and loose
 axisymmetric tests (5e-5 1/s), the loose radial test at b = 1 (5e-5 1/s) and the clockwise
 multi-axial plane-strain test (the deck's 1e-5 1/s). `tyanalysis reproduce --programme
-fidelity` runs them (reproduce.FIDELITY, built from FACTORS below); `tyanalysis fidelity DIR`
+fidelity` runs them (reproduce.PROGRAMMES["fidelity"], built from FACTORS below); `tyanalysis fidelity DIR`
 tabulates every response of every factor with its shift from the base, and the shift of the
 second seed, the run-to-run scatter against which a shift is judged.
 """
@@ -14,7 +14,7 @@ import numpy as np
 
 from . import compare, io, metrics
 
-# The base set's shear runs: name -> (deck, shear variables, the specimen it shears)
+# The base set's shear runs: name -> (deck, shear variables; `specimen` names the specimen)
 BASE_RUNS = {
     "axisym_dense": ("axisym.in", {"specimen": "dense", "rate": "5e-5"}),
     "axisym_loose": ("axisym.in", {"specimen": "loose", "rate": "5e-5"}),

@@ -172,6 +172,14 @@ def _fmt(v):
     return repr(v)
 
 
+def write_text(path, text):
+    """Write text to path atomically (whole to path.tmp, then renamed), as write_json does."""
+    tmp = f"{path}.tmp"
+    with open(tmp, "w", encoding="utf-8") as fh:
+        fh.write(text)
+    os.replace(tmp, path)
+
+
 def write_json(path, obj, indent=1):
     """Write obj as JSON to path atomically: whole to path.tmp, then renamed (a crash leaves the
     previous file or the new one, never a torn one)."""

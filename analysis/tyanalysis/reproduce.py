@@ -1,8 +1,8 @@
 """The paper's programme in one command: every run behind the figures of docs/validation.md,
 as many at once as there are cores, then every figure and the summary table.
 
-    tyanalysis reproduce [--scale paper|quick] [--dir paper_runs] [--jobs N] [--inputs DIR]
-                         [--only NAME ...] [--dry-run]
+    tyanalysis reproduce [--programme paper|fidelity] [--scale paper|quick] [--dir paper_runs]
+                         [--jobs N] [--inputs DIR] [--only NAME ...] [--dry-run]
 
 The runs are the decks of inputs/ with the settings validation.md gives for each figure
 (PROGRAMME below). Each specimen is prepared once (one job each, in DIR/tylmp_specimens,
@@ -171,6 +171,11 @@ def figure_commands(d):
     return cmds
 
 
+def fidelity_command(d):
+    """The tyanalysis command of the trace study's table on the records in d."""
+    return ["fidelity", d, "--out", os.path.join(d, "fidelity_table.md")]
+
+
 class Job:
     def __init__(self, name, cmd, record, weight, needs=None):
         self.name, self.cmd, self.record, self.weight = name, cmd, record, weight
@@ -235,7 +240,7 @@ def main(args):
     width = args.jobs or os.cpu_count() or 1
     os.makedirs(args.dir, exist_ok=True)
     workdir = os.path.abspath(args.dir)
-    programme = getattr(args, "programme", "paper")
+    programme = args.programme
     prog = PROGRAMMES[programme]
     names = list(prog)
     if args.only:
@@ -270,20 +275,15 @@ def main(args):
             for c in figure_commands(workdir):
                 print(shlex.join(["tyanalysis"] + c))
         else:
-            print(shlex.join(["tyanalysis", "fidelity", workdir]))
+            print(shlex.join(["tyanalysis"] + fidelity_command(workdir)))
         return 0
     log(f"{len(prep)} preparations and {len(shear)} runs, {width} at a time, in {workdir}")
     failed = run_jobs(list(prep.values()) + shear, workdir, width, args.every, log)
-    if programme != "paper":
-        path = os.path.join(workdir, "fidelity_table.md")
-        text = fidelity.table(workdir) + "\n"
-        with open(path + ".tmp", "w", encoding="utf-8") as fh:
-            fh.write(text)
-        os.replace(path + ".tmp", path)
-        print(text, end="")
-        log(f"wrote {path}; {len(failed)} run(s) failed")
-        return 1 if failed else 0
     from .cli import main as cli_main
+    if programme != "paper":
+        cli_main(fidelity_command(workdir))
+        log(f"{len(failed)} run(s) failed")
+        return 1 if failed else 0
     drawn = 0
     for c in figure_commands(workdir):
         files = [a for a in c if a.endswith(".csv")]
