@@ -804,7 +804,7 @@ def test_axisym_figure_labels_records_by_their_parameter(files, drawn, tmp_path)
     assert curves == ["μ = 0.1", "μ = 0.3", "μ = 0.5"]
 
 
-def test_fidelity_table_shifts_from_the_base(tmp_path):
+def test_fidelity_table_shifts_from_the_base(tmp_path, capsys):
     """tyanalysis fidelity: each factor's responses and their shifts from the base, from the
     records named as reproduce --programme fidelity names them. Synthetic axisymmetric
     records: void ratio e0 + 0.3 x, so e at 30 % is e0 + 0.09; solid fraction 1/(1 + e0)."""
@@ -837,5 +837,13 @@ def test_fidelity_table_shifts_from_the_base(tmp_path):
     assert prog["seed2_axisym_loose"][4] == {"seed": "2"}
     assert prog["n8000_axisym_dense"][1]["strain"] == "0.80"
     assert "n8000_plane_strain_cw" not in prog and "hold_undamped_axisym_dense" not in prog
+    # a directory without the study's records, or none at all: an error that says so
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    from tyanalysis import cli
+    for d, message in ((empty, "no record of tyanalysis reproduce --programme fidelity"),
+                       (tmp_path / "missing", "no such directory")):
+        assert cli.main(["fidelity", str(d)]) == 2
+        assert message in capsys.readouterr().err
     cmd = reproduce.command("seed2_axisym_loose", "paper", "inputs", prog)
     assert cmd[cmd.index("seed") + 1] == "2" and cmd[cmd.index("specimen") + 1] == "loose"

@@ -158,8 +158,13 @@ def _cell(value, base):
 def table(directory):
     """Markdown: one row per factor with its records present, a column per response that some
     factor has; each cell the value and, but for the base, its shift from the base."""
+    if not os.path.isdir(directory):
+        raise ValueError(f"{directory}: no such directory")
     values = {f: responses(directory, f) for f in list(FACTORS) + [RATE_FACTOR]}
     values = {f: v for f, v in values.items() if v}
+    if not values:
+        raise ValueError(f"{directory}: no record of tyanalysis reproduce --programme fidelity "
+                         "(fid_<factor>_<run>.csv) or of the paper programme there")
     base = values.get("base", {})
     keys = [(label, k) for label, k in RESPONSES if any(k in v for v in values.values())]
     lines = ["| factor | " + " | ".join(label for label, _ in keys) + " |",
