@@ -718,6 +718,33 @@ def test_reproduce_starts_a_run_when_its_specimen_is_ready(tmp_path):
     assert any("skipped run_broken: prep_broken failed" in ln for ln in lines)
 
 
+def test_reproduce_trace_study_runs_factor_by_factor(tmp_path):
+    """The trace study starts its jobs factor by factor (fidelity.FACTORS' order), each
+    factor's preparation before its runs, so that an interrupted call leaves the first factors
+    whole rather than every factor's specimen and no record: one slot, shell jobs that append
+    their names to one file."""
+    sys.path.insert(0, os.path.join(REPO, "analysis"))
+    from tyanalysis import fidelity
+    from tyanalysis.reproduce import PROGRAMMES, Job, rank_of, run_jobs
+    prog = PROGRAMMES["fidelity"]
+    assert [rank_of(fidelity.run_name(f, "axisym_dense"), prog) for f in
+            ("base", "seed2", "gamma0_shear", "gamma06_prep")] == [0, 1, 2, 3]
+    assert rank_of("n8000_axisym_loose", prog) == len(fidelity.FACTORS) - 1
+    assert rank_of("axisym_dense", PROGRAMMES["paper"]) == 0
+
+    def job(name, rank, needs=None, weight=1):
+        return Job(name, ["sh", "-c", f"echo {name} >> order.txt"], None, weight, needs, rank)
+
+    prep_late = job("prep_late", 2, weight=50)      # heavier, but of a later factor
+    prep_base = job("prep_base", 0)
+    jobs = [prep_late, job("late_run", 2, prep_late, weight=90), prep_base,
+            job("base_short", 0, prep_base, weight=1), job("base_long", 0, prep_base, weight=9),
+            job("mid_run", 1, prep_base)]
+    assert run_jobs(jobs, str(tmp_path), 1, 60.0, lambda s: None) == []
+    assert (tmp_path / "order.txt").read_text().split() == [
+        "prep_base", "base_long", "base_short", "mid_run", "prep_late", "late_run"]
+
+
 def test_reproduce_refuses_an_unknown_run(tmp_path):
     proc = subprocess.run([PY, "-m", "tyanalysis", "reproduce", "--dir", str(tmp_path),
                            "--only", "axisym_medium"], capture_output=True, text=True, env=_env())

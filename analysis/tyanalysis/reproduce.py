@@ -60,6 +60,13 @@ def entry(name, prog=PROGRAMME):
     return deck, vars_, out, weight, (prep[0] if prep else {})
 
 
+def rank_of(name, prog=PROGRAMME):
+    """Start order of a run's group: in the trace study its factor's place in
+    fidelity.FACTORS, so that an interrupted call leaves whole factors, the first ones;
+    0 for every run of the paper programme."""
+    return fidelity.factor_rank(name) if prog is PROGRAMMES["fidelity"] else 0
+
+
 def specimen_of(name, prog=PROGRAMME):
     """The specimen a run shears (the decks' default: dense) and its preparation variables."""
     deck, vars_, _, _, prep = entry(name, prog)
@@ -177,18 +184,19 @@ def fidelity_command(d):
 
 
 class Job:
-    def __init__(self, name, cmd, record, weight, needs=None):
+    def __init__(self, name, cmd, record, weight, needs=None, rank=0):
         self.name, self.cmd, self.record, self.weight = name, cmd, record, weight
         self.needs = needs            # a Job that must have succeeded first, or None
+        self.rank = rank              # jobs of a lower rank start first (a factor's place)
         self.proc = self.start = None
         self.state = "pending"        # pending, running, done, failed, skipped
 
 
 def run_jobs(jobs, workdir, width, every, log):
     """Run Job objects, at most `width` at once: of the jobs whose prerequisite has succeeded,
-    preparations first, then the longest; a job whose prerequisite failed is skipped. Returns
-    the failed and the skipped jobs."""
-    pending = sorted(jobs, key=lambda j: (j.needs is not None, -j.weight))
+    the lowest rank first, and within a rank preparations first, then the longest; a job whose
+    prerequisite failed is skipped. Returns the failed and the skipped jobs."""
+    pending = sorted(jobs, key=lambda j: (j.rank, j.needs is not None, -j.weight))
     running, failed, done = [], [], 0
     total = len(jobs)
     last_report = time.monotonic()
@@ -255,11 +263,11 @@ def main(args):
         print(f"[{(time.monotonic() - t0) / 60:6.1f} min] {text}", flush=True)
 
     prep = {}
-    for n in names:
+    for n in sorted(names, key=lambda n: rank_of(n, prog)):
         s = specimen_of(n, prog)
-        if s not in prep:
+        if s not in prep:       # ranked with the first factor that needs it
             prep[s] = Job(prepare_name(s), prepare_command(s, args.scale, inputs), None,
-                          PREP_WEIGHT[s[0]])
+                          PREP_WEIGHT[s[0]], rank=rank_of(n, prog))
     shear = []
     for n in names:
         record = record_name(n, prog)
@@ -267,7 +275,7 @@ def main(args):
             log(f"{n}: {record} is complete, not run again")
             continue
         shear.append(Job(n, command(n, args.scale, inputs, prog), record, entry(n, prog)[3],
-                         needs=prep[specimen_of(n, prog)]))
+                         needs=prep[specimen_of(n, prog)], rank=rank_of(n, prog)))
     if args.dry_run:
         for j in list(prep.values()) + shear:
             print(shlex.join(j.cmd))
