@@ -967,3 +967,55 @@ def test_equilibrium_criteria_outputs(specimen, tmp_path):
     assert s_ok in (0.0, 1.0) and z_ok in (0.0, 1.0)
     assert k == pytest.approx(ke_bearing / (P0 * volume), rel=1e-9)
     assert 0.0 < ke_bearing <= ke_all
+
+
+# ---------------------------------------------------------------------------------------------
+# 20. outputs by name: `variables yes` defines v_ID_NAME for every output
+
+
+def test_named_variables_read_the_outputs(specimen, tmp_path):
+    """v_sh_p, v_sh_eps1, v_sh_Z, ... are the outputs of the Output table by name: p the CSV's
+    p of the same step, eps1 = -ln(lx/lx0) from LAMMPS's own box lengths, Z twice the contacts
+    per sphere that LAMMPS's compute contact/atom counts (Γ = 0: a contact is an overlap; the
+    same in v_sh_Z as in f_sh[18]);
+    a fix redefined with the same ID defines them again; after `unfix` they are gone."""
+    steps = 400
+    deck = (restart_deck(specimen, 0.3, 0.0) + "compute cont all contact/atom\n"
+            "compute csum all reduce sum c_cont\n"
+            "variable lx0 equal $(lx:%.17g)\n"
+            f"fix sh all cell/servo axisym x {AXIAL_RATE} {P0} variables yes csv sh.csv 100\n"
+            f"run {steps}\n"
+            "thermo_style custom step c_csum\nrun 0\n"
+            'print "NV $(step) $(v_sh_p:%.17g) $(v_sh_eps1:%.17g) $(-ln(lx/v_lx0):%.17g) '
+            '$(v_sh_Z:%.17g) $(f_sh[18]:%.17g) $(c_csum/atoms:%.17g) $(v_sh_progress)"\n'
+            f"fix sh all cell/servo axisym x {AXIAL_RATE} {P0} variables yes\nrun 10\n"
+            'print "AGAIN $(v_sh_eps1:%.17g) $(-ln(lx/v_lx0):%.17g)"\n'
+            "unfix sh\n"
+            'print "GONE $(v_sh_p)"\n')
+    rc, out = run_deck(deck, tmp_path)
+    line = next(ln for ln in out.splitlines() if ln.startswith("NV "))
+    step, p, eps1, eps1_box, z, z_by_index, contacts_per_sphere, progress = map(
+        float, line.split()[1:])
+    rows = read_csv(tmp_path / "sh.csv")
+    assert rows["step"][-1] == step                 # the row of the step the variables read
+    assert p == pytest.approx(rows["p"][-1], rel=1e-11) and p == pytest.approx(P0, rel=0.05)
+    assert eps1 == pytest.approx(eps1_box, rel=1e-9) and eps1 > 0
+    # (LAMMPS hands a variable's value to another formula as text of 15 significant digits)
+    assert z == pytest.approx(z_by_index, rel=1e-14)
+    assert z == pytest.approx(contacts_per_sphere, rel=1e-14)
+    assert np.isnan(progress) or 0.0 <= progress <= 1.0
+    again = next(ln for ln in out.splitlines() if ln.startswith("AGAIN "))
+    a, b = map(float, again.split()[1:])
+    assert a == pytest.approx(b, rel=1e-9) and a > eps1      # continued test, same reference
+    assert rc != 0 and not any(ln.startswith("GONE ") for ln in out.splitlines())
+    error = next(ln for ln in out.splitlines() if ln.startswith("ERROR"))
+    assert "Invalid variable reference v_sh_p" in error, error     # deleted, not dangling
+
+
+def test_named_variables_do_not_overwrite(specimen, tmp_path):
+    deck = (restart_deck(specimen) + "variable sh_p equal 42\n"
+            f"fix sh all cell/servo axisym x {AXIAL_RATE} {P0} variables yes\nrun 0\n")
+    rc, out = run_deck(deck, tmp_path)
+    assert rc != 0
+    assert ("fix cell/servo: 'variables yes' defines the variable sh_p (output 10 of fix sh), "
+            "which exists already: delete it or give the fix another ID") in out

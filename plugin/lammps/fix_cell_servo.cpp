@@ -123,7 +123,7 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
     measured_step(-1), output_step(-1), particle_step(-1), mean_diameter(0.0), mean_density(0.0),
     solid_volume(0.0), pressure(nullptr), pair(nullptr), csv_every(0),
     wall_start(0.0), step_start(0), saturated_steps(0), saturated_error(0.0),
-    saturation_warned(false), cap_warning(true)
+    saturation_warned(false), cap_warning(true), named_variables(false)
 {
   if (narg < 5) error->all(FLERR, "Illegal fix cell/servo command: expected 'fix ID all cell/servo MODE ...' (modes: iso axes axisym constant_b deviatoric circle triangle polygon)");
   if (strcmp(arg[1], "all") != 0)
@@ -216,6 +216,32 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
 
   pressure_id = std::string(id) + "_contact_stress";
   modify->add_compute(pressure_id + " all pressure NULL pair");
+  if (named_variables) define_named_variables();
+}
+
+// `variables yes`: an equal-style variable ID_NAME = f_ID[i] for every output, so that a deck
+// reads the fix's state by the names of the Output table (OUTPUT_NAMES, the one list) instead
+// of by position. A variable of that name that exists already is an error, not overwritten;
+// the variables go with the fix.
+void FixCellServo::define_named_variables()
+{
+  for (int i = 0; i < N_OUTPUT; ++i) {
+    const std::string name = fmt::format("{}_{}", id, OUTPUT_NAMES[i]);
+    if (input->variable->find(name.c_str()) >= 0)
+      error->all(FLERR, "fix cell/servo: 'variables yes' defines the variable {} (output {} "
+                 "of fix {}), which exists already: delete it or give the fix another ID",
+                 name, i + 1, id);
+  }
+  for (int i = 0; i < N_OUTPUT; ++i)
+    input->variable->set(fmt::format("{}_{} equal f_{}[{}]", id, OUTPUT_NAMES[i], id, i + 1));
+}
+
+void FixCellServo::delete_named_variables()
+{
+  for (int i = 0; i < N_OUTPUT; ++i) {
+    const std::string name = fmt::format("{}_{}", id, OUTPUT_NAMES[i]);
+    if (input->variable->find(name.c_str()) >= 0) input->variable->set(name + " delete");
+  }
 }
 
 FixCellServo::~FixCellServo()
@@ -233,6 +259,7 @@ FixCellServo::~FixCellServo()
   continuations()[continuation_key(lmp, id)] = c;
 
   if (modify->find_compute(pressure_id) >= 0) modify->delete_compute(pressure_id);
+  if (named_variables) delete_named_variables();
   // (the pair may be gone already: pair thornton/yin clears its tally flag in init_style)
   // the box stops deforming with this fix: pair styles must not add an affine velocity
   for (int i = 0; i < 6; ++i) domain->h_rate[i] = 0.0;
@@ -513,6 +540,9 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
       iarg += 3;
     } else if (key == "cap_warning") {
       cap_warning = yes_no();
+      iarg += 2;
+    } else if (key == "variables") {
+      named_variables = yes_no();
       iarg += 2;
     } else if (key == "continue") {
       continue_previous = yes_no();

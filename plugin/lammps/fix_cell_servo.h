@@ -157,6 +157,9 @@ class FixCellServo : public Fix {
   double saturated_error;         // the stress error when the servo reached its cap
   bool saturation_warned;         // the cap warning has been given in this run
   bool cap_warning;               // keyword cap_warning yes|no
+  bool named_variables;           // keyword variables yes|no: v_ID_NAME for every output
+  void define_named_variables();
+  void delete_named_variables();
   static constexpr int SATURATION_WARN_STEPS = 1000;
   double current_strain(int axis) const;
 };
