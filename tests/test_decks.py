@@ -10,7 +10,7 @@ their CSV records checked qualitatively against the paper (sections 3-5, Figs 1-
   plane_strain.in  each leg of the triangle keeps one principal deviatoric strain fixed
                    (Figs 8-9), both directions
 and the analysis CLI (python3 -m tyanalysis) draws every figure from these records; thermo shows
-the fix's outputs by name (inputs/common/outputs.in) and the deck prints its `tyanalysis` command.
+the fix's outputs by name (v_cell_NAME, fix cell/servo's `variables yes`) and the deck prints its `tyanalysis` command.
 The decks' -var choices are checked, and the specimen cache (tylmp.decks) is keyed on the
 preparation settings, never left torn, and found from any directory (issues 14, 15).
 
@@ -222,34 +222,18 @@ def _thermo(out):
     return {name: np.array([r[k] for r in rows]) for k, name in enumerate(header)}
 
 
-def test_outputs_fragment_names_the_fix_vector():
-    """inputs/common/outputs.in: v_NAME is item i of the fix's vector, and NAME the CSV column
-    of that item (docs/fix_cell_servo.md: CSV = step, time, items 1-26, 30-35, 27; time is
-    item 36)."""
-    import re
-    text = open(os.path.join(REPO, "inputs", "common", "outputs.in")).read()
-    index = {name: int(i) for name, i in
-             re.findall(r"^variable\s+(\w+)\s+equal\s+f_\$\{servo\}\[(\d+)\]", text, re.M)}
-    assert sorted(index.values()) == list(range(1, 42))
-    assert CSV_COLUMNS[1] == "time" and index["time"] == 36
-    csv_items = list(range(1, 27)) + list(range(30, 36)) + [27]
-    for column, item in zip(CSV_COLUMNS[2:], csv_items):
-        name = "b_measured" if column == "b" else column
-        assert index[name] == item, (column, item)
-
-
 def test_axisym_thermo_named_outputs(axisym_dense):
-    """The deck's thermo columns are named (v_eps_d13, v_p, ...) and are the record's values
-    at the same steps."""
+    """The deck's thermo columns are the fix's outputs by name (v_cell_eps_d13, v_cell_p, ...:
+    `variables yes`) and are the record's values of the same names at the same steps."""
     thermo = _thermo(OUTPUT["axisym"])
-    assert "v_eps_d13" in thermo and "v_p" in thermo and "v_q" in thermo
+    assert "v_cell_eps_d13" in thermo and "v_cell_p" in thermo and "v_cell_q" in thermo
     assert not any(name.startswith("f_") for name in thermo)
     t, _ = read_csv(axisym_dense / "axisym.csv")
     row = {int(s): k for k, s in enumerate(t["step"])}
     common = [k for k, s in enumerate(thermo["Step"]) if int(s) in row and s > 0]
     assert len(common) > 5
     for name in ("eps_d13", "p", "q", "sinphi", "eps_v", "Zm", "inertial_number"):
-        ours = thermo["v_" + name][common]
+        ours = thermo["v_cell_" + name][common]
         theirs = t[name][[row[int(s)] for s in thermo["Step"][common]]]
         assert np.allclose(ours, theirs, rtol=1e-4, atol=1e-12), name
 
@@ -729,7 +713,7 @@ def test_reproduce_trace_study_runs_factor_by_factor(tmp_path):
     prog = PROGRAMMES["fidelity"]
     assert [rank_of(fidelity.run_name(f, "axisym_dense"), prog) for f in
             ("base", "seed2", "gamma0_shear", "gamma06_prep")] == [0, 1, 2, 3]
-    assert rank_of("n8000_axisym_loose", prog) == len(fidelity.FACTORS) - 1
+    assert rank_of("damped_axisym_loose", prog) == len(fidelity.FACTORS) - 1
     assert rank_of("axisym_dense", PROGRAMMES["paper"]) == 0
 
     def job(name, rank, needs=None, weight=1):

@@ -58,10 +58,10 @@ NUMBERS = {
 # preparation recipe and the numerics it uses
 RECIPE = ("prepare.in", "prepare_damped.in", "prepare_two_stage.in", "numerics.in")
 # variables the cache itself sets or that do not change the prepared state
+# (the preparation's fix cell/servo outputs, v_iso_p, v_iso_Z, ..., which the fragments read,
+# exist only while that fix does: _defined leaves them out of the settings)
 NOT_KEYED = {"specimen_file", "specimen_tmp", "specimen_stem", "specimen_dir", "tylmp_common",
-             "tylmp_prepare", "servo"}
-# the named outputs of fix cell/servo (v_p, v_eps_d13, ...) are read, not settings
-OUTPUTS = "outputs.in"
+             "tylmp_prepare"}
 
 _collected = []
 _pending = {}           # specimen path -> key and settings, for specimen_commit
@@ -279,8 +279,6 @@ def specimen_cache(ptr, common):
     for name in RECIPE:
         with open(os.path.join(common, name), encoding="utf-8") as fh:
             names.update(_referenced(fh.read()))
-    with open(os.path.join(common, OUTPUTS), encoding="utf-8") as fh:
-        names -= set(re.findall(r"\bvariable\s+(\w+)\s+equal\b", fh.read()))
     names = _defined(L, sorted((names | {"specimen", "scale"}) - NOT_KEYED))
     settings = _values(L, names)
     directory = _values(L, ["specimen_dir"])["specimen_dir"]
