@@ -59,13 +59,17 @@ SRC
       log "trixie has no source package $DEB_SOURCE $DEB_UPSTREAM-* any more"; exit 1
     fi
     log "fetching the Debian source package $DEB_SOURCE=$version"
-    # a mirror may lack the .dsc (then apt-get reports an error after fetching the tarballs):
-    # the orig tarball is checked against the SHA-256 of the signed Sources index below
-    (cd "$apt/download" && apt-get "${opts[@]}" -qq source --download-only \
+    # the orig tarball only (--tar-only): a mirror may lack the .dsc, and its 404 stopped the
+    # tarball's download half-way. The tarball is checked against the SHA-256 of the signed
+    # Sources index below.
+    (cd "$apt/download" && apt-get "${opts[@]}" -qq source --download-only --tar-only \
        "$DEB_SOURCE=$version" >/dev/null 2>&1) || true
     local want
-    want="$(apt-cache "${opts[@]}" showsrc "$DEB_SOURCE=$version" |
-            awk -v f="$DEB_ORIG" '/^Checksums-Sha256:/{s=1;next} /^[^ ]/{s=0} s && $3==f {print $1; exit}')"
+    # the SHA-256 of the tarball in the stanza of that version (showsrc takes a package name,
+    # not name=version: it prints every version the index has)
+    want="$(apt-cache "${opts[@]}" showsrc "$DEB_SOURCE" |
+            awk -v f="$DEB_ORIG" -v v="$version" '/^Version: /{ver=$2} /^Checksums-Sha256:/{s=1;next}
+                 /^[^ ]/{s=0} s && ver==v && $3==f && h=="" {h=$1} END {print h}')"
     if [ ! -f "$apt/download/$DEB_ORIG" ] || [ -z "$want" ] ||
        [ "$(sha256sum "$apt/download/$DEB_ORIG" | cut -d' ' -f1)" != "$want" ]; then
       rm -f "$apt/download/$DEB_ORIG"
