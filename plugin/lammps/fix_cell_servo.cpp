@@ -223,25 +223,27 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
 // reads the fix's state by the names of the Output table (OUTPUT_NAMES, the one list) instead
 // of by position. A variable of that name that exists already is an error, not overwritten;
 // the variables go with the fix.
+std::string FixCellServo::output_variable(int i) const
+{
+  return fmt::format("{}_{}", id, OUTPUT_NAMES[i]);
+}
+
 void FixCellServo::define_named_variables()
 {
-  for (int i = 0; i < N_OUTPUT; ++i) {
-    const std::string name = fmt::format("{}_{}", id, OUTPUT_NAMES[i]);
-    if (input->variable->find(name.c_str()) >= 0)
+  for (int i = 0; i < N_OUTPUT; ++i)
+    if (input->variable->find(output_variable(i).c_str()) >= 0)
       error->all(FLERR, "fix cell/servo: 'variables yes' defines the variable {} (output {} "
                  "of fix {}), which exists already: delete it or give the fix another ID",
-                 name, i + 1, id);
-  }
+                 output_variable(i), i + 1, id);
   for (int i = 0; i < N_OUTPUT; ++i)
-    input->variable->set(fmt::format("{}_{} equal f_{}[{}]", id, OUTPUT_NAMES[i], id, i + 1));
+    input->variable->set(fmt::format("{} equal f_{}[{}]", output_variable(i), id, i + 1));
 }
 
 void FixCellServo::delete_named_variables()
 {
-  for (int i = 0; i < N_OUTPUT; ++i) {
-    const std::string name = fmt::format("{}_{}", id, OUTPUT_NAMES[i]);
-    if (input->variable->find(name.c_str()) >= 0) input->variable->set(name + " delete");
-  }
+  for (int i = 0; i < N_OUTPUT; ++i)
+    if (input->variable->find(output_variable(i).c_str()) >= 0)
+      input->variable->set(output_variable(i) + " delete");
 }
 
 FixCellServo::~FixCellServo()

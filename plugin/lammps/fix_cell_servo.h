@@ -158,6 +158,7 @@ class FixCellServo : public Fix {
   bool saturation_warned;         // the cap warning has been given in this run
   bool cap_warning;               // keyword cap_warning yes|no
   bool named_variables;           // keyword variables yes|no: v_ID_NAME for every output
+  std::string output_variable(int i) const;    // ID_NAME of output i (0-based)
   void define_named_variables();
   void delete_named_variables();
   static constexpr int SATURATION_WARN_STEPS = 1000;
