@@ -193,7 +193,7 @@ def main(argv=None):
         "records_identical": agree, "records_note": note,
     }
     write_json(out + ".json", summary)
-    print(f"\n| | wall time | loop time of all LAMMPS runs | steps |\n|---|---|---|---|")
+    print("\n| | wall time | loop time of all LAMMPS runs | steps |\n|---|---|---|---|")
     for v in ("before", "after"):
         m = median[v]
         print(f"| {v} | {m['wall_s'] / 60:.1f} min | {m['loop_s']:.1f} s | {m['steps']:.0f} |")
