@@ -32,6 +32,7 @@ import argparse
 import csv
 import filecmp
 import glob
+import io
 import os
 import re
 import shutil
@@ -42,7 +43,7 @@ import time
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO, "analysis"))
-from tyanalysis.io import write_json  # noqa: E402
+from tyanalysis.io import write_json, write_text  # noqa: E402
 
 LOOP = re.compile(r"^Loop time of ([0-9.eE+-]+) on \d+ procs for (\d+) steps", re.M)
 
@@ -176,11 +177,11 @@ def main(argv=None):
     agree, note = same_records(os.path.join(work, "before_0"), os.path.join(work, "after_0"))
     print(f"programme_speed: records of before and after: {note}")
 
-    with open(out + ".csv.tmp", "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=["variant", "repeat", "wall_s", "loop_s", "steps"])
-        w.writeheader()
-        w.writerows(rows)
-    os.replace(out + ".csv.tmp", out + ".csv")
+    table = io.StringIO()
+    w = csv.DictWriter(table, fieldnames=["variant", "repeat", "wall_s", "loop_s", "steps"])
+    w.writeheader()
+    w.writerows(rows)
+    write_text(out + ".csv", table.getvalue())
     median = {v: {k: statistics.median(r[k] for r in rows if r["variant"] == v)
                   for k in ("wall_s", "loop_s", "steps")} for v in ("before", "after")}
     summary = {

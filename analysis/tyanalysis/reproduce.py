@@ -21,7 +21,6 @@ import importlib.util
 import os
 import shlex
 import subprocess
-import sys
 import time
 
 from . import fidelity
@@ -262,22 +261,21 @@ def main(args):
     def log(text):
         print(f"[{(time.monotonic() - t0) / 60:6.1f} min] {text}", flush=True)
 
-    todo = []
+    todo = []                   # (run, its record) of the runs still to do
     for n in names:
         record = record_name(n, prog)
         if finished(os.path.join(workdir, record)):
             log(f"{n}: {record} is complete, not run again")
         else:
-            todo.append(n)
+            todo.append((n, record))
     prep = {}                   # only the specimens of runs still to do
-    for n in sorted(todo, key=lambda n: rank_of(n, prog)):
+    for n, _ in sorted(todo, key=lambda t: rank_of(t[0], prog)):
         s = specimen_of(n, prog)
         if s not in prep:       # ranked with the first factor that needs it
             prep[s] = Job(prepare_name(s), prepare_command(s, args.scale, inputs), None,
                           PREP_WEIGHT[s[0]], rank=rank_of(n, prog))
-    shear = [Job(n, command(n, args.scale, inputs, prog), record_name(n, prog),
-                 entry(n, prog)[3], needs=prep[specimen_of(n, prog)], rank=rank_of(n, prog))
-             for n in todo]
+    shear = [Job(n, command(n, args.scale, inputs, prog), record, entry(n, prog)[3],
+                 needs=prep[specimen_of(n, prog)], rank=rank_of(n, prog)) for n, record in todo]
     if args.dry_run:
         for j in list(prep.values()) + shear:
             print(shlex.join(j.cmd))
