@@ -47,6 +47,7 @@ sys.path.insert(0, os.path.join(REPO, "analysis"))
 from tyanalysis.figures import save_figure  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from pair_speed import LOAD  # noqa: E402  (the two lines that load the plugin's styles)
+from lammps_log import loops, section  # noqa: E402
 E, NU, MU, GAMMA = 70e9, 0.3, 0.3, 0.6
 
 PAIRS = {
@@ -187,14 +188,12 @@ def run_deck(text, tag, work, reuse=False):
 def parse_run(tag, work, wall):
     with open(os.path.join(work, f"{tag}.log")) as fh:
         log = fh.read()
-    loops = re.findall(r"Loop time of ([0-9.eE+-]+) on \d+ procs for (\d+) steps with (\d+) atoms",
-                       log)
-    pair_times = re.findall(r"^Pair\s*\|\s*[0-9.]+\s*\|\s*([0-9.]+)", log, re.M)
+    runs = loops(log)
     d = read_record(work, tag)
-    d["loop_s"] = sum(float(m[0]) for m in loops)
-    d["pair_s"] = sum(float(x) for x in pair_times)
-    d["steps"] = sum(int(m[1]) for m in loops)
-    d["atoms"] = int(loops[-1][2])
+    d["loop_s"] = sum(r["seconds"] for r in runs)
+    d["pair_s"] = sum(r["avg"] for r in section(log, "Pair"))
+    d["steps"] = sum(r["steps"] for r in runs)
+    d["atoms"] = runs[-1]["atoms"]
     d["wall_s"] = wall
     return d
 

@@ -96,6 +96,8 @@ import tempfile
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO, "analysis"))
 from tyanalysis.io import write_json  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from lammps_log import first_loop, section  # noqa: E402
 DATA = os.path.join(REPO, "bench", "data", "dense_paper_100kPa.data")
 LOAD = ('python tylmp_load input 1 SELF format p here "from tylmp import load as tylmp_load"\n'
         "python tylmp_load invoke\n")
@@ -224,13 +226,15 @@ def case_deck(name, data, steps, measure=None):
 def run_case(data, name, steps, ranks, workdir, library=None, liggghts="liggghts", lmp="lmp"):
     out = run_deck(name, case_deck(name, data, steps), ranks, workdir, library, liggghts, lmp)
     # LAMMPS and LIGGGHTS 3.8 ("..., finish time ...") both print this line
-    m = re.search(r"Loop time of ([0-9.eE+-]+) on \d+ procs for (\d+) steps with (\d+) atoms", out)
-    if not m:
-        raise RuntimeError(f"{name}: no loop time\n{out[-2000:]}")
-    loop, nsteps, natoms = float(m.group(1)), int(m.group(2)), int(m.group(3))
-    pair = (re.search(r"^Pair\s*\|\s*[0-9.]+\s*\|\s*([0-9.eE+-]+)", out, re.M)    # LAMMPS
-            or re.search(r"^Pair\s+time \(%\) = ([0-9.eE+-]+)", out, re.M))      # LIGGGHTS
-    return loop, natoms * nsteps / loop, float(pair.group(1)) if pair else float("nan")
+    run = first_loop(out, name)
+    loop = run["seconds"]
+    pair = section(out, "Pair")    # LAMMPS: the Pair row's average seconds
+    if pair:
+        pair_s = pair[0]["avg"]
+    else:                          # LIGGGHTS: "Pair  time (%) = ..."
+        m = re.search(r"^Pair\s+time \(%\) = ([0-9.eE+-]+)", out, re.M)
+        pair_s = float(m.group(1)) if m else float("nan")
+    return loop, run["atoms"] * run["steps"] / loop, pair_s
 
 
 def plot(csv_paths, png):

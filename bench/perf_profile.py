@@ -26,6 +26,7 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import pair_speed  # noqa: E402
+from lammps_log import first_loop  # noqa: E402
 from tyanalysis.io import write_json  # noqa: E402
 
 # group -> regular expression on the symbol (first match wins, in this order)
@@ -51,9 +52,8 @@ def profile(case, data, steps, workdir):
                           cwd=workdir, capture_output=True, text=True)
     if proc.returncode != 0:
         raise RuntimeError(f"perf record failed\n{proc.stdout[-2000:]}{proc.stderr[-2000:]}")
-    m = re.search(r"Loop time of ([0-9.eE+-]+) on \d+ procs for (\d+) steps with (\d+) atoms",
-                  proc.stdout)
-    loop, nsteps, natoms = float(m.group(1)), int(m.group(2)), int(m.group(3))
+    run = first_loop(proc.stdout, "perf record")
+    loop, nsteps, natoms = run["seconds"], run["steps"], run["atoms"]
     rep = subprocess.run(["perf", "report", "-i", perf_data, "--stdio", "--sort", "symbol",
                           "--percent-limit", "0"], cwd=workdir, capture_output=True, text=True)
     shares = {g: 0.0 for g, _ in GROUPS}

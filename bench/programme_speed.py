@@ -34,7 +34,6 @@ import filecmp
 import glob
 import io
 import os
-import re
 import shutil
 import statistics
 import subprocess
@@ -44,8 +43,8 @@ import time
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO, "analysis"))
 from tyanalysis.io import write_json, write_text  # noqa: E402
-
-LOOP = re.compile(r"^Loop time of ([0-9.eE+-]+) on \d+ procs for (\d+) steps", re.M)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from lammps_log import loops  # noqa: E402
 
 
 def cache_dir():
@@ -88,9 +87,9 @@ def loop_totals(rundir):
     seconds, steps = 0.0, 0
     for log in glob.glob(os.path.join(rundir, "*.log")):
         with open(log, errors="replace") as f:
-            for t, n in LOOP.findall(f.read()):
-                seconds += float(t)
-                steps += int(n)
+            for run in loops(f.read()):
+                seconds += run["seconds"]
+                steps += run["steps"]
     return seconds, steps
 
 

@@ -25,6 +25,8 @@ from concurrent.futures import ThreadPoolExecutor
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO, "analysis"))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from lammps_log import loops  # noqa: E402
 
 FIELDS = ["scale", "rate", "dt_fraction", "strain", "wall_s", "steps", "inertial_number",
           "sinphi_max", "eps_d13_at_peak", "eps_v_end", "p_dev_kPa"]
@@ -98,10 +100,10 @@ def logged_wall_time(log):
     if found:
         h, m, sec = (int(x) for x in found[-1])
         return 3600 * h + 60 * m + sec
-    loops = re.findall(r"Loop time of ([0-9.eE+-]+) on", text)
-    if not loops:
+    runs = loops(text)
+    if not runs:
         raise RuntimeError(f"{log}: neither 'Total wall time' nor 'Loop time'")
-    return float(loops[-1])
+    return runs[-1]["seconds"]
 
 
 def load_rows(path):

@@ -36,6 +36,7 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import pair_speed  # noqa: E402  the same deck, timestep and neighbor settings
 from pair_speed import DATA, E, MU, NU  # noqa: E402
+from lammps_log import first_loop, section  # noqa: E402
 from tyanalysis.io import write_json  # noqa: E402
 
 SECTIONS = ("Pair", "Neigh", "Comm", "Modify", "Output", "Other")
@@ -53,16 +54,12 @@ def scaled_deck(data, replicate, gamma, steps):
 
 def parse(out):
     """Loop time, steps, atoms, section shares (% of the loop) and LAMMPS's memory line."""
-    m = re.search(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms",
-                  out)
-    if not m:
-        raise RuntimeError(f"no loop time\n{out[-2000:]}")
-    row = {"loop_s": float(m.group(1)), "procs": int(m.group(2)), "steps": int(m.group(3)),
-           "atoms": int(m.group(4))}
-    for sec in SECTIONS:    # "Pair | min | avg | max | %varavg | %total" ("Other": avg, %total)
-        s = re.search(rf"^{sec}\s*\|(.*)$", out, re.M)
-        total = s.group(1).split("|")[-1].strip() if s else ""
-        row[f"pct_{sec.lower()}"] = float(total) if total else float("nan")
+    run = first_loop(out, "weak scaling run")
+    row = {"loop_s": run["seconds"], "procs": run["procs"], "steps": run["steps"],
+           "atoms": run["atoms"]}
+    for sec in SECTIONS:
+        rows = section(out, sec)
+        row[f"pct_{sec.lower()}"] = rows[0]["pct"] if rows else float("nan")
     mem = re.search(r"Per MPI rank memory allocation \(min/avg/max\) = ([0-9.eE+-]+) \| "
                     r"([0-9.eE+-]+) \| ([0-9.eE+-]+) Mbytes", out)
     row["lammps_mbytes_per_rank"] = float(mem.group(3)) if mem else float("nan")
