@@ -6,6 +6,7 @@ evaluated the law in its own loop with the staged scalar kernel, before the batc
 tycore::advance_batch and its SIMD builds) and this tree's ("after").
 
     /usr/bin/python3 bench/programme_speed.py [--scale quick|paper] [--repeats 1]
+        [--variant both|before|after] [--append] [--adopt DIR]
         [--before 3585d58] [--decks 1c07cef] [--after build/python/tylmp/tylmp-20210929.so]
         [--jobs 2] [--dir DIR] [--out PREFIX]
 
@@ -17,23 +18,30 @@ and built once from `git archive BEFORE` into $TYLMP_CACHE/bench/BEFORE (default
 ~/.cache/tylmp) and reused.
 
 The two builds' trajectories are bitwise the same (tests/test_batch_isa_trajectory.py and the
-batch entry's differential tests), so both calls do the same work, step for step: the
-benchmark checks it by comparing every CSV record of the two calls byte for byte (the
-preparations' records, the runs' records), and says so when they differ. Calls alternate
-(before, after, before, ...), `repeats` of each; the figure is the median wall time of the
-whole call, with the sum of the LAMMPS loop times and steps over all its logs beside it.
+batch entry's differential tests), so both calls do the same work, step for step: every call
+records a digest of its CSV records' bytes (the preparations' records, the runs' records), and
+the benchmark says whether all calls wrote the same. Calls alternate (before, after, before,
+...), `repeats` of each; the figure is the median wall time of the whole call, with the sum of
+the LAMMPS loop times and steps over all its logs beside it.
 
-Run it on an otherwise idle machine: a paper-scale call takes about an hour (docs/performance.md).
-Writes PREFIX.csv (one row per call) and PREFIX.json (medians, the ratio, whether the records
-agree; default PREFIX: programme_speed_SCALE in the results folder beside this script) and
-prints a table.
+Run it on an otherwise idle machine. At paper scale the two halves take longer than one
+working session of a two-core machine (before about 2.5 h, after about 1 h;
+docs/performance.md): `--variant before` and, later, `--variant after --append` measure them
+in two calls, and `--adopt DIR --variant V` records a finished call from its directory (wall
+time from reproduce's own log DIR.out). Each call's row carries its start (UTC), so the table
+says when each half was measured.
+
+Writes PREFIX.csv (one row per call, rewritten atomically after each call) and PREFIX.json
+(medians, the ratio, whether the records agree; default PREFIX: programme_speed_SCALE in the
+results folder beside this script) and prints a table.
 """
 import argparse
 import csv
-import filecmp
 import glob
+import hashlib
 import io
 import os
+import re
 import shutil
 import statistics
 import subprocess
@@ -100,16 +108,26 @@ def records(rundir):
     return sorted(os.path.relpath(p, rundir) for p in found)
 
 
-def same_records(a, b):
-    """(agree, note): whether every CSV record of the two calls is byte-identical."""
-    ra, rb = records(a), records(b)
-    if ra != rb:
-        return False, f"different sets of records: {sorted(set(ra) ^ set(rb))}"
-    differ = [r for r in ra if not filecmp.cmp(os.path.join(a, r), os.path.join(b, r),
-                                               shallow=False)]
-    if differ:
-        return False, f"{len(differ)} of {len(ra)} records differ: {differ[:5]}"
-    return True, f"all {len(ra)} records byte-identical"
+def records_digest(rundir):
+    """(count, sha256) of a call's records: the digest of every record's name and bytes, so
+    that two calls, in one session or in two, are compared byte for byte."""
+    whole = hashlib.sha256()
+    names = records(rundir)
+    for name in names:
+        with open(os.path.join(rundir, name), "rb") as f:
+            whole.update(name.encode() + b"\0" + hashlib.sha256(f.read()).digest())
+    return len(names), whole.hexdigest()
+
+
+def call_row(variant, rundir, wall, started):
+    loop, steps = loop_totals(rundir)
+    count, digest = records_digest(rundir)
+    return {"variant": variant, "started_utc": started, "wall_s": wall, "loop_s": loop,
+            "steps": steps, "records": count, "records_sha256": digest}
+
+
+def utc(seconds_since_epoch):
+    return time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime(seconds_since_epoch))
 
 
 def run_call(variant, library, decks, scale, jobs, rundir):
@@ -120,22 +138,99 @@ def run_call(variant, library, decks, scale, jobs, rundir):
     cmd = [sys.executable, "-m", "tyanalysis", "reproduce", "--scale", scale, "--jobs",
            str(jobs), "--dir", rundir, "--inputs", decks]
     print(f"programme_speed: {variant}: {' '.join(cmd)} (TYLMP_LIBRARY={library})", flush=True)
+    started = utc(time.time())
     start = time.monotonic()
     with open(rundir + ".out", "w") as out:
         rc = subprocess.run(cmd, env=env, stdout=out, stderr=subprocess.STDOUT).returncode
     wall = time.monotonic() - start
     if rc != 0:
         sys.exit(f"programme_speed: the {variant} call failed (exit {rc}); see {rundir}.out")
-    loop, steps = loop_totals(rundir)
-    print(f"programme_speed: {variant}: {wall / 60:.2f} min wall, loop time {loop:.1f} s, "
-          f"{steps} steps", flush=True)
-    return {"variant": variant, "wall_s": wall, "loop_s": loop, "steps": steps}
+    row = call_row(variant, rundir, wall, started)
+    print(f"programme_speed: {variant}: {wall / 60:.2f} min wall, loop time {row['loop_s']:.1f} s, "
+          f"{row['steps']} steps, {row['records']} records", flush=True)
+    return row
+
+
+ELAPSED = re.compile(r"^\[\s*([0-9.]+) min\]", re.M)
+
+
+def adopt_call(variant, rundir):
+    """The row of a reproduce call that ended outside this script (e.g. a half measured in an
+    earlier process): its wall time is the last elapsed time reproduce logged in RUNDIR.out
+    (0.1 min resolution), its start that file's modification time less the wall time."""
+    out = rundir + ".out"
+    with open(out, errors="replace") as f:
+        text = f.read()
+    if not re.search(r"\d+ figures/tables in .*; 0 run\(s\) failed", text):
+        sys.exit(f"programme_speed: {out} is not the log of a finished call without failures")
+    wall = 60.0 * float(ELAPSED.findall(text)[-1])
+    return call_row(variant, rundir, wall, utc(os.path.getmtime(out) - wall))
+
+
+FIELDS = ["variant", "started_utc", "wall_s", "loop_s", "steps", "records", "records_sha256"]
+
+
+def read_rows(path):
+    if not os.path.exists(path):
+        return []
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    missing = [k for k in FIELDS if rows and k not in rows[0]]
+    if missing:
+        sys.exit(f"programme_speed: {path} lacks the columns {missing} (written by an older "
+                 "version of this script: measure anew, without --append)")
+    for r in rows:
+        for k in ("wall_s", "loop_s"):
+            r[k] = float(r[k])
+        for k in ("steps", "records"):
+            r[k] = int(r[k])
+    return rows
+
+
+def summarise(rows, args, before, after):
+    variants = [v for v in ("before", "after") if any(r["variant"] == v for r in rows)]
+    median = {v: {k: statistics.median(r[k] for r in rows if r["variant"] == v)
+                  for k in ("wall_s", "loop_s", "steps")} for v in variants}
+    digests = {r["records_sha256"] for r in rows}
+    summary = {
+        "scale": args.scale, "jobs": args.jobs, "before_commit": args.before,
+        "decks_commit": args.decks, "before_library": before, "after_library": after,
+        "calls": {v: sum(r["variant"] == v for r in rows) for v in variants},
+        "sessions_utc": sorted({r["started_utc"][:10] for r in rows}),
+        "median": median,
+        "records_identical": len(digests) == 1,
+        "records_note": (f"all {len(rows)} calls wrote the same {rows[0]['records']} records, "
+                         "byte for byte" if len(digests) == 1 else
+                         f"the calls' records differ: {len(digests)} different digests"),
+    }
+    if len(variants) == 2:
+        summary["wall_speedup"] = median["before"]["wall_s"] / median["after"]["wall_s"]
+        summary["loop_speedup"] = median["before"]["loop_s"] / median["after"]["loop_s"]
+    return summary
+
+
+def save(out, rows, summary):
+    """PREFIX.csv and PREFIX.json, each written whole and atomically after every call, so that
+    an interrupted measurement keeps the calls it finished."""
+    table = io.StringIO()
+    w = csv.DictWriter(table, fieldnames=FIELDS)
+    w.writeheader()
+    w.writerows(rows)
+    write_text(out + ".csv", table.getvalue())
+    write_json(out + ".json", summary)
 
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--scale", choices=("quick", "paper"), default="quick")
     ap.add_argument("--repeats", type=int, default=1, help="calls of each build (alternated)")
+    ap.add_argument("--variant", choices=("both", "before", "after"), default="both",
+                    help="which builds to call (default both, alternated)")
+    ap.add_argument("--append", action="store_true",
+                    help="keep the calls already in PREFIX.csv (halves measured in two calls)")
+    ap.add_argument("--adopt", metavar="DIR", default=None,
+                    help="record the finished call in DIR (its log DIR.out) as --variant, "
+                    "instead of calling the programme")
     ap.add_argument("--before", default="3585d58", help="commit of the 'before' library")
     ap.add_argument("--decks", default="1c07cef", help="commit of the decks both builds run")
     ap.add_argument("--after", default=None, help="the 'after' library (default: this tree's "
@@ -147,6 +242,8 @@ def main(argv=None):
     args = ap.parse_args(argv)
     if args.repeats < 1:
         ap.error("--repeats must be at least 1")
+    if args.adopt and args.variant == "both":
+        ap.error("--adopt needs --variant before or --variant after")
     out = args.out or os.path.join(REPO, "bench", "results", f"programme_speed_{args.scale}")
     after = args.after
     if after is None:
@@ -160,46 +257,33 @@ def main(argv=None):
         sys.exit(f"programme_speed: no library {after} (build this tree first: cmake --build "
                  "build)")
     before = build_commit(args.before, os.path.basename(after))
-    work = args.dir or os.path.join("/tmp", f"programme_speed_{args.scale}")
-    os.makedirs(work, exist_ok=True)
-    decks = os.path.join(work, "decks")
-    archive(args.decks, ["inputs"], decks)
-    decks = os.path.join(decks, "inputs")
-
-    rows = []
-    for rep in range(args.repeats):
-        for variant, library in (("before", before), ("after", after)):
-            row = run_call(variant, library, decks, args.scale, args.jobs,
-                           os.path.join(work, f"{variant}_{rep}"))
-            row["repeat"] = rep
-            rows.append(row)
-    agree, note = same_records(os.path.join(work, "before_0"), os.path.join(work, "after_0"))
-    print(f"programme_speed: records of before and after: {note}")
-
-    table = io.StringIO()
-    w = csv.DictWriter(table, fieldnames=["variant", "repeat", "wall_s", "loop_s", "steps"])
-    w.writeheader()
-    w.writerows(rows)
-    write_text(out + ".csv", table.getvalue())
-    median = {v: {k: statistics.median(r[k] for r in rows if r["variant"] == v)
-                  for k in ("wall_s", "loop_s", "steps")} for v in ("before", "after")}
-    summary = {
-        "scale": args.scale, "jobs": args.jobs, "repeats": args.repeats,
-        "before_commit": args.before, "decks_commit": args.decks,
-        "before_library": before, "after_library": after,
-        "median": median,
-        "wall_speedup": median["before"]["wall_s"] / median["after"]["wall_s"],
-        "loop_speedup": median["before"]["loop_s"] / median["after"]["loop_s"],
-        "records_identical": agree, "records_note": note,
-    }
-    write_json(out + ".json", summary)
-    print("\n| | wall time | loop time of all LAMMPS runs | steps |\n|---|---|---|---|")
-    for v in ("before", "after"):
-        m = median[v]
-        print(f"| {v} | {m['wall_s'] / 60:.1f} min | {m['loop_s']:.1f} s | {m['steps']:.0f} |")
-    print(f"\nspeed-up: {summary['wall_speedup']:.2f}x wall, {summary['loop_speedup']:.2f}x loop; "
-          f"{note}; wrote {out}.csv, {out}.json")
-    return 0 if agree else 1
+    rows = read_rows(out + ".csv") if (args.append or args.adopt) else []
+    if args.adopt:
+        rows.append(adopt_call(args.variant, os.path.abspath(args.adopt)))
+        save(out, rows, summarise(rows, args, before, after))
+    else:
+        work = args.dir or os.path.join("/tmp", f"programme_speed_{args.scale}")
+        os.makedirs(work, exist_ok=True)
+        decks = os.path.join(work, "decks")
+        archive(args.decks, ["inputs"], decks)
+        decks = os.path.join(decks, "inputs")
+        variants = ("before", "after") if args.variant == "both" else (args.variant,)
+        for rep in range(args.repeats):
+            for variant in variants:
+                library = before if variant == "before" else after
+                rows.append(run_call(variant, library, decks, args.scale, args.jobs,
+                                     os.path.join(work, f"{variant}_{rep}")))
+                save(out, rows, summarise(rows, args, before, after))
+    summary = summarise(rows, args, before, after)
+    print("\n| | calls | wall time | loop time of all LAMMPS runs | steps |\n|---|---|---|---|---|")
+    for v, m in summary["median"].items():
+        print(f"| {v} | {summary['calls'][v]} | {m['wall_s'] / 60:.1f} min | {m['loop_s']:.1f} s "
+              f"| {m['steps']:.0f} |")
+    if "wall_speedup" in summary:
+        print(f"\nspeed-up: {summary['wall_speedup']:.2f}x wall, {summary['loop_speedup']:.2f}x "
+              "loop", end="; ")
+    print(f"{summary['records_note']}; wrote {out}.csv, {out}.json")
+    return 0 if summary["records_identical"] else 1
 
 
 if __name__ == "__main__":

@@ -1,7 +1,9 @@
-"""The benchmarks' one reader of LAMMPS's timing output (bench/lammps_log.py), checked against
-what the running `lmp` prints for a deck whose runs are known: two runs of 20 and 30 steps of
-a 4x4x4 fcc lattice (256 atoms) on one process, whose timing breakdown (Pair, Neigh, Comm,
-Output, Modify, Other) accounts for the whole loop time (its %total column sums to 100)."""
+"""The benchmarks' instruments. The one reader of LAMMPS's timing output (bench/lammps_log.py),
+checked against what the running `lmp` prints for a deck whose runs are known: two runs of 20
+and 30 steps of a 4x4x4 fcc lattice (256 atoms) on one process, whose timing breakdown (Pair,
+Neigh, Comm, Output, Modify, Other) accounts for the whole loop time (its %total column sums
+to 100). The record digest by which bench/programme_speed.py says two calls of the programme
+did the same work: equal for byte-equal records, different when one byte or one name differs."""
 import importlib.util
 import os
 import subprocess
@@ -25,12 +27,16 @@ run 30
 """
 
 
-def _lammps_log():
-    path = os.path.join(REPO, "bench", "lammps_log.py")
-    spec = importlib.util.spec_from_file_location("lammps_log", path)
+def _bench(name):
+    path = os.path.join(REPO, "bench", f"{name}.py")
+    spec = importlib.util.spec_from_file_location(name, path)
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module
+
+
+def _lammps_log():
+    return _bench("lammps_log")
 
 
 @pytest.fixture(scope="module")
@@ -66,3 +72,23 @@ def test_breakdown_accounts_for_the_loop_time(output):
 def test_output_without_a_run_is_an_error_that_says_so():
     with pytest.raises(RuntimeError, match="no 'Loop time of ...' line"):
         _lammps_log().first_loop("LAMMPS (29 Sep 2021)\n", "empty output")
+
+
+def test_record_digest_tells_the_same_records_from_different_ones(tmp_path):
+    speed = _bench("programme_speed")
+    calls = []
+    for call in ("a", "b"):
+        d = tmp_path / call
+        (d / "tylmp_specimens").mkdir(parents=True)
+        (d / "axisym_loose_paper.csv").write_text("step,p\n0,1e5\n100,1.00001e5\n")
+        (d / "tylmp_specimens" / "loose_paper.csv").write_text("phi\n0.5962\n")
+        (d / "axisym_loose.log").write_text("not a record\n")
+        calls.append(d)
+    a, b = (speed.records_digest(str(d)) for d in calls)
+    assert a == b and a[0] == 2                  # the two CSV records, not the log
+    (calls[1] / "axisym_loose_paper.csv").write_text("step,p\n0,1e5\n100,1.00002e5\n")
+    assert speed.records_digest(str(calls[1]))[1] != a[1]
+    (calls[1] / "axisym_loose_paper.csv").write_text("step,p\n0,1e5\n100,1.00001e5\n")
+    assert speed.records_digest(str(calls[1])) == a
+    (calls[1] / "axisym_loose_paper.csv").rename(calls[1] / "axisym_dense_paper.csv")
+    assert speed.records_digest(str(calls[1]))[1] != a[1]
