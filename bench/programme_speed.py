@@ -6,7 +6,7 @@ evaluated the law in its own loop with the staged scalar kernel, before the batc
 tycore::advance_batch and its SIMD builds) and this tree's ("after").
 
     /usr/bin/python3 bench/programme_speed.py [--scale quick|paper] [--repeats 1]
-        [--variant both|before|after] [--append] [--adopt DIR]
+        [--variant both|before|after] [--append] [--adopt DIR] [--missing]
         [--before 3585d58] [--decks 1c07cef] [--after build/python/tylmp/tylmp-20210929.so]
         [--jobs 2] [--dir DIR] [--out PREFIX]
 
@@ -24,16 +24,20 @@ the benchmark says whether all calls wrote the same. Calls alternate (before, af
 ...), `repeats` of each; the figure is the median wall time of the whole call, with the sum of
 the LAMMPS loop times and steps over all its logs beside it.
 
-Run it on an otherwise idle machine. At paper scale the two halves take longer than one
-working session of a two-core machine (before about 2.5 h, after about 1 h;
-docs/performance.md): `--variant before` and, later, `--variant after --append` measure them
-in two calls, and `--adopt DIR --variant V` records a finished call from its directory (wall
-time from reproduce's own log DIR.out). Each call's row carries its start (UTC), so the table
-says when each half was measured.
+Run it on an otherwise idle machine. At paper scale the before call (about three hours on two
+cores) is longer than a working session, whose processes end when it stops: the halves are then
+measured job by job. Every finished job (preparation or run) of every call gets a row in
+PREFIX_jobs.csv with its LAMMPS loop times and steps; `--adopt DIR --variant V` records the
+finished jobs of a call that was stopped (reproduce's own log DIR.out), `--variant V --missing`
+calls only the runs that half still lacks (their specimens are prepared again, bitwise the same),
+and the programme's loop time is the sum over its jobs, equal steps job by job showing that
+both builds did the same work. Each row carries its start (UTC), so the tables say when each
+part was measured.
 
-Writes PREFIX.csv (one row per call, rewritten atomically after each call) and PREFIX.json
-(medians, the ratio, whether the records agree; default PREFIX: programme_speed_SCALE in the
-results folder beside this script) and prints a table.
+Writes PREFIX.csv (one row per whole call), PREFIX_jobs.csv (one row per finished job) and
+PREFIX.json (medians, the ratios, whether the records agree, the job accounting; default
+PREFIX: programme_speed_SCALE in the results folder beside this script), each rewritten
+atomically after every call, and prints a table.
 """
 import argparse
 import csv
@@ -126,17 +130,48 @@ def call_row(variant, rundir, wall, started):
             "steps": steps, "records": count, "records_sha256": digest}
 
 
+DONE = re.compile(r"^\[\s*[0-9.]+ min\] \[\d+/\d+\] done (\S+) in ([0-9.]+) min$", re.M)
+JOB_FIELDS = ["variant", "job", "started_utc", "job_wall_s", "loop_s", "steps"]
+
+
+def job_rows(variant, rundir, started):
+    """One row per job (preparation or run) that reproduce logged as done in RUNDIR.out: its
+    wall time (reproduce's "done NAME in X min") and the loop times and steps of its LAMMPS log
+    RUNDIR/NAME.log. A job still running when a call was stopped has no row."""
+    with open(rundir + ".out", errors="replace") as f:
+        done = DONE.findall(f.read())
+    rows = []
+    for job, minutes in done:
+        with open(os.path.join(rundir, job + ".log"), errors="replace") as f:
+            runs = loops(f.read())
+        rows.append({"variant": variant, "job": job, "started_utc": started,
+                     "job_wall_s": 60.0 * float(minutes),
+                     "loop_s": sum(r["seconds"] for r in runs),
+                     "steps": sum(r["steps"] for r in runs)})
+    return rows
+
+
+def programme_jobs():
+    """Every job of the paper programme: the preparations and the runs (tyanalysis.reproduce)."""
+    from tyanalysis import reproduce
+    names = list(reproduce.PROGRAMME)
+    preps = sorted({reproduce.prepare_name(reproduce.specimen_of(n)) for n in names})
+    return preps + names
+
+
 def utc(seconds_since_epoch):
     return time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime(seconds_since_epoch))
 
 
-def run_call(variant, library, decks, scale, jobs, rundir):
+def run_call(variant, library, decks, scale, jobs, rundir, only=None):
+    """One reproduce call with `library`: (its row, or None when `only` limited it to some
+    runs, and the rows of its jobs)."""
     shutil.rmtree(rundir, ignore_errors=True)
     env = dict(os.environ, TYLMP_LIBRARY=library,
                PYTHONPATH=os.path.join(REPO, "analysis") + os.pathsep
                + os.environ.get("PYTHONPATH", ""))
     cmd = [sys.executable, "-m", "tyanalysis", "reproduce", "--scale", scale, "--jobs",
-           str(jobs), "--dir", rundir, "--inputs", decks]
+           str(jobs), "--dir", rundir, "--inputs", decks] + (["--only"] + only if only else [])
     print(f"programme_speed: {variant}: {' '.join(cmd)} (TYLMP_LIBRARY={library})", flush=True)
     started = utc(time.time())
     start = time.monotonic()
@@ -148,60 +183,95 @@ def run_call(variant, library, decks, scale, jobs, rundir):
     row = call_row(variant, rundir, wall, started)
     print(f"programme_speed: {variant}: {wall / 60:.2f} min wall, loop time {row['loop_s']:.1f} s, "
           f"{row['steps']} steps, {row['records']} records", flush=True)
-    return row
+    return (None if only else row), job_rows(variant, rundir, started)
 
 
 ELAPSED = re.compile(r"^\[\s*([0-9.]+) min\]", re.M)
 
 
 def adopt_call(variant, rundir):
-    """The row of a reproduce call that ended outside this script (e.g. a half measured in an
-    earlier process): its wall time is the last elapsed time reproduce logged in RUNDIR.out
-    (0.1 min resolution), its start that file's modification time less the wall time."""
+    """The rows of a reproduce call made outside this script (e.g. by an earlier process that
+    was stopped): (the call's row, or None if it did not finish the whole programme without
+    failures, and the rows of its finished jobs). Wall times are the elapsed times reproduce
+    logged in RUNDIR.out (0.1 min resolution); the call's start is that file's modification
+    time less the last elapsed time."""
     out = rundir + ".out"
     with open(out, errors="replace") as f:
         text = f.read()
-    if not re.search(r"\d+ figures/tables in .*; 0 run\(s\) failed", text):
-        sys.exit(f"programme_speed: {out} is not the log of a finished call without failures")
     wall = 60.0 * float(ELAPSED.findall(text)[-1])
-    return call_row(variant, rundir, wall, utc(os.path.getmtime(out) - wall))
+    started = utc(os.path.getmtime(out) - wall)
+    whole = (re.search(r"\d+ figures/tables in .*; 0 run\(s\) failed", text)
+             and "--only" not in text.splitlines()[0])
+    return (call_row(variant, rundir, wall, started) if whole else None,
+            job_rows(variant, rundir, started))
 
 
 FIELDS = ["variant", "started_utc", "wall_s", "loop_s", "steps", "records", "records_sha256"]
 
 
-def read_rows(path):
+def read_rows(path, fields, floats, ints):
     if not os.path.exists(path):
         return []
     with open(path, newline="") as f:
         rows = list(csv.DictReader(f))
-    missing = [k for k in FIELDS if rows and k not in rows[0]]
+    missing = [k for k in fields if rows and k not in rows[0]]
     if missing:
         sys.exit(f"programme_speed: {path} lacks the columns {missing} (written by an older "
                  "version of this script: measure anew, without --append)")
     for r in rows:
-        for k in ("wall_s", "loop_s"):
+        for k in floats:
             r[k] = float(r[k])
-        for k in ("steps", "records"):
+        for k in ints:
             r[k] = int(r[k])
     return rows
 
 
-def summarise(rows, args, before, after):
+def summarise_jobs(jrows):
+    """Per variant: the programme's jobs measured (median over repeats of each job) and, when
+    every job of the programme is measured, the sum of their loop times and steps: the
+    programme's work, which halves measured in different calls add up to."""
+    every = programme_jobs()
+    out = {}
+    for v in ("before", "after"):
+        per = {}
+        for j in every:
+            mine = [r for r in jrows if r["variant"] == v and r["job"] == j]
+            if mine:
+                per[j] = {k: statistics.median(r[k] for r in mine)
+                          for k in ("loop_s", "steps", "job_wall_s")}
+        if per:
+            out[v] = {"jobs_measured": len(per), "jobs_in_programme": len(every),
+                      "missing": [j for j in every if j not in per],
+                      "sessions_utc": sorted({r["started_utc"][:10] for r in jrows
+                                              if r["variant"] == v}),
+                      "per_job": per}
+            if len(per) == len(every):
+                out[v]["loop_s"] = sum(p["loop_s"] for p in per.values())
+                out[v]["steps"] = sum(p["steps"] for p in per.values())
+    if all(v in out and "loop_s" in out[v] for v in ("before", "after")):
+        b, a = out["before"]["per_job"], out["after"]["per_job"]
+        out["same_steps_every_job"] = all(b[j]["steps"] == a[j]["steps"] for j in b)
+        out["loop_speedup"] = out["before"]["loop_s"] / out["after"]["loop_s"]
+    return out
+
+
+def summarise(rows, jrows, args, before, after):
     variants = [v for v in ("before", "after") if any(r["variant"] == v for r in rows)]
     median = {v: {k: statistics.median(r[k] for r in rows if r["variant"] == v)
                   for k in ("wall_s", "loop_s", "steps")} for v in variants}
     digests = {r["records_sha256"] for r in rows}
     summary = {
-        "scale": args.scale, "jobs": args.jobs, "before_commit": args.before,
+        "scale": args.scale, "jobs_at_once": args.jobs, "before_commit": args.before,
         "decks_commit": args.decks, "before_library": before, "after_library": after,
         "calls": {v: sum(r["variant"] == v for r in rows) for v in variants},
         "sessions_utc": sorted({r["started_utc"][:10] for r in rows}),
         "median": median,
-        "records_identical": len(digests) == 1,
-        "records_note": (f"all {len(rows)} calls wrote the same {rows[0]['records']} records, "
+        "records_identical": len(digests) <= 1,
+        "records_note": ("no whole call yet" if not rows else
+                         f"all {len(rows)} calls wrote the same {rows[0]['records']} records, "
                          "byte for byte" if len(digests) == 1 else
                          f"the calls' records differ: {len(digests)} different digests"),
+        "jobs": summarise_jobs(jrows),
     }
     if len(variants) == 2:
         summary["wall_speedup"] = median["before"]["wall_s"] / median["after"]["wall_s"]
@@ -209,14 +279,20 @@ def summarise(rows, args, before, after):
     return summary
 
 
-def save(out, rows, summary):
-    """PREFIX.csv and PREFIX.json, each written whole and atomically after every call, so that
-    an interrupted measurement keeps the calls it finished."""
+def csv_text(rows, fields):
     table = io.StringIO()
-    w = csv.DictWriter(table, fieldnames=FIELDS)
+    w = csv.DictWriter(table, fieldnames=fields)
     w.writeheader()
     w.writerows(rows)
-    write_text(out + ".csv", table.getvalue())
+    return table.getvalue()
+
+
+def save(out, rows, jrows, summary):
+    """PREFIX.csv (whole calls), PREFIX_jobs.csv (every finished job) and PREFIX.json, each
+    written whole and atomically after every call, so that an interrupted measurement keeps
+    what it finished."""
+    write_text(out + ".csv", csv_text(rows, FIELDS))
+    write_text(out + "_jobs.csv", csv_text(jrows, JOB_FIELDS))
     write_json(out + ".json", summary)
 
 
@@ -229,8 +305,11 @@ def main(argv=None):
     ap.add_argument("--append", action="store_true",
                     help="keep the calls already in PREFIX.csv (halves measured in two calls)")
     ap.add_argument("--adopt", metavar="DIR", default=None,
-                    help="record the finished call in DIR (its log DIR.out) as --variant, "
-                    "instead of calling the programme")
+                    help="record the call in DIR (its log DIR.out; finished or stopped) as "
+                    "--variant, instead of calling the programme")
+    ap.add_argument("--missing", action="store_true",
+                    help="call only the runs that PREFIX_jobs.csv lacks for --variant (the "
+                    "rest of a half that a stopped call began; implies --append)")
     ap.add_argument("--before", default="3585d58", help="commit of the 'before' library")
     ap.add_argument("--decks", default="1c07cef", help="commit of the decks both builds run")
     ap.add_argument("--after", default=None, help="the 'after' library (default: this tree's "
@@ -242,8 +321,10 @@ def main(argv=None):
     args = ap.parse_args(argv)
     if args.repeats < 1:
         ap.error("--repeats must be at least 1")
-    if args.adopt and args.variant == "both":
-        ap.error("--adopt needs --variant before or --variant after")
+    if (args.adopt or args.missing) and args.variant == "both":
+        ap.error("--adopt and --missing need --variant before or --variant after")
+    if args.scale != "paper" and (args.adopt or args.missing):
+        ap.error("--adopt and --missing are for the paper programme (--scale paper)")
     out = args.out or os.path.join(REPO, "bench", "results", f"programme_speed_{args.scale}")
     after = args.after
     if after is None:
@@ -257,10 +338,22 @@ def main(argv=None):
         sys.exit(f"programme_speed: no library {after} (build this tree first: cmake --build "
                  "build)")
     before = build_commit(args.before, os.path.basename(after))
-    rows = read_rows(out + ".csv") if (args.append or args.adopt) else []
+    keep = args.append or args.adopt or args.missing
+    rows = read_rows(out + ".csv", FIELDS, ("wall_s", "loop_s"), ("steps", "records")) \
+        if keep else []
+    jrows = read_rows(out + "_jobs.csv", JOB_FIELDS, ("job_wall_s", "loop_s"), ("steps",)) \
+        if keep else []
+    only = None
+    if args.missing:
+        have = {r["job"] for r in jrows if r["variant"] == args.variant}
+        only = [j for j in programme_jobs() if j not in have and not j.startswith("prepare_")]
+        if not only:
+            sys.exit(f"programme_speed: every run of the programme has a row for {args.variant}")
     if args.adopt:
-        rows.append(adopt_call(args.variant, os.path.abspath(args.adopt)))
-        save(out, rows, summarise(rows, args, before, after))
+        row, jobs = adopt_call(args.variant, os.path.abspath(args.adopt))
+        rows += [row] if row else []
+        jrows += jobs
+        save(out, rows, jrows, summarise(rows, jrows, args, before, after))
     else:
         work = args.dir or os.path.join("/tmp", f"programme_speed_{args.scale}")
         os.makedirs(work, exist_ok=True)
@@ -271,10 +364,12 @@ def main(argv=None):
         for rep in range(args.repeats):
             for variant in variants:
                 library = before if variant == "before" else after
-                rows.append(run_call(variant, library, decks, args.scale, args.jobs,
-                                     os.path.join(work, f"{variant}_{rep}")))
-                save(out, rows, summarise(rows, args, before, after))
-    summary = summarise(rows, args, before, after)
+                row, jobs = run_call(variant, library, decks, args.scale, args.jobs,
+                                     os.path.join(work, f"{variant}_{rep}"), only)
+                rows += [row] if row else []
+                jrows += jobs
+                save(out, rows, jrows, summarise(rows, jrows, args, before, after))
+    summary = summarise(rows, jrows, args, before, after)
     print("\n| | calls | wall time | loop time of all LAMMPS runs | steps |\n|---|---|---|---|---|")
     for v, m in summary["median"].items():
         print(f"| {v} | {summary['calls'][v]} | {m['wall_s'] / 60:.1f} min | {m['loop_s']:.1f} s "
@@ -282,6 +377,15 @@ def main(argv=None):
     if "wall_speedup" in summary:
         print(f"\nspeed-up: {summary['wall_speedup']:.2f}x wall, {summary['loop_speedup']:.2f}x "
               "loop", end="; ")
+    for v, j in summary["jobs"].items():
+        if v in ("before", "after"):
+            total = (f"loop time {j['loop_s']:.1f} s, {j['steps']:.0f} steps" if "loop_s" in j
+                     else f"missing {', '.join(j['missing'])}")
+            print(f"\njobs {v}: {j['jobs_measured']} of {j['jobs_in_programme']} measured "
+                  f"(sessions {', '.join(j['sessions_utc'])}); {total}")
+    if "loop_speedup" in summary["jobs"]:
+        print(f"programme's loop time, job by job: {summary['jobs']['loop_speedup']:.2f}x; "
+              f"same steps in every job: {summary['jobs']['same_steps_every_job']}")
     print(f"{summary['records_note']}; wrote {out}.csv, {out}.json")
     return 0 if summary["records_identical"] else 1
 

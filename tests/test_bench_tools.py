@@ -92,3 +92,27 @@ def test_record_digest_tells_the_same_records_from_different_ones(tmp_path):
     assert speed.records_digest(str(calls[1])) == a
     (calls[1] / "axisym_loose_paper.csv").rename(calls[1] / "axisym_dense_paper.csv")
     assert speed.records_digest(str(calls[1]))[1] != a[1]
+
+
+def test_job_rows_read_what_reproduce_logs(tmp_path):
+    """bench/programme_speed.py's job accounting reads reproduce's own "done" lines: jobs run by
+    tyanalysis.reproduce.run_jobs (two at once) whose logs carry known loop lines come back with
+    those loop times and steps; a job that failed has no row."""
+    from tyanalysis import reproduce
+    speed = _bench("programme_speed")
+    rundir = tmp_path / "call"
+    rundir.mkdir()
+    loop = "Loop time of {t} on 1 procs for {n} steps with 3620 atoms\n"
+    jobs = []
+    for name, runs in (("prepare_loose", [(1.5, 10), (2.25, 30)]), ("axisym_loose", [(4.0, 7)])):
+        text = "".join(loop.format(t=t, n=n) for t, n in runs)
+        jobs.append(reproduce.Job(name, ["sh", "-c", f"printf '{text}' > {name}.log"], None, 1))
+    jobs.append(reproduce.Job("cdst", ["sh", "-c", "exit 3"], None, 1))
+    lines = []
+    reproduce.run_jobs(jobs, str(rundir), 2, 60, lines.append)
+    (tmp_path / "call.out").write_text("".join(f"[{0.1 * i:6.1f} min] {x}\n"
+                                               for i, x in enumerate(lines)))
+    rows = {r["job"]: r for r in speed.job_rows("before", str(rundir), "2026-12-02T00:00:00Z")}
+    assert set(rows) == {"prepare_loose", "axisym_loose"}
+    assert (rows["prepare_loose"]["loop_s"], rows["prepare_loose"]["steps"]) == (3.75, 40)
+    assert (rows["axisym_loose"]["loop_s"], rows["axisym_loose"]["steps"]) == (4.0, 7)
