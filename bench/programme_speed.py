@@ -126,12 +126,13 @@ def records_digest(rundir):
 def call_row(variant, rundir, wall, started):
     loop, steps = loop_totals(rundir)
     count, digest = records_digest(rundir)
-    return {"variant": variant, "started_utc": started, "wall_s": wall, "loop_s": loop,
+    return {"variant": variant, "started_utc": started, "machine": machine(), "wall_s": wall,
+            "loop_s": loop,
             "steps": steps, "records": count, "records_sha256": digest}
 
 
 DONE = re.compile(r"^\[\s*[0-9.]+ min\] \[\d+/\d+\] done (\S+) in ([0-9.]+) min$", re.M)
-JOB_FIELDS = ["variant", "job", "started_utc", "job_wall_s", "loop_s", "steps"]
+JOB_FIELDS = ["variant", "job", "started_utc", "machine", "job_wall_s", "loop_s", "steps"]
 
 
 def job_rows(variant, rundir, started):
@@ -144,7 +145,7 @@ def job_rows(variant, rundir, started):
     for job, minutes in done:
         with open(os.path.join(rundir, job + ".log"), errors="replace") as f:
             runs = loops(f.read())
-        rows.append({"variant": variant, "job": job, "started_utc": started,
+        rows.append({"variant": variant, "job": job, "started_utc": started, "machine": machine(),
                      "job_wall_s": 60.0 * float(minutes),
                      "loop_s": sum(r["seconds"] for r in runs),
                      "steps": sum(r["steps"] for r in runs)})
@@ -157,6 +158,24 @@ def programme_jobs():
     names = list(reproduce.PROGRAMME)
     preps = sorted({reproduce.prepare_name(reproduce.specimen_of(n)) for n in names})
     return preps + names
+
+
+def machine():
+    """The processor a call ran on (model, logical CPUs, widest SIMD, clock): timings of
+    different machines are not comparable (docs/performance.md)."""
+    model, isa, mhz = "unknown", "no AVX2", ""
+    with open("/proc/cpuinfo") as f:
+        for line in f:
+            key, _, value = line.partition(":")
+            key, value = key.strip(), value.strip()
+            if key == "model name" and model == "unknown":
+                model = value
+            elif key == "cpu MHz" and not mhz:
+                mhz = f", {float(value):.0f} MHz"
+            elif key == "flags":
+                flags = value.split()
+                isa = "AVX-512" if "avx512f" in flags else "AVX2" if "avx2" in flags else isa
+    return f"{model}, {os.cpu_count()} CPUs, {isa}{mhz}"
 
 
 def utc(seconds_since_epoch):
@@ -206,7 +225,7 @@ def adopt_call(variant, rundir):
             job_rows(variant, rundir, started))
 
 
-FIELDS = ["variant", "started_utc", "wall_s", "loop_s", "steps", "records", "records_sha256"]
+FIELDS = ["variant", "started_utc", "machine", "wall_s", "loop_s", "steps", "records", "records_sha256"]
 
 
 def read_rows(path, fields, floats, ints):
@@ -244,6 +263,7 @@ def summarise_jobs(jrows):
                       "missing": [j for j in every if j not in per],
                       "sessions_utc": sorted({r["started_utc"][:10] for r in jrows
                                               if r["variant"] == v}),
+                      "machines": sorted({r["machine"] for r in jrows if r["variant"] == v}),
                       "per_job": per}
             if len(per) == len(every):
                 out[v]["loop_s"] = sum(p["loop_s"] for p in per.values())
@@ -265,6 +285,7 @@ def summarise(rows, jrows, args, before, after):
         "decks_commit": args.decks, "before_library": before, "after_library": after,
         "calls": {v: sum(r["variant"] == v for r in rows) for v in variants},
         "sessions_utc": sorted({r["started_utc"][:10] for r in rows}),
+        "machines": sorted({r["machine"] for r in rows} | {r["machine"] for r in jrows}),
         "median": median,
         "records_identical": len(digests) <= 1,
         "records_note": ("no whole call yet" if not rows else
