@@ -94,17 +94,6 @@ def build_commit(commit, library_name):
     return library
 
 
-def loop_totals(rundir):
-    """Sum of LAMMPS's loop times (s) and steps over every log of a reproduce call."""
-    seconds, steps = 0.0, 0
-    for log in glob.glob(os.path.join(rundir, "*.log")):
-        with open(log, errors="replace") as f:
-            for run in loops(f.read()):
-                seconds += run["seconds"]
-                steps += run["steps"]
-    return seconds, steps
-
-
 def records(rundir):
     """The CSV records of a reproduce call, relative paths: runs and preparations."""
     found = glob.glob(os.path.join(rundir, "*.csv"))
@@ -123,12 +112,12 @@ def records_digest(rundir):
     return len(names), whole.hexdigest()
 
 
-def call_row(variant, rundir, wall, started):
-    loop, steps = loop_totals(rundir)
+def call_row(variant, rundir, wall, started, jobs):
+    """The row of a whole call: its loop time and steps are the sums over its jobs' rows."""
     count, digest = records_digest(rundir)
-    return {"variant": variant, "started_utc": started, "machine": machine(), "wall_s": wall,
-            "loop_s": loop,
-            "steps": steps, "records": count, "records_sha256": digest}
+    return {"variant": variant, "started_utc": started, "machine": jobs[0]["machine"],
+            "wall_s": wall, "loop_s": sum(j["loop_s"] for j in jobs),
+            "steps": sum(j["steps"] for j in jobs), "records": count, "records_sha256": digest}
 
 
 DONE = re.compile(r"^\[\s*[0-9.]+ min\] \[\d+/\d+\] done (\S+) in ([0-9.]+) min$", re.M)
@@ -141,11 +130,11 @@ def job_rows(variant, rundir, started):
     RUNDIR/NAME.log. A job still running when a call was stopped has no row."""
     with open(rundir + ".out", errors="replace") as f:
         done = DONE.findall(f.read())
-    rows = []
+    rows, cpu = [], machine()
     for job, minutes in done:
         with open(os.path.join(rundir, job + ".log"), errors="replace") as f:
             runs = loops(f.read())
-        rows.append({"variant": variant, "job": job, "started_utc": started, "machine": machine(),
+        rows.append({"variant": variant, "job": job, "started_utc": started, "machine": cpu,
                      "job_wall_s": 60.0 * float(minutes),
                      "loop_s": sum(r["seconds"] for r in runs),
                      "steps": sum(r["steps"] for r in runs)})
@@ -199,10 +188,11 @@ def run_call(variant, library, decks, scale, jobs, rundir, only=None):
     wall = time.monotonic() - start
     if rc != 0:
         sys.exit(f"programme_speed: the {variant} call failed (exit {rc}); see {rundir}.out")
-    row = call_row(variant, rundir, wall, started)
+    jobs = job_rows(variant, rundir, started)
+    row = call_row(variant, rundir, wall, started, jobs)
     print(f"programme_speed: {variant}: {wall / 60:.2f} min wall, loop time {row['loop_s']:.1f} s, "
           f"{row['steps']} steps, {row['records']} records", flush=True)
-    return (None if only else row), job_rows(variant, rundir, started)
+    return (None if only else row), jobs
 
 
 ELAPSED = re.compile(r"^\[\s*([0-9.]+) min\]", re.M)
@@ -221,8 +211,8 @@ def adopt_call(variant, rundir):
     started = utc(os.path.getmtime(out) - wall)
     whole = (re.search(r"\d+ figures/tables in .*; 0 run\(s\) failed", text)
              and "--only" not in text.splitlines()[0])
-    return (call_row(variant, rundir, wall, started) if whole else None,
-            job_rows(variant, rundir, started))
+    jobs = job_rows(variant, rundir, started)
+    return (call_row(variant, rundir, wall, started, jobs) if whole else None), jobs
 
 
 FIELDS = ["variant", "started_utc", "machine", "wall_s", "loop_s", "steps", "records", "records_sha256"]
