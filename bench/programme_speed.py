@@ -5,10 +5,10 @@ the same decks: a commit's build ("before", by default 3585d58, the last commit 
 evaluated the law in its own loop with the staged scalar kernel, before the batch entry
 tycore::advance_batch and its SIMD builds) and this tree's ("after").
 
-    /usr/bin/python3 bench/programme_speed.py [--scale quick|paper] [--repeats 1]
-        [--variant both|before|after] [--append] [--adopt DIR] [--missing]
-        [--before 3585d58] [--decks 1c07cef] [--after build/python/tylmp/tylmp-20210929.so]
-        [--jobs 2] [--dir DIR] [--out PREFIX]
+    /usr/bin/python3 bench/programme_speed.py [--scale quick] [--repeats 1]
+    /usr/bin/python3 bench/programme_speed.py --scale paper [--missing] [--runs NAME ...]
+    common: [--before 3585d58] [--decks 1c07cef] [--after build/python/tylmp/tylmp-20210929.so]
+            [--jobs 2] [--dir DIR] [--out PREFIX]
 
 Both builds run the decks of one commit (--decks, by default 1c07cef: the newest decks that
 the "before" library understands; later decks use fix cell/servo's `variables yes`), checked
@@ -18,29 +18,36 @@ and built once from `git archive BEFORE` into $TYLMP_CACHE/bench/BEFORE (default
 ~/.cache/tylmp) and reused.
 
 The two builds' trajectories are bitwise the same (tests/test_batch_isa_trajectory.py and the
-batch entry's differential tests), so both calls do the same work, step for step: every call
-records a digest of its CSV records' bytes (the preparations' records, the runs' records), and
-the benchmark says whether all calls wrote the same. Calls alternate (before, after, before,
-...), `repeats` of each; the figure is the median wall time of the whole call, with the sum of
-the LAMMPS loop times and steps over all its logs beside it.
+batch entry's differential tests), so both do the same work, step for step: every finished job
+(preparation or run) gets a row in PREFIX_jobs.csv with its wall time, LAMMPS loop time, steps,
+machine and the digest of its record's bytes, and the benchmark says whether the two builds
+wrote the same records.
 
-Run it on an otherwise idle machine. At paper scale the before call (about three hours on two
-cores) is longer than a working session, whose processes end when it stops: the halves are then
-measured job by job. Every finished job (preparation or run) of every call gets a row in
-PREFIX_jobs.csv with its LAMMPS loop times and steps; `--adopt DIR --variant V` records the
-finished jobs of a call that was stopped (reproduce's own log DIR.out), `--variant V --missing`
-calls only the runs that half still lacks (their specimens are prepared again, bitwise the same),
-and the programme's loop time is the sum over its jobs, equal steps job by job showing that
-both builds did the same work. Each row carries its start (UTC), so the tables say when each
-part was measured.
+Quick scale (the default): whole calls, `--jobs` at a time, alternated (before, after, before,
+...), `repeats` of each; the figure is the median wall time of the whole call (PREFIX.csv),
+with the sum of its jobs' loop times and steps beside it.
 
-Writes PREFIX.csv (one row per whole call), PREFIX_jobs.csv (one row per finished job) and
-PREFIX.json (medians, the ratios, whether the records agree, the job accounting; default
+Paper scale: a call of one build takes hours, more than a working session (whose processes end
+when it stops), and the speed of the same machine differs from session to session by more than
+the difference between the builds (docs/performance.md, "The paper programme before and
+after"), so halves measured in different sessions cannot be compared. The two builds run side
+by side instead, at the same time, one core each (two reproduce calls, `--jobs 1`, the same
+runs in the same order), and every job is compared with the same job of the other build that
+ran beside it: a pair. Job rows are saved as the jobs finish, so a call stopped with its
+session keeps its finished pairs; `--missing` calls only the runs that lack a pair (their
+specimens are prepared again, bitwise the same: more pairs of the preparations), `--runs`
+limits a call to some runs. When every job of the programme has a pair, the programme's loop
+time of each build is the sum over its jobs (median over a job's pairs), with equal steps and
+equal records in every pair as the check of equal work.
+
+Writes PREFIX.csv (one row per whole quick-scale call), PREFIX_jobs.csv (one row per finished
+job) and PREFIX.json (medians, ratios, whether the records agree, the job accounting; default
 PREFIX: programme_speed_SCALE in the results folder beside this script), each rewritten
-atomically after every call, and prints a table.
+atomically whenever a row is added, and prints a table.
 """
 import argparse
 import csv
+import functools
 import glob
 import hashlib
 import io
@@ -94,6 +101,15 @@ def build_commit(commit, library_name):
     return library
 
 
+def digest(rundir, names):
+    """sha256 of the named files' names and bytes (paths relative to rundir)."""
+    whole = hashlib.sha256()
+    for name in names:
+        with open(os.path.join(rundir, name), "rb") as f:
+            whole.update(name.encode() + b"\0" + hashlib.sha256(f.read()).digest())
+    return whole.hexdigest()
+
+
 def records(rundir):
     """The CSV records of a reproduce call, relative paths: runs and preparations."""
     found = glob.glob(os.path.join(rundir, "*.csv"))
@@ -104,40 +120,49 @@ def records(rundir):
 def records_digest(rundir):
     """(count, sha256) of a call's records: the digest of every record's name and bytes, so
     that two calls, in one session or in two, are compared byte for byte."""
-    whole = hashlib.sha256()
     names = records(rundir)
-    for name in names:
-        with open(os.path.join(rundir, name), "rb") as f:
-            whole.update(name.encode() + b"\0" + hashlib.sha256(f.read()).digest())
-    return len(names), whole.hexdigest()
+    return len(names), digest(rundir, names)
+
+
+def job_records(rundir, job):
+    """The record(s) of one job: a run's CSV (tyanalysis.reproduce.record_name), a
+    preparation's specimen CSVs (tylmp_specimens/SPECIMEN_*.csv)."""
+    from tyanalysis import reproduce
+    if job.startswith("prepare_"):
+        pattern = os.path.join("tylmp_specimens", job[len("prepare_"):] + "_*.csv")
+    else:
+        pattern = reproduce.record_name(job)
+    return sorted(os.path.relpath(p, rundir) for p in glob.glob(os.path.join(rundir, pattern)))
 
 
 def call_row(variant, rundir, wall, started, jobs):
     """The row of a whole call: its loop time and steps are the sums over its jobs' rows."""
-    count, digest = records_digest(rundir)
+    count, sha = records_digest(rundir)
     return {"variant": variant, "started_utc": started, "machine": jobs[0]["machine"],
             "wall_s": wall, "loop_s": sum(j["loop_s"] for j in jobs),
-            "steps": sum(j["steps"] for j in jobs), "records": count, "records_sha256": digest}
+            "steps": sum(j["steps"] for j in jobs), "records": count, "records_sha256": sha}
 
 
 DONE = re.compile(r"^\[\s*[0-9.]+ min\] \[\d+/\d+\] done (\S+) in ([0-9.]+) min$", re.M)
-JOB_FIELDS = ["variant", "job", "started_utc", "machine", "job_wall_s", "loop_s", "steps"]
+JOB_FIELDS = ["variant", "job", "started_utc", "machine", "job_wall_s", "loop_s", "steps",
+              "record_sha256"]
 
 
 def job_rows(variant, rundir, started):
     """One row per job (preparation or run) that reproduce logged as done in RUNDIR.out: its
-    wall time (reproduce's "done NAME in X min") and the loop times and steps of its LAMMPS log
-    RUNDIR/NAME.log. A job still running when a call was stopped has no row."""
+    wall time (reproduce's "done NAME in X min"), the loop times and steps of its LAMMPS log
+    RUNDIR/NAME.log and the digest of its record. A job still running has no row."""
     with open(rundir + ".out", errors="replace") as f:
         done = DONE.findall(f.read())
-    rows, cpu = [], machine()
+    rows = []
     for job, minutes in done:
         with open(os.path.join(rundir, job + ".log"), errors="replace") as f:
             runs = loops(f.read())
-        rows.append({"variant": variant, "job": job, "started_utc": started, "machine": cpu,
-                     "job_wall_s": 60.0 * float(minutes),
+        rows.append({"variant": variant, "job": job, "started_utc": started,
+                     "machine": machine(), "job_wall_s": 60.0 * float(minutes),
                      "loop_s": sum(r["seconds"] for r in runs),
-                     "steps": sum(r["steps"] for r in runs)})
+                     "steps": sum(r["steps"] for r in runs),
+                     "record_sha256": digest(rundir, job_records(rundir, job))})
     return rows
 
 
@@ -149,6 +174,7 @@ def programme_jobs():
     return preps + names
 
 
+@functools.lru_cache(maxsize=None)
 def machine():
     """The processor a call ran on (model, logical CPUs, widest SIMD, clock): timings of
     different machines are not comparable (docs/performance.md)."""
@@ -171,9 +197,9 @@ def utc(seconds_since_epoch):
     return time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime(seconds_since_epoch))
 
 
-def run_call(variant, library, decks, scale, jobs, rundir, only=None):
-    """One reproduce call with `library`: (its row, or None when `only` limited it to some
-    runs, and the rows of its jobs)."""
+def start_call(variant, library, decks, scale, jobs, rundir, only=None):
+    """Start one reproduce call with `library` in a new rundir (its log: rundir.out); returns
+    the process."""
     shutil.rmtree(rundir, ignore_errors=True)
     env = dict(os.environ, TYLMP_LIBRARY=library,
                PYTHONPATH=os.path.join(REPO, "analysis") + os.pathsep
@@ -181,10 +207,15 @@ def run_call(variant, library, decks, scale, jobs, rundir, only=None):
     cmd = [sys.executable, "-m", "tyanalysis", "reproduce", "--scale", scale, "--jobs",
            str(jobs), "--dir", rundir, "--inputs", decks] + (["--only"] + only if only else [])
     print(f"programme_speed: {variant}: {' '.join(cmd)} (TYLMP_LIBRARY={library})", flush=True)
+    with open(rundir + ".out", "w") as out:
+        return subprocess.Popen(cmd, env=env, stdout=out, stderr=subprocess.STDOUT)
+
+
+def run_call(variant, library, decks, scale, jobs, rundir):
+    """One whole reproduce call with `library`: (its row, the rows of its jobs)."""
     started = utc(time.time())
     start = time.monotonic()
-    with open(rundir + ".out", "w") as out:
-        rc = subprocess.run(cmd, env=env, stdout=out, stderr=subprocess.STDOUT).returncode
+    rc = start_call(variant, library, decks, scale, jobs, rundir).wait()
     wall = time.monotonic() - start
     if rc != 0:
         sys.exit(f"programme_speed: the {variant} call failed (exit {rc}); see {rundir}.out")
@@ -192,27 +223,28 @@ def run_call(variant, library, decks, scale, jobs, rundir, only=None):
     row = call_row(variant, rundir, wall, started, jobs)
     print(f"programme_speed: {variant}: {wall / 60:.2f} min wall, loop time {row['loop_s']:.1f} s, "
           f"{row['steps']} steps, {row['records']} records", flush=True)
-    return (None if only else row), jobs
+    return row, jobs
 
 
-ELAPSED = re.compile(r"^\[\s*([0-9.]+) min\]", re.M)
-
-
-def adopt_call(variant, rundir):
-    """The rows of a reproduce call made outside this script (e.g. by an earlier process that
-    was stopped): (the call's row, or None if it did not finish the whole programme without
-    failures, and the rows of its finished jobs). Wall times are the elapsed times reproduce
-    logged in RUNDIR.out (0.1 min resolution); the call's start is that file's modification
-    time less the last elapsed time."""
-    out = rundir + ".out"
-    with open(out, errors="replace") as f:
-        text = f.read()
-    wall = 60.0 * float(ELAPSED.findall(text)[-1])
-    started = utc(os.path.getmtime(out) - wall)
-    whole = (re.search(r"\d+ figures/tables in .*; 0 run\(s\) failed", text)
-             and "--only" not in text.splitlines()[0])
-    jobs = job_rows(variant, rundir, started)
-    return (call_row(variant, rundir, wall, started, jobs) if whole else None), jobs
+def side_by_side(libraries, decks, scale, work, only, kept, save_jobs, poll=30.0):
+    """The two builds' reproduce calls at the same time, one core each (`--jobs 1`, the same
+    runs in the same order), their finished jobs' rows saved (after `kept`) every `poll`
+    seconds and at the end. Both calls' rows carry the same start: the mark of a pair."""
+    started = utc(time.time())
+    calls = {v: (start_call(v, lib, decks, scale, 1, os.path.join(work, f"{v}_side"), only),
+                 os.path.join(work, f"{v}_side")) for v, lib in libraries.items()}
+    while True:
+        running = [p for p, _ in calls.values() if p.poll() is None]
+        rows = [r for v, (_, d) in calls.items() for r in job_rows(v, d, started)]
+        save_jobs(kept + rows)
+        if not running:
+            break
+        time.sleep(poll)
+    failed = [f"{v} (exit {p.returncode}; see {d}.out)" for v, (p, d) in calls.items()
+              if p.returncode != 0]
+    if failed:
+        sys.exit(f"programme_speed: calls failed: {', '.join(failed)}")
+    return kept + rows
 
 
 FIELDS = ["variant", "started_utc", "machine", "wall_s", "loop_s", "steps", "records", "records_sha256"]
@@ -226,7 +258,7 @@ def read_rows(path, fields, floats, ints):
     missing = [k for k in fields if rows and k not in rows[0]]
     if missing:
         sys.exit(f"programme_speed: {path} lacks the columns {missing} (written by an older "
-                 "version of this script: measure anew, without --append)")
+                 "version of this script: measure anew into another --out)")
     for r in rows:
         for k in floats:
             r[k] = float(r[k])
@@ -235,55 +267,79 @@ def read_rows(path, fields, floats, ints):
     return rows
 
 
-def summarise_jobs(jrows):
-    """Per variant: the programme's jobs measured (median over repeats of each job) and, when
-    every job of the programme is measured, the sum of their loop times and steps: the
-    programme's work, which halves measured in different calls add up to."""
-    every = programme_jobs()
+def pairs(jrows):
+    """job -> [(before row, after row)] of the jobs that ran side by side (same call start)."""
+    by = {(r["job"], r["started_utc"], r["variant"]): r for r in jrows}
     out = {}
-    for v in ("before", "after"):
-        per = {}
-        for j in every:
-            mine = [r for r in jrows if r["variant"] == v and r["job"] == j]
-            if mine:
-                per[j] = {k: statistics.median(r[k] for r in mine)
-                          for k in ("loop_s", "steps", "job_wall_s")}
-        if per:
-            out[v] = {"jobs_measured": len(per), "jobs_in_programme": len(every),
-                      "missing": [j for j in every if j not in per],
-                      "sessions_utc": sorted({r["started_utc"][:10] for r in jrows
-                                              if r["variant"] == v}),
-                      "machines": sorted({r["machine"] for r in jrows if r["variant"] == v}),
-                      "per_job": per}
-            if len(per) == len(every):
-                out[v]["loop_s"] = sum(p["loop_s"] for p in per.values())
-                out[v]["steps"] = sum(p["steps"] for p in per.values())
-    if all(v in out and "loop_s" in out[v] for v in ("before", "after")):
-        b, a = out["before"]["per_job"], out["after"]["per_job"]
-        out["same_steps_every_job"] = all(b[j]["steps"] == a[j]["steps"] for j in b)
-        out["loop_speedup"] = out["before"]["loop_s"] / out["after"]["loop_s"]
+    for (job, started, variant), row in sorted(by.items()):
+        if variant == "before" and (job, started, "after") in by:
+            out.setdefault(job, []).append((row, by[(job, started, "after")]))
+    return out
+
+
+def summarise_pairs(jrows):
+    """The paper programme job by job: per job the medians over its pairs (loop time, job wall
+    time of each build, the ratio before/after) and whether every pair did the same steps and
+    wrote the same record; when every job of the programme has a pair, each build's loop time
+    of the whole programme (the sum over its jobs) and their ratio."""
+    every = programme_jobs()
+    found = pairs(jrows)
+    per = {}
+    for job in every:
+        if job not in found:
+            continue
+        ps = found[job]
+        per[job] = {"pairs": len(ps),
+                    "calls_started_utc": sorted({b["started_utc"] for b, _ in ps}),
+                    "steps": ps[0][0]["steps"],
+                    "same_steps": all(b["steps"] == a["steps"] == ps[0][0]["steps"]
+                                      for b, a in ps),
+                    "same_record": all(b["record_sha256"] == a["record_sha256"]
+                                       == ps[0][0]["record_sha256"] for b, a in ps),
+                    **{f"{v}_{k}": statistics.median(p[i][k] for p in ps)
+                       for i, v in enumerate(("before", "after"))
+                       for k in ("loop_s", "job_wall_s")},
+                    "loop_speedup": statistics.median(b["loop_s"] / a["loop_s"] for b, a in ps)}
+    out = {"jobs_in_programme": len(every), "jobs_paired": len(per),
+           "missing": [j for j in every if j not in per],
+           "machines": sorted({r["machine"] for r in jrows}),
+           "same_steps_every_pair": all(p["same_steps"] for p in per.values()),
+           "same_record_every_pair": all(p["same_record"] for p in per.values()),
+           "per_job": per}
+    if per:
+        out["median_job_loop_speedup"] = statistics.median(p["loop_speedup"]
+                                                           for p in per.values())
+    if len(per) == len(every):
+        for v in ("before", "after"):
+            out[f"{v}_loop_s"] = sum(p[f"{v}_loop_s"] for p in per.values())
+        out["steps"] = sum(p["steps"] for p in per.values())
+        out["loop_speedup"] = out["before_loop_s"] / out["after_loop_s"]
     return out
 
 
 def summarise(rows, jrows, args, before, after):
+    summary = {"scale": args.scale, "before_commit": args.before, "decks_commit": args.decks,
+               "before_library": before, "after_library": after,
+               "machines": sorted({r["machine"] for r in rows} | {r["machine"] for r in jrows})}
+    if args.scale == "paper":
+        summary["design"] = "side by side, one core each, job by job in pairs"
+        summary["jobs"] = summarise_pairs(jrows)
+        summary["records_identical"] = summary["jobs"]["same_record_every_pair"]
+        return summary
     variants = [v for v in ("before", "after") if any(r["variant"] == v for r in rows)]
     median = {v: {k: statistics.median(r[k] for r in rows if r["variant"] == v)
                   for k in ("wall_s", "loop_s", "steps")} for v in variants}
     digests = {r["records_sha256"] for r in rows}
-    summary = {
-        "scale": args.scale, "jobs_at_once": args.jobs, "before_commit": args.before,
-        "decks_commit": args.decks, "before_library": before, "after_library": after,
+    summary.update({
+        "jobs_at_once": args.jobs,
         "calls": {v: sum(r["variant"] == v for r in rows) for v in variants},
         "sessions_utc": sorted({r["started_utc"][:10] for r in rows}),
-        "machines": sorted({r["machine"] for r in rows} | {r["machine"] for r in jrows}),
         "median": median,
         "records_identical": len(digests) <= 1,
         "records_note": ("no whole call yet" if not rows else
                          f"all {len(rows)} calls wrote the same {rows[0]['records']} records, "
                          "byte for byte" if len(digests) == 1 else
-                         f"the calls' records differ: {len(digests)} different digests"),
-        "jobs": summarise_jobs(jrows),
-    }
+                         f"the calls' records differ: {len(digests)} different digests")})
     if len(variants) == 2:
         summary["wall_speedup"] = median["before"]["wall_s"] / median["after"]["wall_s"]
         summary["loop_speedup"] = median["before"]["loop_s"] / median["after"]["loop_s"]
@@ -300,42 +356,68 @@ def csv_text(rows, fields):
 
 def save(out, rows, jrows, summary):
     """PREFIX.csv (whole calls), PREFIX_jobs.csv (every finished job) and PREFIX.json, each
-    written whole and atomically after every call, so that an interrupted measurement keeps
-    what it finished."""
+    written whole and atomically, so that an interrupted measurement keeps what it finished."""
     write_text(out + ".csv", csv_text(rows, FIELDS))
     write_text(out + "_jobs.csv", csv_text(jrows, JOB_FIELDS))
     write_json(out + ".json", summary)
 
 
+def print_summary(summary, out):
+    if summary["scale"] == "paper":
+        j = summary["jobs"]
+        print("\n| job | pairs | loop time before | after | before/after | steps | same record |"
+              "\n|---|---|---|---|---|---|---|")
+        for name, p in j["per_job"].items():
+            print(f"| {name} | {p['pairs']} | {p['before_loop_s']:.1f} s | {p['after_loop_s']:.1f} s"
+                  f" | {p['loop_speedup']:.3f} | {p['steps']} | {p['same_record']} |")
+        print(f"\n{j['jobs_paired']} of {j['jobs_in_programme']} jobs paired"
+              + (f"; missing: {', '.join(j['missing'])}" if j["missing"] else ""))
+        if "loop_speedup" in j:
+            print(f"programme's loop time: before {j['before_loop_s']:.0f} s, after "
+                  f"{j['after_loop_s']:.0f} s: {j['loop_speedup']:.3f}x")
+    else:
+        print("\n| | calls | wall time | loop time of all LAMMPS runs | steps |\n|---|---|---|---|---|")
+        for v, m in summary["median"].items():
+            print(f"| {v} | {summary['calls'][v]} | {m['wall_s'] / 60:.1f} min | "
+                  f"{m['loop_s']:.1f} s | {m['steps']:.0f} |")
+        if "wall_speedup" in summary:
+            print(f"\nspeed-up: {summary['wall_speedup']:.2f}x wall, "
+                  f"{summary['loop_speedup']:.2f}x loop; {summary['records_note']}")
+    print(f"records identical: {summary['records_identical']}; wrote {out}.csv, {out}_jobs.csv, "
+          f"{out}.json")
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--scale", choices=("quick", "paper"), default="quick")
-    ap.add_argument("--repeats", type=int, default=1, help="calls of each build (alternated)")
-    ap.add_argument("--variant", choices=("both", "before", "after"), default="both",
-                    help="which builds to call (default both, alternated)")
-    ap.add_argument("--append", action="store_true",
-                    help="keep the calls already in PREFIX.csv (halves measured in two calls)")
-    ap.add_argument("--adopt", metavar="DIR", default=None,
-                    help="record the call in DIR (its log DIR.out; finished or stopped) as "
-                    "--variant, instead of calling the programme")
+    ap.add_argument("--repeats", type=int, default=1,
+                    help="quick scale: calls of each build (alternated)")
     ap.add_argument("--missing", action="store_true",
-                    help="call only the runs that PREFIX_jobs.csv lacks for --variant (the "
-                    "rest of a half that a stopped call began; implies --append)")
+                    help="paper scale: call only the runs that lack a pair in PREFIX_jobs.csv "
+                    "(and keep its rows)")
+    ap.add_argument("--runs", nargs="+", metavar="NAME", default=None,
+                    help="paper scale: call only these runs")
     ap.add_argument("--before", default="3585d58", help="commit of the 'before' library")
     ap.add_argument("--decks", default="1c07cef", help="commit of the decks both builds run")
     ap.add_argument("--after", default=None, help="the 'after' library (default: this tree's "
                     "build of the running lmp's version, build/python/tylmp/tylmp-*.so)")
-    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--jobs", type=int, default=2, help="quick scale: jobs at once per call")
     ap.add_argument("--dir", default=None, help="work directory (default: a new one in /tmp)")
     ap.add_argument("--out", default=None,
                     help="output prefix (default: results/programme_speed_SCALE beside this script)")
     args = ap.parse_args(argv)
     if args.repeats < 1:
         ap.error("--repeats must be at least 1")
-    if (args.adopt or args.missing) and args.variant == "both":
-        ap.error("--adopt and --missing need --variant before or --variant after")
-    if args.scale != "paper" and (args.adopt or args.missing):
-        ap.error("--adopt and --missing are for the paper programme (--scale paper)")
+    if args.scale != "paper" and (args.missing or args.runs):
+        ap.error("--missing and --runs are for the paper programme (--scale paper)")
+    if args.scale == "paper" and args.repeats != 1:
+        ap.error("--repeats is for quick scale; at paper scale a job's pairs gather over calls "
+                 "(--missing, --runs)")
+    every = programme_jobs()
+    unknown = [r for r in args.runs or [] if r not in every or r.startswith("prepare_")]
+    if unknown:
+        ap.error(f"--runs: {', '.join(unknown)} not a run of the programme; the runs are: "
+                 + ", ".join(j for j in every if not j.startswith("prepare_")))
     out = args.out or os.path.join(REPO, "bench", "results", f"programme_speed_{args.scale}")
     after = args.after
     if after is None:
@@ -349,55 +431,35 @@ def main(argv=None):
         sys.exit(f"programme_speed: no library {after} (build this tree first: cmake --build "
                  "build)")
     before = build_commit(args.before, os.path.basename(after))
-    keep = args.append or args.adopt or args.missing
-    rows = read_rows(out + ".csv", FIELDS, ("wall_s", "loop_s"), ("steps", "records")) \
-        if keep else []
-    jrows = read_rows(out + "_jobs.csv", JOB_FIELDS, ("job_wall_s", "loop_s"), ("steps",)) \
-        if keep else []
-    only = None
-    if args.missing:
-        have = {r["job"] for r in jrows if r["variant"] == args.variant}
-        only = [j for j in programme_jobs() if j not in have and not j.startswith("prepare_")]
+    work = args.dir or os.path.join("/tmp", f"programme_speed_{args.scale}")
+    os.makedirs(work, exist_ok=True)
+    decks = os.path.join(work, "decks")
+    archive(args.decks, ["inputs"], decks)
+    decks = os.path.join(decks, "inputs")
+    libraries = {"before": before, "after": after}
+    rows, jrows = [], []
+    if args.scale == "paper":
+        jrows = read_rows(out + "_jobs.csv", JOB_FIELDS, ("job_wall_s", "loop_s"), ("steps",)) \
+            if args.missing else []
+        paired = set(pairs(jrows))
+        only = [j for j in every if not j.startswith("prepare_")
+                and (args.runs is None or j in args.runs)
+                and not (args.missing and j in paired)]
         if not only:
-            sys.exit(f"programme_speed: every run of the programme has a row for {args.variant}")
-    if args.adopt:
-        row, jobs = adopt_call(args.variant, os.path.abspath(args.adopt))
-        rows += [row] if row else []
-        jrows += jobs
-        save(out, rows, jrows, summarise(rows, jrows, args, before, after))
+            sys.exit("programme_speed: every run asked for has a pair already")
+        whole = len(only) == len(every) - len([j for j in every if j.startswith("prepare_")])
+        jrows = side_by_side(libraries, decks, args.scale, work, None if whole else only, jrows,
+                             lambda js: save(out, [], js, summarise([], js, args, before, after)))
     else:
-        work = args.dir or os.path.join("/tmp", f"programme_speed_{args.scale}")
-        os.makedirs(work, exist_ok=True)
-        decks = os.path.join(work, "decks")
-        archive(args.decks, ["inputs"], decks)
-        decks = os.path.join(decks, "inputs")
-        variants = ("before", "after") if args.variant == "both" else (args.variant,)
-        for rep in range(args.repeats):
-            for variant in variants:
-                library = before if variant == "before" else after
+        for _ in range(args.repeats):
+            for variant, library in libraries.items():
                 row, jobs = run_call(variant, library, decks, args.scale, args.jobs,
-                                     os.path.join(work, f"{variant}_{rep}"), only)
-                rows += [row] if row else []
+                                     os.path.join(work, f"{variant}_{len(rows) // 2}"))
+                rows.append(row)
                 jrows += jobs
                 save(out, rows, jrows, summarise(rows, jrows, args, before, after))
     summary = summarise(rows, jrows, args, before, after)
-    print("\n| | calls | wall time | loop time of all LAMMPS runs | steps |\n|---|---|---|---|---|")
-    for v, m in summary["median"].items():
-        print(f"| {v} | {summary['calls'][v]} | {m['wall_s'] / 60:.1f} min | {m['loop_s']:.1f} s "
-              f"| {m['steps']:.0f} |")
-    if "wall_speedup" in summary:
-        print(f"\nspeed-up: {summary['wall_speedup']:.2f}x wall, {summary['loop_speedup']:.2f}x "
-              "loop", end="; ")
-    for v, j in summary["jobs"].items():
-        if v in ("before", "after"):
-            total = (f"loop time {j['loop_s']:.1f} s, {j['steps']:.0f} steps" if "loop_s" in j
-                     else f"missing {', '.join(j['missing'])}")
-            print(f"\njobs {v}: {j['jobs_measured']} of {j['jobs_in_programme']} measured "
-                  f"(sessions {', '.join(j['sessions_utc'])}); {total}")
-    if "loop_speedup" in summary["jobs"]:
-        print(f"programme's loop time, job by job: {summary['jobs']['loop_speedup']:.2f}x; "
-              f"same steps in every job: {summary['jobs']['same_steps_every_job']}")
-    print(f"{summary['records_note']}; wrote {out}.csv, {out}.json")
+    print_summary(summary, out)
     return 0 if summary["records_identical"] else 1
 
 

@@ -1,4 +1,5 @@
 """Shared test set-up: use the freshly built tylmp (build/python) and tyanalysis (analysis/)."""
+import importlib.util
 import os
 import sys
 
@@ -19,3 +20,18 @@ os.environ["PYTHONPATH"] = os.pathsep.join(
 @pytest.fixture
 def repo():
     return REPO
+
+
+@pytest.fixture(scope="session")
+def bench():
+    """The scripts under bench/ as modules, each loaded once: bench("programme_speed")."""
+    modules = {}
+
+    def load(name):
+        if name not in modules:
+            spec = importlib.util.spec_from_file_location(
+                name, os.path.join(REPO, "bench", f"{name}.py"))
+            modules[name] = importlib.util.module_from_spec(spec)
+            spec.loader.exec_module(modules[name])
+        return modules[name]
+    return load

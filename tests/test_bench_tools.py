@@ -3,14 +3,12 @@ checked against what the running `lmp` prints for a deck whose runs are known: t
 and 30 steps of a 4x4x4 fcc lattice (256 atoms) on one process, whose timing breakdown (Pair,
 Neigh, Comm, Output, Modify, Other) accounts for the whole loop time (its %total column sums
 to 100). The record digest by which bench/programme_speed.py says two calls of the programme
-did the same work: equal for byte-equal records, different when one byte or one name differs."""
-import importlib.util
-import os
+did the same work: equal for byte-equal records, different when one byte or one name differs.
+Its job accounting: the rows read from reproduce's own log, and the pairs (a job of the two
+builds run side by side) by which it compares the paper programme job by job."""
 import subprocess
 
 import pytest
-
-REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 DECK = """units lj
 lattice fcc 0.8442
@@ -27,16 +25,9 @@ run 30
 """
 
 
-def _bench(name):
-    path = os.path.join(REPO, "bench", f"{name}.py")
-    spec = importlib.util.spec_from_file_location(name, path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-def _lammps_log():
-    return _bench("lammps_log")
+@pytest.fixture
+def log(bench):
+    return bench("lammps_log")
 
 
 @pytest.fixture(scope="module")
@@ -49,16 +40,14 @@ def output(tmp_path_factory):
     return proc.stdout
 
 
-def test_every_run_is_read_with_its_steps_atoms_and_procs(output):
-    log = _lammps_log()
+def test_every_run_is_read_with_its_steps_atoms_and_procs(output, log):
     runs = log.loops(output)
     assert [(r["steps"], r["atoms"], r["procs"]) for r in runs] == [(20, 256, 1), (30, 256, 1)]
     assert all(r["seconds"] > 0 for r in runs)
     assert log.first_loop(output) == runs[0]
 
 
-def test_breakdown_accounts_for_the_loop_time(output):
-    log = _lammps_log()
+def test_breakdown_accounts_for_the_loop_time(output, log):
     sections = ("Pair", "Neigh", "Comm", "Output", "Modify", "Other")
     for run in range(2):
         pct = sum(log.section(output, s)[run]["pct"] for s in sections)
@@ -69,13 +58,13 @@ def test_breakdown_accounts_for_the_loop_time(output):
                                             rel=0.05, abs=2e-4)
 
 
-def test_output_without_a_run_is_an_error_that_says_so():
+def test_output_without_a_run_is_an_error_that_says_so(log):
     with pytest.raises(RuntimeError, match="no 'Loop time of ...' line"):
-        _lammps_log().first_loop("LAMMPS (29 Sep 2021)\n", "empty output")
+        log.first_loop("LAMMPS (29 Sep 2021)\n", "empty output")
 
 
-def test_record_digest_tells_the_same_records_from_different_ones(tmp_path):
-    speed = _bench("programme_speed")
+def test_record_digest_tells_the_same_records_from_different_ones(tmp_path, bench):
+    speed = bench("programme_speed")
     calls = []
     for call in ("a", "b"):
         d = tmp_path / call
@@ -94,12 +83,12 @@ def test_record_digest_tells_the_same_records_from_different_ones(tmp_path):
     assert speed.records_digest(str(calls[1]))[1] != a[1]
 
 
-def test_job_rows_read_what_reproduce_logs(tmp_path):
+def test_job_rows_read_what_reproduce_logs(tmp_path, bench):
     """bench/programme_speed.py's job accounting reads reproduce's own "done" lines: jobs run by
     tyanalysis.reproduce.run_jobs (two at once) whose logs carry known loop lines come back with
     those loop times and steps; a job that failed has no row."""
     from tyanalysis import reproduce
-    speed = _bench("programme_speed")
+    speed = bench("programme_speed")
     rundir = tmp_path / "call"
     rundir.mkdir()
     loop = "Loop time of {t} on 1 procs for {n} steps with 3620 atoms\n"
@@ -116,3 +105,38 @@ def test_job_rows_read_what_reproduce_logs(tmp_path):
     assert set(rows) == {"prepare_loose", "axisym_loose"}
     assert (rows["prepare_loose"]["loop_s"], rows["prepare_loose"]["steps"]) == (3.75, 40)
     assert (rows["axisym_loose"]["loop_s"], rows["axisym_loose"]["steps"]) == (4.0, 7)
+
+
+def test_pairs_compare_each_job_with_the_same_job_beside_it(bench):
+    """bench/programme_speed.py's paper-scale accounting: a job's rows of the two builds form a
+    pair only when they ran side by side (the same call start); per job the medians over its
+    pairs; the programme's loop time only when every job has a pair, as the sum over jobs."""
+    speed = bench("programme_speed")
+    every = speed.programme_jobs()
+
+    def row(variant, job, started, loop, steps=100, sha="r"):
+        return {"variant": variant, "job": job, "started_utc": started, "machine": "m",
+                "job_wall_s": loop + 1.0, "loop_s": loop, "steps": steps, "record_sha256": sha}
+    a, b = "2026-12-02T10:00:00Z", "2026-12-03T10:00:00Z"
+    rows = [row("before", "cdst", a, 30.0), row("after", "cdst", a, 20.0),
+            row("before", "cdst", b, 60.0), row("after", "cdst", b, 30.0),
+            row("before", "prepare_dense", a, 10.0),          # no after beside it: no pair
+            row("after", "prepare_dense", b, 8.0)]
+    got = speed.summarise_pairs(rows)
+    assert got["jobs_paired"] == 1 and len(got["missing"]) == len(every) - 1
+    cdst = got["per_job"]["cdst"]
+    assert cdst["pairs"] == 2 and cdst["loop_speedup"] == pytest.approx((1.5 + 2.0) / 2)
+    assert (cdst["before_loop_s"], cdst["after_loop_s"]) == (45.0, 25.0)
+    assert "loop_speedup" not in got                      # the programme is not complete
+    assert got["same_steps_every_pair"] and got["same_record_every_pair"]
+    # every job paired once: before 2 s a job, after 1 s, except one job 3 s against 1 s
+    rows = [row(v, j, a, (2.0 if v == "before" else 1.0) + (j == "cdst" and v == "before"))
+            for j in every for v in ("before", "after")]
+    got = speed.summarise_pairs(rows)
+    assert got["before_loop_s"] == 2.0 * len(every) + 1 and got["after_loop_s"] == len(every)
+    assert got["loop_speedup"] == pytest.approx((2.0 * len(every) + 1) / len(every))
+    assert got["median_job_loop_speedup"] == 2.0 and got["steps"] == 100 * len(every)
+    # a pair that wrote different records or did different steps says so
+    rows[-1] = dict(rows[-1], record_sha256="other", steps=99)
+    got = speed.summarise_pairs(rows)
+    assert not got["same_record_every_pair"] and not got["same_steps_every_pair"]

@@ -10,7 +10,6 @@ bench/compare_assembly.py, at a coarser resolution / shorter strain than the doc
     L (x_i - x_j): their initial deviatoric stiffness is lower than with streaming velocities
     (remap v), while thornton/yin gives the same stiffness both ways.
 """
-import importlib.util
 import os
 import subprocess
 
@@ -20,16 +19,9 @@ import pytest
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
-def _bench(name):
-    spec = importlib.util.spec_from_file_location(name, os.path.join(REPO, "bench", f"{name}.py"))
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
 @pytest.fixture(scope="module")
-def tangential():
-    return _bench("compare_tangential")
+def tangential(bench):
+    return bench("compare_tangential")
 
 
 @pytest.mark.parametrize("key", ["a", "b", "c"])
@@ -74,8 +66,8 @@ def dense_specimen(tmp_path_factory):
     return str(work / "tylmp_specimens" / "dense_quick.restart")
 
 
-def test_affine_term_sets_the_initial_stiffness_of_the_assembly(tmp_path, dense_specimen):
-    assembly = _bench("compare_assembly")
+def test_affine_term_sets_the_initial_stiffness_of_the_assembly(tmp_path, dense_specimen, bench):
+    assembly = bench("compare_assembly")
     dt = 0.2 * np.pi * 0.0675e-3 * np.sqrt(2650e12 / (70e9 / 2.6)) / (0.1631 * 0.3 + 0.8766)
     rate, eps = 1e-4, 2e-4
     nsteps = int(np.ceil(eps / (rate * dt)))

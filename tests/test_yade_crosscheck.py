@@ -80,16 +80,7 @@ def test_lammps_deck_at_step_0_is_the_data_file(data_state, tmp_path):
     assert t["sliding_fraction"][0] == 0        # fresh contacts: no tangential force yet
 
 
-def _load_compare():
-    import importlib.util
-    spec = importlib.util.spec_from_file_location(
-        "yade_compare", os.path.join(REPO, "bench", "yade_compare.py"))
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
-
-
-def test_compare_reads_the_responses_of_a_known_record(tmp_path):
+def test_compare_reads_the_responses_of_a_known_record(tmp_path, bench):
     # a synthetic axisymmetric record: eps1 - eps3 = d, eps_v = -0.3 d (constant dilation
     # rate 0.3), p = 100 kPa, q = min(5e8 d, 90 kPa), Z falling linearly from 5 to 4 over 10 %
     from tyanalysis.io import write_servo_csv
@@ -103,7 +94,7 @@ def test_compare_reads_the_responses_of_a_known_record(tmp_path):
                                 "eps1": e3 + d, "eps2": e3, "eps3": e3,
                                 "sig1": p + 2 * q / 3, "sig2": p - q / 3, "sig3": p - q / 3,
                                 "Z": z, "Zm": z + 1})
-    out, _ = _load_compare().responses(str(path))
+    out, _ = bench("yade_compare").responses(str(path))
     assert out["secant_q_over_eps_d13_at_0.001pct_MPa"] == pytest.approx(500, rel=1e-9)
     assert out["q_at_0.01pct_kPa"] == pytest.approx(50, rel=1e-9)
     assert out["q_at_0.1pct_kPa"] == pytest.approx(90, rel=1e-9)
