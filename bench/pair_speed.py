@@ -115,6 +115,8 @@ NEIGHBOR = "neighbor 1.35e-5 bin\nneigh_modify every 1 delay 0 check yes\n"
 CASES = {
     "thornton/yin G=0.6": f"pair_style thornton/yin\npair_coeff * * {E} {NU} {MU} {GAMMA}\n",
     "thornton/yin G=0": f"pair_style thornton/yin\npair_coeff * * {E} {NU} {MU} 0.0\n",
+    # frictionless, as the dense specimen's preparation (inputs/common/prepare.in)
+    "thornton/yin G=0 mu=0": f"pair_style thornton/yin\npair_coeff * * {E} {NU} 0.0 0.0\n",
     # the same law through the scalar build of the batch entry (pair_style keyword isa): what
     # the SIMD builds gain in situ (the results are bitwise the same)
     "thornton/yin G=0.6 isa scalar": (f"pair_style thornton/yin isa scalar\n"

@@ -195,8 +195,12 @@ template <bool Adhesive>
 }
 
 // Stage 2 of every lane: the normal force and the tangential law (begin_tangential,
-// stiffness_of, slip_decision, theta_of, finish_step), then lane_outputs
-template <bool Adhesive, bool Damped, bool Tally>
+// stiffness_of, slip_decision, theta_of, finish_step), then lane_outputs. Frictionless: the
+// batch's material pair has mu = 0, so every lane's sliding limit mu (P + 2Pc) is 0 and the
+// law's outcome is known without the tangential law: T and its memory cleared, sliding, the
+// stored energy released (docs/theory.md §2.3); the same values, bit for bit, as the full
+// stage gives for mu = 0.
+template <bool Adhesive, bool Damped, bool Tally, bool Frictionless>
 [[gnu::always_inline]] inline void law_stage(ContactBatch& b, const PairConstants k,
                                              const BatchParameters p, const Carry& w)
 {
@@ -224,6 +228,24 @@ template <bool Adhesive, bool Damped, bool Tally>
       const double compression = lane_max(delta, 0.0);
       a = std::sqrt(R * compression);
       P = (4.0 / 3.0) * c.E_star * a * compression;
+    }
+
+    if (Frictionless) {
+      const double released = stored_old + 0.5 * dot3(T_old, ds);
+#pragma GCC unroll 3
+      for (int d = 0; d < 3; ++d) b.T[d][i] = b.dir[d][i] = 0.0;
+      b.T_star[i] = b.T_star2[i] = 0.0;
+      b.mode[i] = loading;
+      b.peeling[i] = 0.0;
+      b.sliding[i] = gone ? 0.0 : 1.0;
+      b.P_prev[i] = gone ? 0.0 : P;
+      b.stored_energy[i] = 0.0;
+      b.radius[i] = gone ? 0.0 : a;
+      b.P[i] = gone ? 0.0 : P;
+      b.contact_radius[i] = gone ? 0.0 : a;
+      b.dissipation[i] = gone ? 0.0 : 0.0 + lane_max(released, 0.0);
+      lane_outputs<Adhesive, Damped, Tally>(b, i, c, p, -1.0);
+      continue;
     }
 
     // begin_tangential
@@ -387,8 +409,14 @@ template <bool Adhesive, bool Damped>
         w.u[i] = std::sqrt(w.a[i]);
       }
   }
-  if (p.tally) law_stage<Adhesive, Damped, true>(b, k, p, w);
-  else law_stage<Adhesive, Damped, false>(b, k, p, w);
+  // one material pair per batch: mu = 0 for all its lanes or for none
+  if (k.c.mu == 0.0) {
+    if (p.tally) law_stage<Adhesive, Damped, true, true>(b, k, p, w);
+    else law_stage<Adhesive, Damped, false, true>(b, k, p, w);
+  } else {
+    if (p.tally) law_stage<Adhesive, Damped, true, false>(b, k, p, w);
+    else law_stage<Adhesive, Damped, false, false>(b, k, p, w);
+  }
   if (p.energy) detail::stored_energies(b, n, k);
 }
 

@@ -194,6 +194,61 @@ TEST_P(BatchLaw, MatchesReferenceAndScalarKernelFrictionless)
   EXPECT_EQ(seen[0].sliding, 5000);
 }
 
+// mu = 0 without adhesion: the dense specimen's preparation (a batch of the frictionless
+// law_stage in the vector builds)
+TEST_P(BatchLaw, MatchesReferenceAndScalarKernelFrictionlessHertz)
+{
+  std::vector<unsigned> seeds;
+  for (unsigned s = 31; s < 47; ++s) seeds.push_back(s);
+  std::vector<Visits> seen;
+  compare_batch_on_paths(GetParam(), 0.0, 0.0, seeds, 5000, seen);
+}
+
+// A contact whose mu has just become 0 (fix adapt) while it carries a tangential force T and a
+// stored energy E: the step clears T and its memory, marks the contact sliding and dissipates
+// E + T.ds/2, the work of T over the step (docs/theory.md §2.3, §2.4); the same to the bit as
+// the scalar kernel, with and without adhesion.
+TEST_P(BatchLaw, FrictionlessStepReleasesTheStoredEnergy)
+{
+  using namespace glass_pair;
+  for (const double Gamma : {0.6, 0.0}) {
+    SCOPED_TRACE(::testing::Message() << tycore::isa_name(GetParam()) << " Gamma " << Gamma);
+    const double R = kRstar, delta = 1e-3 * R;
+    const tycore::PairConstants k = tycore::pair_constants(coefficients(0.0, Gamma));
+    const double a = Gamma > 0.0 ? tycore::jkr::contact_radius(delta, R, kEstar, Gamma)
+                                 : std::sqrt(R * delta);
+    const double P = tycore::jkr::normal_force(a, R, kEstar, Gamma);
+    tycore::BatchParameters p;
+    p.dt = kDt;
+    auto b = std::make_unique<ContactBatch>();
+    contact_paths::Step s{};
+    s.n = Eigen::Vector3d(0.0, 0.0, 1.0);
+    s.ds = Eigen::Vector3d(2.0e-9, -1.0e-9, 0.0);    // along T: T does positive work
+    s.twist = 0.0;
+    s.delta = delta;
+    tycore::ContactHistory h;
+    tycore::begin_contact(h, P, Gamma > 0.0);
+    h.radius = a;
+    h.T[0] = 1e-3 * P;
+    h.T[1] = -2e-3 * P;
+    h.stored_energy = 3e-15;
+    set_lane(*b, 0, s, R, h);
+    if (Gamma > 0.0) advance<true>(*b, 1, k, p, GetParam());
+    else advance<false>(*b, 1, k, p, GetParam());
+
+    const double work = 0.5 * (h.T[0] * s.ds.x() + h.T[1] * s.ds.y());
+    ASSERT_GT(work, 0.0);
+    EXPECT_DOUBLE_EQ(b->dissipation[0], h.stored_energy + work);
+    EXPECT_EQ(b->sliding[0], 1.0);
+    const tycore::ContactHistory after = tycore::stored_history(*b, 0);
+    for (int d = 0; d < 3; ++d) EXPECT_EQ(after.T[d], 0.0);
+    EXPECT_EQ(after.stored_energy, 0.0);
+    EXPECT_NEAR(b->P[0], P, 1e-12 * std::abs(P));
+    RandomPath path(0.0, Gamma, 1);
+    expect_bitwise_scalar_kernel(k, path, s, h, *b, 0);
+  }
+}
+
 // Damping, tallies and energy on the adhesive paths, with relative velocities: the scalar
 // build against the formulas, every vector build against the scalar build to the bit.
 TEST_P(BatchLaw, DampingTalliesAndEnergyAsTheirFormulas)
