@@ -148,12 +148,13 @@ JOB_FIELDS = ["variant", "job", "started_utc", "machine", "job_wall_s", "loop_s"
               "record_sha256"]
 
 
-def job_rows(variant, rundir, started):
-    """One row per job (preparation or run) that reproduce logged as done in RUNDIR.out: its
-    wall time (reproduce's "done NAME in X min"), the loop times and steps of its LAMMPS log
-    RUNDIR/NAME.log and the digest of its record. A job still running has no row."""
+def job_rows(variant, rundir, started, skip=()):
+    """One row per job (preparation or run) that reproduce logged as done in RUNDIR.out, except
+    the jobs named in skip (rows already read): its wall time (reproduce's "done NAME in X
+    min"), the loop times and steps of its LAMMPS log RUNDIR/NAME.log and the digest of its
+    record. A job still running has no row."""
     with open(rundir + ".out", errors="replace") as f:
-        done = DONE.findall(f.read())
+        done = [d for d in DONE.findall(f.read()) if d[0] not in skip]
     rows = []
     for job, minutes in done:
         with open(os.path.join(rundir, job + ".log"), errors="replace") as f:
@@ -228,15 +229,20 @@ def run_call(variant, library, decks, scale, jobs, rundir):
 
 def side_by_side(libraries, decks, scale, work, only, kept, save_jobs, poll=30.0):
     """The two builds' reproduce calls at the same time, one core each (`--jobs 1`, the same
-    runs in the same order), their finished jobs' rows saved (after `kept`) every `poll`
-    seconds and at the end. Both calls' rows carry the same start: the mark of a pair."""
+    runs in the same order); every `poll` seconds the jobs finished since are read and the rows
+    saved (after `kept`). Both calls' rows carry the same start: the mark of a pair."""
     started = utc(time.time())
     calls = {v: (start_call(v, lib, decks, scale, 1, os.path.join(work, f"{v}_side"), only),
                  os.path.join(work, f"{v}_side")) for v, lib in libraries.items()}
+    rows = []
+    save_jobs(kept)
     while True:
         running = [p for p, _ in calls.values() if p.poll() is None]
-        rows = [r for v, (_, d) in calls.items() for r in job_rows(v, d, started)]
-        save_jobs(kept + rows)
+        new = [r for v, (_, d) in calls.items()
+               for r in job_rows(v, d, started, {r["job"] for r in rows if r["variant"] == v})]
+        if new:    # each finished job read once, saved when it has finished
+            rows += new
+            save_jobs(kept + rows)
         if not running:
             break
         time.sleep(poll)
