@@ -7,6 +7,7 @@ tycore::advance_batch and its SIMD builds) and this tree's ("after").
 
     /usr/bin/python3 bench/programme_speed.py [--scale quick] [--repeats 1]
     /usr/bin/python3 bench/programme_speed.py --scale paper [--missing] [--runs NAME ...]
+    /usr/bin/python3 bench/programme_speed.py --scale paper --report
     common: [--before 3585d58] [--decks 1c07cef] [--after build/python/tylmp/tylmp-20210929.so]
             [--jobs 2] [--dir DIR] [--out PREFIX]
 
@@ -36,9 +37,14 @@ runs in the same order), and every job is compared with the same job of the othe
 ran beside it: a pair. Job rows are saved as the jobs finish, so a call stopped with its
 session keeps its finished pairs; `--missing` calls only the runs that lack a pair (their
 specimens are prepared again, bitwise the same: more pairs of the preparations), `--runs`
-limits a call to some runs. When every job of the programme has a pair, the programme's loop
-time of each build is the sum over its jobs (median over a job's pairs), with equal steps and
-equal records in every pair as the check of equal work.
+limits a call to some runs, `--report` summarises the saved rows again without running. Sessions
+may land on different machines, whose timings are not comparable: a job's figure is the median
+over its pairs on one machine (for a job paired on several, the machine that paired the most of
+the programme's steps), and the results also give each machine's totals over the jobs paired
+on it. When every job of the programme has a pair, the programme's loop time of each build is
+the sum over its jobs' figures, with the machines named, and equal steps and equal records in
+every pair (on every machine: the trajectories are bitwise the same on every instruction set)
+as the check of equal work.
 
 Writes PREFIX.csv (one row per whole quick-scale call), PREFIX_jobs.csv (one row per finished
 job) and PREFIX.json (medians, ratios, whether the records agree, the job accounting; default
@@ -51,6 +57,7 @@ import functools
 import glob
 import hashlib
 import io
+import json
 import os
 import re
 import shutil
@@ -274,52 +281,83 @@ def read_rows(path, fields, floats, ints):
 
 
 def pairs(jrows):
-    """job -> [(before row, after row)] of the jobs that ran side by side (same call start)."""
+    """job -> [(before row, after row)] of the jobs that ran side by side (same call start, same
+    machine)."""
     by = {(r["job"], r["started_utc"], r["variant"]): r for r in jrows}
     out = {}
     for (job, started, variant), row in sorted(by.items()):
-        if variant == "before" and (job, started, "after") in by:
-            out.setdefault(job, []).append((row, by[(job, started, "after")]))
+        twin = by.get((job, started, "after"))
+        if variant == "before" and twin is not None and twin["machine"] == row["machine"]:
+            out.setdefault(job, []).append((row, twin))
+    return out
+
+
+def job_figure(ps):
+    """One job's figure from its pairs on one machine: medians of each build's loop and job
+    wall time, and the median over the pairs of before/after."""
+    return {"pairs": len(ps),
+            "calls_started_utc": sorted({b["started_utc"] for b, _ in ps}),
+            "steps": ps[0][0]["steps"],
+            **{f"{v}_{k}": statistics.median(p[i][k] for p in ps)
+               for i, v in enumerate(("before", "after")) for k in ("loop_s", "job_wall_s")},
+            "loop_speedup": statistics.median(b["loop_s"] / a["loop_s"] for b, a in ps)}
+
+
+def totals(figures):
+    """Sums of steps and of each build's loop time over some jobs' figures, and their ratio."""
+    out = {"jobs": len(figures), "steps": sum(f["steps"] for f in figures)}
+    for v in ("before", "after"):
+        out[f"{v}_loop_s"] = sum(f[f"{v}_loop_s"] for f in figures)
+    out["loop_speedup"] = out["before_loop_s"] / out["after_loop_s"] if figures else None
     return out
 
 
 def summarise_pairs(jrows):
-    """The paper programme job by job: per job the medians over its pairs (loop time, job wall
-    time of each build, the ratio before/after) and whether every pair did the same steps and
-    wrote the same record; when every job of the programme has a pair, each build's loop time
-    of the whole programme (the sum over its jobs) and their ratio."""
+    """The paper programme job by job. Timings of different machines are not comparable, so a
+    job's figure comes from its pairs on one machine: the medians over them (loop time, job
+    wall time of each build, the ratio before/after). A job paired on several machines counts
+    with those of the machine that paired the most of the programme's steps (its figures on the
+    others are kept beside it). Per machine, the totals over every job paired there. Whether
+    every pair, on every machine, did the same steps and wrote the same record (the builds and
+    the processors' instruction sets give bitwise the same trajectories). When every job of the
+    programme has a pair, each build's loop time of the whole programme (the sum over its jobs)
+    and their ratio, with the machines it was measured on."""
     every = programme_jobs()
     found = pairs(jrows)
+    on = {}                                   # job -> machine -> its pairs there
+    for job, ps in found.items():
+        for b, a in ps:
+            on.setdefault(job, {}).setdefault(b["machine"], []).append((b, a))
+    machines = sorted({m for ms in on.values() for m in ms})
+    covered = {m: sum(ms[m][0][0]["steps"] for ms in on.values() if m in ms) for m in machines}
     per = {}
     for job in every:
-        if job not in found:
+        if job not in on:
             continue
+        home = max(on[job], key=lambda m: (covered[m], m))
         ps = found[job]
-        per[job] = {"pairs": len(ps),
-                    "calls_started_utc": sorted({b["started_utc"] for b, _ in ps}),
-                    "steps": ps[0][0]["steps"],
+        per[job] = {**job_figure(on[job][home]), "machine": home,
                     "same_steps": all(b["steps"] == a["steps"] == ps[0][0]["steps"]
                                       for b, a in ps),
                     "same_record": all(b["record_sha256"] == a["record_sha256"]
                                        == ps[0][0]["record_sha256"] for b, a in ps),
-                    **{f"{v}_{k}": statistics.median(p[i][k] for p in ps)
-                       for i, v in enumerate(("before", "after"))
-                       for k in ("loop_s", "job_wall_s")},
-                    "loop_speedup": statistics.median(b["loop_s"] / a["loop_s"] for b, a in ps)}
+                    "other_machines": {m: job_figure(q) for m, q in on[job].items() if m != home}}
+    by_machine = {m: {**totals([job_figure(on[j][m]) for j in every if m in on.get(j, {})]),
+                      "paired": [j for j in every if m in on.get(j, {})]} for m in machines}
     out = {"jobs_in_programme": len(every), "jobs_paired": len(per),
            "missing": [j for j in every if j not in per],
            "machines": sorted({r["machine"] for r in jrows}),
            "same_steps_every_pair": all(p["same_steps"] for p in per.values()),
            "same_record_every_pair": all(p["same_record"] for p in per.values()),
-           "per_job": per}
+           "per_job": per, "by_machine": by_machine}
     if per:
         out["median_job_loop_speedup"] = statistics.median(p["loop_speedup"]
                                                            for p in per.values())
     if len(per) == len(every):
-        for v in ("before", "after"):
-            out[f"{v}_loop_s"] = sum(p[f"{v}_loop_s"] for p in per.values())
-        out["steps"] = sum(p["steps"] for p in per.values())
-        out["loop_speedup"] = out["before_loop_s"] / out["after_loop_s"]
+        whole = totals(list(per.values()))
+        out.update({k: whole[k] for k in ("before_loop_s", "after_loop_s", "steps",
+                                          "loop_speedup")})
+        out["programme_machines"] = sorted({p["machine"] for p in per.values()})
     return out
 
 
@@ -371,16 +409,31 @@ def save(out, rows, jrows, summary):
 def print_summary(summary, out):
     if summary["scale"] == "paper":
         j = summary["jobs"]
-        print("\n| job | pairs | loop time before | after | before/after | steps | same record |"
-              "\n|---|---|---|---|---|---|---|")
+        label = {m: f"M{i + 1}" for i, m in enumerate(sorted(j["by_machine"]))}
+        print("\n| job | machine | pairs | steps | loop time before | after | before/after | "
+              "job wall before | after | same record |\n|---|---|---|---|---|---|---|---|---|---|")
         for name, p in j["per_job"].items():
-            print(f"| {name} | {p['pairs']} | {p['before_loop_s']:.1f} s | {p['after_loop_s']:.1f} s"
-                  f" | {p['loop_speedup']:.3f} | {p['steps']} | {p['same_record']} |")
+            print(f"| {name} | {label[p['machine']]} | {p['pairs']} | {p['steps']} | "
+                  f"{p['before_loop_s']:.0f} s | {p['after_loop_s']:.0f} s | "
+                  f"{p['loop_speedup']:.2f} | {p['before_job_wall_s'] / 60:.1f} min | "
+                  f"{p['after_job_wall_s'] / 60:.1f} min | {p['same_record']} |")
+            for m, q in p["other_machines"].items():
+                print(f"| ({name}) | {label[m]} | {q['pairs']} | {q['steps']} | "
+                      f"{q['before_loop_s']:.0f} s | {q['after_loop_s']:.0f} s | "
+                      f"{q['loop_speedup']:.2f} | {q['before_job_wall_s'] / 60:.1f} min | "
+                      f"{q['after_job_wall_s'] / 60:.1f} min | |")
+        print("\n| machine | jobs paired | steps | loop time before | after | before/after |"
+              "\n|---|---|---|---|---|---|")
+        for m, t in sorted(j["by_machine"].items()):
+            print(f"| {label[m]}: {m} | {t['jobs']} | {t['steps']} | {t['before_loop_s']:.0f} s "
+                  f"| {t['after_loop_s']:.0f} s | {t['loop_speedup']:.3f} |")
         print(f"\n{j['jobs_paired']} of {j['jobs_in_programme']} jobs paired"
               + (f"; missing: {', '.join(j['missing'])}" if j["missing"] else ""))
         if "loop_speedup" in j:
-            print(f"programme's loop time: before {j['before_loop_s']:.0f} s, after "
-                  f"{j['after_loop_s']:.0f} s: {j['loop_speedup']:.3f}x")
+            print(f"programme's loop time ({j['steps']} steps; "
+                  f"{', '.join(label[m] for m in j['programme_machines'])}): before "
+                  f"{j['before_loop_s']:.0f} s, after {j['after_loop_s']:.0f} s: "
+                  f"{j['loop_speedup']:.3f}x")
     else:
         print("\n| | calls | wall time | loop time of all LAMMPS runs | steps |\n|---|---|---|---|---|")
         for v, m in summary["median"].items():
@@ -403,6 +456,9 @@ def main(argv=None):
                     "(and keep its rows)")
     ap.add_argument("--runs", nargs="+", metavar="NAME", default=None,
                     help="paper scale: call only these runs")
+    ap.add_argument("--report", action="store_true",
+                    help="paper scale: run nothing; summarise PREFIX_jobs.csv again into "
+                    "PREFIX.json and print the tables")
     ap.add_argument("--before", default="3585d58", help="commit of the 'before' library")
     ap.add_argument("--decks", default="1c07cef", help="commit of the decks both builds run")
     ap.add_argument("--after", default=None, help="the 'after' library (default: this tree's "
@@ -416,6 +472,9 @@ def main(argv=None):
         ap.error("--repeats must be at least 1")
     if args.scale != "paper" and (args.missing or args.runs):
         ap.error("--missing and --runs are for the paper programme (--scale paper)")
+    if args.report and (args.scale != "paper" or args.missing or args.runs):
+        ap.error("--report is for the paper programme (--scale paper) and runs nothing "
+                 "(no --missing, --runs)")
     if args.scale == "paper" and args.repeats != 1:
         ap.error("--repeats is for quick scale; at paper scale a job's pairs gather over calls "
                  "(--missing, --runs)")
@@ -425,6 +484,17 @@ def main(argv=None):
         ap.error(f"--runs: {', '.join(unknown)} not a run of the programme; the runs are: "
                  + ", ".join(j for j in every if not j.startswith("prepare_")))
     out = args.out or os.path.join(REPO, "bench", "results", f"programme_speed_{args.scale}")
+    if args.report:
+        jrows = read_rows(out + "_jobs.csv", JOB_FIELDS, ("job_wall_s", "loop_s"), ("steps",))
+        libraries = {}
+        if os.path.isfile(out + ".json"):
+            with open(out + ".json") as f:
+                libraries = json.load(f)
+        summary = summarise([], jrows, args, libraries.get("before_library"),
+                            libraries.get("after_library"))
+        save(out, [], jrows, summary)
+        print_summary(summary, out)
+        return 0 if summary["records_identical"] else 1
     after = args.after
     if after is None:
         builds = sorted(glob.glob(os.path.join(REPO, "build", "python", "tylmp", "tylmp-*.so")))

@@ -140,3 +140,65 @@ def test_pairs_compare_each_job_with_the_same_job_beside_it(bench):
     rows[-1] = dict(rows[-1], record_sha256="other", steps=99)
     got = speed.summarise_pairs(rows)
     assert not got["same_record_every_pair"] and not got["same_steps_every_pair"]
+
+
+def test_a_job_counts_with_its_pairs_on_one_machine(bench):
+    """Sessions land on different machines, whose timings are not comparable: a job's figure
+    comes from its pairs on one machine (for a job paired on two, the machine that paired more
+    of the programme's steps), each machine has its own totals, and the programme's sum takes
+    every job once, naming the machines; rows of different machines never form a pair."""
+    speed = bench("programme_speed")
+    every = speed.programme_jobs()
+
+    def row(variant, job, started, machine, loop, steps=100, sha="r"):
+        return {"variant": variant, "job": job, "started_utc": started, "machine": machine,
+                "job_wall_s": loop + 1.0, "loop_s": loop, "steps": steps, "record_sha256": sha}
+    a, b = "2026-12-02T10:00:00Z", "2026-12-03T10:00:00Z"
+    rows = [row("before", "prepare_dense", a, "A", 9.0), row("after", "prepare_dense", a, "A", 10.0),
+            row("before", "cdst", a, "A", 12.0), row("after", "cdst", a, "A", 10.0),
+            row("before", "prepare_dense", b, "B", 3.0), row("after", "prepare_dense", b, "B", 2.0),
+            row("before", "axisym_dense", b, "B", 40.0, steps=1000),
+            row("after", "axisym_dense", b, "B", 20.0, steps=1000),
+            row("before", "friction_mu0", b, "B", 5.0), row("after", "friction_mu0", b, "A", 1.0)]
+    got = speed.summarise_pairs(rows)
+    assert set(got["per_job"]) == {"prepare_dense", "cdst", "axisym_dense"}   # no A-B pair
+    dense = got["per_job"]["prepare_dense"]
+    assert dense["machine"] == "B" and dense["pairs"] == 1                   # B: 1100 steps
+    assert (dense["before_loop_s"], dense["after_loop_s"]) == (3.0, 2.0)
+    assert dense["other_machines"]["A"]["loop_speedup"] == pytest.approx(0.9)
+    assert got["per_job"]["cdst"]["machine"] == "A"
+    on_a, on_b = got["by_machine"]["A"], got["by_machine"]["B"]
+    assert (on_a["jobs"], on_a["steps"], on_a["before_loop_s"], on_a["after_loop_s"]) \
+        == (2, 200, 21.0, 20.0)
+    assert (on_b["jobs"], on_b["steps"]) == (2, 1100)
+    assert on_b["loop_speedup"] == pytest.approx(43.0 / 22.0)
+    assert "loop_speedup" not in got
+    # the same job on another machine must still write the same record
+    rows[4] = dict(rows[4], record_sha256="other")
+    rows[5] = dict(rows[5], record_sha256="other")
+    assert not speed.summarise_pairs(rows)["same_record_every_pair"]
+    # every job paired, some on A, the rest on B: the programme is their sum, both named
+    rows = [row(v, j, a if i % 2 else b, "A" if i % 2 else "B", 2.0 if v == "before" else 1.0)
+            for i, j in enumerate(every) for v in ("before", "after")]
+    got = speed.summarise_pairs(rows)
+    assert got["programme_machines"] == ["A", "B"]
+    assert (got["before_loop_s"], got["after_loop_s"]) == (2.0 * len(every), 1.0 * len(every))
+    assert got["by_machine"]["A"]["jobs"] + got["by_machine"]["B"]["jobs"] == len(every)
+
+
+def test_report_summarises_the_saved_rows_without_running(tmp_path, bench, capsys):
+    """`--report` reads PREFIX_jobs.csv, rewrites PREFIX.json from it and prints the tables:
+    the figures of a later session's rules from rows measured earlier, nothing run."""
+    import json
+    speed = bench("programme_speed")
+    out = str(tmp_path / "p")
+    rows = [{"variant": v, "job": "cdst", "started_utc": "2026-12-02T10:00:00Z",
+             "machine": "A", "job_wall_s": 61.0, "loop_s": loop, "steps": 100,
+             "record_sha256": "r"} for v, loop in (("before", 30.0), ("after", 20.0))]
+    (tmp_path / "p_jobs.csv").write_text(speed.csv_text(rows, speed.JOB_FIELDS))
+    assert speed.main(["--scale", "paper", "--report", "--out", out]) == 0
+    with open(out + ".json") as f:
+        jobs = json.load(f)["jobs"]
+    assert jobs["per_job"]["cdst"]["loop_speedup"] == pytest.approx(1.5)
+    assert jobs["by_machine"]["A"]["before_loop_s"] == 30.0
+    assert "| cdst | M1 | 1 | 100 | 30 s | 20 s | 1.50 |" in capsys.readouterr().out
