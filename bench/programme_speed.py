@@ -412,16 +412,15 @@ def print_summary(summary, out):
         label = {m: f"M{i + 1}" for i, m in enumerate(sorted(j["by_machine"]))}
         print("\n| job | machine | pairs | steps | loop time before | after | before/after | "
               "job wall before | after | same record |\n|---|---|---|---|---|---|---|---|---|---|")
+        def line(name, machine, f, same):
+            print(f"| {name} | {label[machine]} | {f['pairs']} | {f['steps']} | "
+                  f"{f['before_loop_s']:.0f} s | {f['after_loop_s']:.0f} s | "
+                  f"{f['loop_speedup']:.2f} | {f['before_job_wall_s'] / 60:.1f} min | "
+                  f"{f['after_job_wall_s'] / 60:.1f} min | {same} |")
         for name, p in j["per_job"].items():
-            print(f"| {name} | {label[p['machine']]} | {p['pairs']} | {p['steps']} | "
-                  f"{p['before_loop_s']:.0f} s | {p['after_loop_s']:.0f} s | "
-                  f"{p['loop_speedup']:.2f} | {p['before_job_wall_s'] / 60:.1f} min | "
-                  f"{p['after_job_wall_s'] / 60:.1f} min | {p['same_record']} |")
-            for m, q in p["other_machines"].items():
-                print(f"| ({name}) | {label[m]} | {q['pairs']} | {q['steps']} | "
-                      f"{q['before_loop_s']:.0f} s | {q['after_loop_s']:.0f} s | "
-                      f"{q['loop_speedup']:.2f} | {q['before_job_wall_s'] / 60:.1f} min | "
-                      f"{q['after_job_wall_s'] / 60:.1f} min | |")
+            line(name, p["machine"], p, p["same_record"])
+            for m, q in p["other_machines"].items():    # counted with p's machine, shown beside
+                line(f"({name})", m, q, "")
         print("\n| machine | jobs paired | steps | loop time before | after | before/after |"
               "\n|---|---|---|---|---|---|")
         for m, t in sorted(j["by_machine"].items()):
