@@ -304,11 +304,16 @@ def job_figure(ps):
 
 
 def totals(figures):
-    """Sums of steps and of each build's loop time over some jobs' figures, and their ratio."""
+    """Sums of steps and of each build's loop time and job wall time over some jobs' figures,
+    and the ratios before/after. The sum of job wall times is the wall time of those jobs run
+    one at a time (start-up, specimen reading and output included)."""
     out = {"jobs": len(figures), "steps": sum(f["steps"] for f in figures)}
     for v in ("before", "after"):
-        out[f"{v}_loop_s"] = sum(f[f"{v}_loop_s"] for f in figures)
+        for k in ("loop_s", "job_wall_s"):
+            out[f"{v}_{k}"] = sum(f[f"{v}_{k}"] for f in figures)
     out["loop_speedup"] = out["before_loop_s"] / out["after_loop_s"] if figures else None
+    out["job_wall_speedup"] = (out["before_job_wall_s"] / out["after_job_wall_s"]
+                               if figures else None)
     return out
 
 
@@ -356,7 +361,8 @@ def summarise_pairs(jrows):
     if len(per) == len(every):
         whole = totals(list(per.values()))
         out.update({k: whole[k] for k in ("before_loop_s", "after_loop_s", "steps",
-                                          "loop_speedup")})
+                                          "loop_speedup", "before_job_wall_s",
+                                          "after_job_wall_s", "job_wall_speedup")})
         out["programme_machines"] = sorted({p["machine"] for p in per.values()})
     return out
 
@@ -421,18 +427,22 @@ def print_summary(summary, out):
             line(name, p["machine"], p, p["same_record"])
             for m, q in p["other_machines"].items():    # counted with p's machine, shown beside
                 line(f"({name})", m, q, "")
-        print("\n| machine | jobs paired | steps | loop time before | after | before/after |"
-              "\n|---|---|---|---|---|---|")
+        print("\n| machine | jobs paired | steps | loop time before | after | before/after | "
+              "job wall before | after | before/after |\n|---|---|---|---|---|---|---|---|---|")
         for m, t in sorted(j["by_machine"].items()):
             print(f"| {label[m]}: {m} | {t['jobs']} | {t['steps']} | {t['before_loop_s']:.0f} s "
-                  f"| {t['after_loop_s']:.0f} s | {t['loop_speedup']:.3f} |")
+                  f"| {t['after_loop_s']:.0f} s | {t['loop_speedup']:.3f} | "
+                  f"{t['before_job_wall_s'] / 60:.1f} min | {t['after_job_wall_s'] / 60:.1f} min "
+                  f"| {t['job_wall_speedup']:.3f} |")
         print(f"\n{j['jobs_paired']} of {j['jobs_in_programme']} jobs paired"
               + (f"; missing: {', '.join(j['missing'])}" if j["missing"] else ""))
         if "loop_speedup" in j:
             print(f"programme's loop time ({j['steps']} steps; "
                   f"{', '.join(label[m] for m in j['programme_machines'])}): before "
                   f"{j['before_loop_s']:.0f} s, after {j['after_loop_s']:.0f} s: "
-                  f"{j['loop_speedup']:.3f}x")
+                  f"{j['loop_speedup']:.3f}x; its jobs' wall time one at a time: before "
+                  f"{j['before_job_wall_s'] / 60:.1f} min, after "
+                  f"{j['after_job_wall_s'] / 60:.1f} min: {j['job_wall_speedup']:.3f}x")
     else:
         print("\n| | calls | wall time | loop time of all LAMMPS runs | steps |\n|---|---|---|---|---|")
         for v, m in summary["median"].items():

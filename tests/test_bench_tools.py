@@ -136,6 +136,10 @@ def test_pairs_compare_each_job_with_the_same_job_beside_it(bench):
     assert got["before_loop_s"] == 2.0 * len(every) + 1 and got["after_loop_s"] == len(every)
     assert got["loop_speedup"] == pytest.approx((2.0 * len(every) + 1) / len(every))
     assert got["median_job_loop_speedup"] == 2.0 and got["steps"] == 100 * len(every)
+    # job wall time (loop + 1 s here) summed the same way: the jobs run one at a time
+    assert got["before_job_wall_s"] == 3.0 * len(every) + 1
+    assert got["after_job_wall_s"] == 2.0 * len(every)
+    assert got["job_wall_speedup"] == pytest.approx((3.0 * len(every) + 1) / (2.0 * len(every)))
     # a pair that wrote different records or did different steps says so
     rows[-1] = dict(rows[-1], record_sha256="other", steps=99)
     got = speed.summarise_pairs(rows)
@@ -172,6 +176,7 @@ def test_a_job_counts_with_its_pairs_on_one_machine(bench):
         == (2, 200, 21.0, 20.0)
     assert (on_b["jobs"], on_b["steps"]) == (2, 1100)
     assert on_b["loop_speedup"] == pytest.approx(43.0 / 22.0)
+    assert (on_b["before_job_wall_s"], on_b["after_job_wall_s"]) == (45.0, 24.0)
     assert "loop_speedup" not in got
     # the same job on another machine must still write the same record
     rows[4] = dict(rows[4], record_sha256="other")
