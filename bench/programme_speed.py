@@ -41,8 +41,9 @@ limits a call to some runs, `--report` summarises the saved rows again without r
 may land on different machines, whose timings are not comparable: a job's figure is the median
 over its pairs on one machine (for a job paired on several, the machine that paired the most of
 the programme's steps), and the results also give each machine's totals over the jobs paired
-on it. When every job of the programme has a pair, the programme's loop time of each build is
-the sum over its jobs' figures, with the machines named, and equal steps and equal records in
+on it. When every job of the programme has a pair, the programme's loop time of each build
+(and its job wall time, the jobs run one at a time) is the sum over its jobs' figures, with the
+machines named, and equal steps and equal records in
 every pair (on every machine: the trajectories are bitwise the same on every instruction set)
 as the check of equal work.
 
