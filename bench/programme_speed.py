@@ -309,12 +309,10 @@ def totals(figures):
     and the ratios before/after. The sum of job wall times is the wall time of those jobs run
     one at a time (start-up, specimen reading and output included)."""
     out = {"jobs": len(figures), "steps": sum(f["steps"] for f in figures)}
-    for v in ("before", "after"):
-        for k in ("loop_s", "job_wall_s"):
-            out[f"{v}_{k}"] = sum(f[f"{v}_{k}"] for f in figures)
-    out["loop_speedup"] = out["before_loop_s"] / out["after_loop_s"] if figures else None
-    out["job_wall_speedup"] = (out["before_job_wall_s"] / out["after_job_wall_s"]
-                               if figures else None)
+    for k in ("loop", "job_wall"):
+        for v in ("before", "after"):
+            out[f"{v}_{k}_s"] = sum(f[f"{v}_{k}_s"] for f in figures)
+        out[f"{k}_speedup"] = out[f"before_{k}_s"] / out[f"after_{k}_s"] if figures else None
     return out
 
 
@@ -361,9 +359,7 @@ def summarise_pairs(jrows):
                                                            for p in per.values())
     if len(per) == len(every):
         whole = totals(list(per.values()))
-        out.update({k: whole[k] for k in ("before_loop_s", "after_loop_s", "steps",
-                                          "loop_speedup", "before_job_wall_s",
-                                          "after_job_wall_s", "job_wall_speedup")})
+        out.update({k: x for k, x in whole.items() if k != "jobs"})   # jobs_paired says it
         out["programme_machines"] = sorted({p["machine"] for p in per.values()})
     return out
 
