@@ -9,6 +9,7 @@
 ------------------------------------------------------------------------- */
 
 #include "compute_thornton_yin_micromechanics.h"
+#include "tylmp_citations.h"
 
 #include "compute_thornton_yin_contacts.h"
 #include "pair_thornton_yin.h"
@@ -33,6 +34,7 @@ ComputeThorntonYinMicromechanics::ComputeThorntonYinMicromechanics(LAMMPS *lmp, 
                                                                    char **arg) :
     Compute(lmp, narg, arg)
 {
+  tylmp::cite(lmp, tylmp::cite_thornton_2000);
   if (narg != 3)
     error->all(FLERR, "Illegal compute thornton/yin/micromechanics command: expected 'compute "
                "ID group thornton/yin/micromechanics' (no arguments)");

@@ -13,6 +13,7 @@
 ------------------------------------------------------------------------- */
 
 #include "fix_cell_servo.h"
+#include "tylmp_citations.h"
 #include "cell_tally.h"
 
 #include "cell_statistics.hpp"
@@ -125,6 +126,7 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
     wall_start(0.0), step_start(0), saturated_steps(0), saturated_error(0.0),
     saturation_warned(false), cap_warning(true), named_variables(false)
 {
+  tylmp::cite(lmp, tylmp::cite_thornton_2000);
   if (narg < 5) error->all(FLERR, "Illegal fix cell/servo command: expected 'fix ID all cell/servo MODE ...' (modes: iso axes axisym constant_b deviatoric circle triangle polygon)");
   if (strcmp(arg[1], "all") != 0)
     error->all(FLERR, "fix cell/servo: group must be 'all' (every particle follows the "

@@ -6,6 +6,7 @@
 
 #include "pair_thornton_yin.h"
 #include "tylmp_numeric.h"
+#include "tylmp_citations.h"
 
 #include "contact_kernel.hpp"
 #include "law_domain.hpp"
@@ -54,6 +55,7 @@ inline tycore::ContactHistory load_history(const double *slot)
 
 PairThorntonYin::PairThorntonYin(LAMMPS *lmp) : PairWithHistory(lmp)
 {
+  tylmp::cite(lmp, tylmp::cite_thornton_yin_1991);
   single_enable = 1;
   no_virial_fdotr_compute = 1;
   centroidstressflag = CENTROID_NOTAVAIL;
