@@ -42,8 +42,8 @@ import numpy as np
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO, "analysis"))
-from tyanalysis.io import write_json  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from provenance import write_result  # noqa: E402
 from pair_speed import LOAD  # noqa: E402  (the two lines that load the plugin's styles)
 
 P0, RATE = 1e5, 1e-4                  # the deck's mean stress [Pa], quick-scale rate [1/s]
@@ -203,7 +203,7 @@ def main(argv=None):
         print(f"{name}: " + ", ".join(f"{k} {v:.4g}" for k, v in s.items()))
         for w in warnings[name]:
             print(f"    WARNING: {w}")
-    write_json(args.json, {"lammps": "4 Feb 2025", "rate": RATE, "p0": P0, "gain": args.gain,
+    write_result(args.json, {"lammps": "4 Feb 2025", "rate": RATE, "p0": P0, "gain": args.gain,
                            "max_rate": args.max_rate, "strain": args.strain,
                            "runs": table, "warnings": warnings}, indent=2)
     print("wrote", args.json)

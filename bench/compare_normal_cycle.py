@@ -25,7 +25,8 @@ import numpy as np  # noqa: E402
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO, "analysis"))
 from tyanalysis.figures import save_figure  # noqa: E402
-from tyanalysis.io import write_json  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from provenance import write_result  # noqa: E402
 GAMMA, R_STAR = 0.3, 0.5e-4
 PC = 3 * np.pi * GAMMA * R_STAR
 GRANULAR = ("pair_style granular\npair_coeff * * jkr 70e9 0.0 0.3 ${Gamma} "
@@ -98,7 +99,7 @@ def main(argv=None):
         same = np.array_equal(results["thornton/yin"][0]["normal_force"],
                               results["thornton/yin @4Feb2025"][0]["normal_force"])
         print(f"thornton/yin: 29 Sep 2021 and 4 Feb 2025 records identical: {same}")
-        write_json(args.json, {"Pc_N": PC, "Gamma": GAMMA, "R_star_m": R_STAR,
+        write_result(args.json, {"Pc_N": PC, "Gamma": GAMMA, "R_star_m": R_STAR,
                                "thornton_yin_identical_across_versions": bool(same),
                                "runs": table}, indent=2)
         print(f"wrote {args.json}")

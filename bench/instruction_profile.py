@@ -97,7 +97,7 @@ def main(argv=None):
     for r in rows.values():
         r["ratio_to_thornton_yin_G0.6"] = r["per_atom_step"] / base if base else None
     os.makedirs(os.path.dirname(args.out), exist_ok=True)
-    pair_speed.write_json(args.out + ".json", {"data": os.path.relpath(data, pair_speed.REPO),
+    pair_speed.write_result(args.out + ".json", {"data": os.path.relpath(data, pair_speed.REPO),
                                                "steps": args.steps,
                                                "library": os.environ.get("TYLMP_LIBRARY"),
                                                "cases": rows})

@@ -95,7 +95,8 @@ import tempfile
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO, "analysis"))
-from tyanalysis.io import write_json  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from provenance import lammps_version, write_result  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from lammps_log import first_loop, section  # noqa: E402
 DATA = os.path.join(REPO, "bench", "data", "dense_paper_100kPa.data")
@@ -378,10 +379,11 @@ def main(argv=None):
                 speedups[label] = statistics.median(ratios)
     summary = {"data": None if args.specimen else source, "specimen": args.specimen and source,
                "timestep": DT, "skipped": skipped, "steps": args.steps, "repeats": args.repeats,
-               "ranks": args.ranks, "lmp2025": args.lmp2025, "median_atom_steps_per_s": medians,
+               "ranks": args.ranks, "lmp2025": args.lmp2025,
+               "lmp2025_version": args.lmp2025 and lammps_version(args.lmp2025), "median_atom_steps_per_s": medians,
                "ratio_to_thornton_yin_G0.6": {k: v / base for k, v in medians.items()} if base else {},
                "speedup_vs_first_variant": speedups}
-    write_json(args.out + ".json", summary, indent=2)
+    write_result(args.out + ".json", summary, indent=2)
     plot([args.out + ".csv"], args.out + ".png")
     print(f"\n| case ({args.ranks} rank(s), {args.steps} steps, median of {args.repeats}) "
           f"| atom-steps/s | ratio to thornton/yin G=0.6 |\n|---|---|---|")

@@ -27,7 +27,8 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import pair_speed  # noqa: E402
 from lammps_log import first_loop  # noqa: E402
-from tyanalysis.io import write_json  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from provenance import write_result  # noqa: E402
 
 # group -> regular expression on the symbol (first match wins, in this order)
 GROUPS = [
@@ -93,7 +94,7 @@ def main(argv=None):
     with tempfile.TemporaryDirectory() as work:
         for case in args.cases:
             result["cases"][case] = profile(case, os.path.abspath(args.data), args.steps, work)
-    write_json(args.out + ".json", result, indent=2)
+    write_result(args.out + ".json", result, indent=2)
     groups = [g for g, _ in GROUPS] + ["other"]
     print("| group | " + " | ".join(f"{c}: % / ns per atom-step" for c in args.cases) +
           " |\n|---|" + "---|" * len(args.cases))

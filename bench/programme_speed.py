@@ -54,7 +54,6 @@ atomically whenever a row is added, and prints a table.
 """
 import argparse
 import csv
-import functools
 import glob
 import hashlib
 import io
@@ -69,7 +68,9 @@ import time
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO, "analysis"))
-from tyanalysis.io import write_json, write_text  # noqa: E402
+from tyanalysis.io import write_text  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from provenance import machine, write_result  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from lammps_log import loops  # noqa: E402
 
@@ -181,25 +182,6 @@ def programme_jobs():
     names = list(reproduce.PROGRAMME)
     preps = sorted({reproduce.prepare_name(reproduce.specimen_of(n)) for n in names})
     return preps + names
-
-
-@functools.lru_cache(maxsize=None)
-def machine():
-    """The processor a call ran on (model, logical CPUs, widest SIMD, clock): timings of
-    different machines are not comparable (docs/performance.md)."""
-    model, isa, mhz = "unknown", "no AVX2", ""
-    with open("/proc/cpuinfo") as f:
-        for line in f:
-            key, _, value = line.partition(":")
-            key, value = key.strip(), value.strip()
-            if key == "model name" and model == "unknown":
-                model = value
-            elif key == "cpu MHz" and not mhz:
-                mhz = f", {float(value):.0f} MHz"
-            elif key == "flags":
-                flags = value.split()
-                isa = "AVX-512" if "avx512f" in flags else "AVX2" if "avx2" in flags else isa
-    return f"{model}, {os.cpu_count()} CPUs, {isa}{mhz}"
 
 
 def utc(seconds_since_epoch):
@@ -406,7 +388,7 @@ def save(out, rows, jrows, summary):
     written whole and atomically, so that an interrupted measurement keeps what it finished."""
     write_text(out + ".csv", csv_text(rows, FIELDS))
     write_text(out + "_jobs.csv", csv_text(jrows, JOB_FIELDS))
-    write_json(out + ".json", summary)
+    write_result(out + ".json", summary, indent=1)
 
 
 def print_summary(summary, out):

@@ -215,8 +215,8 @@ def main(argv=None):
     rows = [r for r in rows if r["scale"] == args.scale and abs(r["strain"] / args.strain - 1) < 1e-9]
     ref, table = with_errors(rows, tuple(float(x) for x in args.reference.split(":")))
     floors = scatter_floor(table, ref)
-    from tyanalysis.io import write_json
-    write_json(args.out + ".json", {"reference": ref, "runs": table,
+    from provenance import write_result
+    write_result(args.out + ".json", {"reference": ref, "runs": table,
                                     "scatter_relative": {"sinphi_max": floors[0],
                                                          "eps_v_end": floors[1]}})
     plot(table, ref, args.plot)

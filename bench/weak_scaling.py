@@ -37,7 +37,8 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import pair_speed  # noqa: E402  the same deck, timestep and neighbor settings
 from pair_speed import DATA, E, MU, NU  # noqa: E402
 from lammps_log import first_loop, section  # noqa: E402
-from tyanalysis.io import write_json  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from provenance import write_result  # noqa: E402
 
 SECTIONS = ("Pair", "Neigh", "Comm", "Modify", "Output", "Other")
 
@@ -161,7 +162,7 @@ def main(argv=None):
             print(f"\nGamma = {g}: {per_sphere['lammps_bytes_per_sphere']:.0f} bytes per sphere "
                   f"in LAMMPS's arrays, {per_sphere['rss_bytes_per_sphere']:.0f} bytes of resident "
                   "memory per sphere (1 rank, between the two sizes)")
-    write_json(args.out + ".json", summary, indent=2)
+    write_result(args.out + ".json", summary, indent=2)
 
 
 if __name__ == "__main__":

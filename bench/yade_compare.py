@@ -24,7 +24,9 @@ import numpy as np
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO, "analysis"))
 from tyanalysis import metrics  # noqa: E402
-from tyanalysis.io import read_servo_csv, write_json  # noqa: E402
+from tyanalysis.io import read_servo_csv  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from provenance import write_result  # noqa: E402
 
 NEEDED = ("step", "time", "eps1", "eps2", "eps3", "sig1", "sig2", "sig3", "Z", "Zm")
 Q_AT = (0.0001, 0.001, 0.00285)  # eps1 - eps3 of the initial-stiffness responses (0.285 %: the paper's pre-strain)
@@ -130,7 +132,7 @@ def main(argv=None):
     summary = {"reference": ref, "runs": results,
                "differences_from_reference": {k: differences(results[ref], results[k])
                                               for k in labels[1:]}}
-    write_json(a.out + ".json", summary)
+    write_result(a.out + ".json", summary)
     tmp = a.out + "_curves.csv.tmp"
     with open(tmp, "w", newline="", encoding="utf-8") as fh:
         w = csv.writer(fh)

@@ -1,7 +1,7 @@
 """Tests of tylmp.specimen: size distribution, exact solid fraction, no overlaps
 (including across the periodic faces), determinism, data file read back by LAMMPS.
 
-Run: cd /work/main && /usr/bin/python3 -m pytest tests/test_specimen.py -q -p no:cacheprovider
+Run from the repository root: /usr/bin/python3 -m pytest tests/test_specimen.py -q -p no:cacheprovider
 """
 import importlib
 import importlib.util
