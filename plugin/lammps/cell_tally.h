@@ -1,7 +1,9 @@
 /* -*- c++ -*- ----------------------------------------------------------
    Where pair thornton/yin and fix cell/servo meet: the sums the pair makes over the contacts
-   of each force evaluation for the servo, declared once. The fix finds the pair
-   (PairThorntonYin::cell_tally_source) and reads them through this interface.
+   of each force evaluation for the servo, declared once. The fix reads them through this
+   interface from pair thornton/yin, which makes them exactly during its force evaluation, or,
+   with any other granular pair style, from ComputeCellTally (compute_cell_tally.h), which
+   estimates them from the contact forces (docs/theory.md §6.5).
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_TYLMP_CELL_TALLY_H
@@ -28,6 +30,9 @@ class CellTallySource {
   // make the tallies from the next force evaluation on (off again at the pair's init)
   virtual void request_cell_tallies() = 0;
   virtual const CellTallies &cell_tallies() const = 0;
+  // a source that does not make the tallies during the force evaluation (the route for other
+  // pair styles, compute_cell_tally.h) makes them here, from that evaluation's contacts
+  virtual void refresh_cell_tallies() {}
   // contacts per local atom of the last force evaluation (ghost contributions summed in);
   // nullptr before the first tallied one
   virtual const double *contact_count() const = 0;

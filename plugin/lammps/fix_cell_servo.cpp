@@ -218,6 +218,9 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
 
   pressure_id = std::string(id) + "_contact_stress";
   modify->add_compute(pressure_id + " all pressure NULL pair");
+  // the contact tallies for a pair style other than thornton/yin (compute_cell_tally.h)
+  tally_id = std::string(id) + "_contact_tally";
+  modify->add_compute(tally_id + " all CELL_TALLY");
   if (named_variables) define_named_variables();
 }
 
@@ -263,6 +266,7 @@ FixCellServo::~FixCellServo()
   continuations()[continuation_key(lmp, id)] = c;
 
   if (modify->find_compute(pressure_id) >= 0) modify->delete_compute(pressure_id);
+  if (modify->find_compute(tally_id) >= 0) modify->delete_compute(tally_id);
   if (named_variables) delete_named_variables();
   // (the pair may be gone already: pair thornton/yin clears its tally flag in init_style)
   // the box stops deforming with this fix: pair styles must not add an affine velocity
@@ -665,10 +669,13 @@ void FixCellServo::init()
       error->all(FLERR, "fix cell/servo cannot be combined with fix {} ({}), which also "
                  "changes the box", modify->fix[i]->id, modify->fix[i]->style);
 
+  // the contact tallies: exact from pair thornton/yin, else estimated (docs/theory.md §6.5)
   pair = dynamic_cast<CellTallySource *>(force->pair_match("thornton/yin", 1));
-  if (!pair)
-    error->all(FLERR, "fix cell/servo requires pair_style thornton/yin (it reads the contact "
-               "stiffness and contact counts from it)");
+  if (!pair) {
+    const int itally = modify->find_compute(tally_id);
+    if (itally < 0) error->all(FLERR, "fix cell/servo: its contact tally compute was deleted");
+    pair = dynamic_cast<CellTallySource *>(modify->compute[itally]);
+  }
   pair->request_cell_tallies();    // from the setup force computation on
 
   const int icompute = modify->find_compute(pressure_id);
@@ -838,6 +845,7 @@ void FixCellServo::measure()
   pressure->addstep(update->ntimestep + 1);
   for (int k = 0; k < 3; ++k) stress[k] = pressure->vector[k];
 
+  pair->refresh_cell_tallies();
   CellTallies total;
   MPI_Allreduce(const_cast<double *>(pair->cell_tallies().sum), total.sum, CellTallies::SIZE, MPI_DOUBLE, MPI_SUM,
                 world);

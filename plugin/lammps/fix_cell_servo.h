@@ -115,7 +115,8 @@ class FixCellServo : public Fix {
 
   class Compute *pressure;
   std::string pressure_id;
-  class CellTallySource *pair;    // pair thornton/yin (cell_tally.h)
+  std::string tally_id;            // compute CELL_TALLY, for pair styles other than thornton/yin
+  class CellTallySource *pair;    // pair thornton/yin, or compute CELL_TALLY (cell_tally.h)
 
   // CSV
   std::string csv_path;

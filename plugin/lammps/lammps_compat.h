@@ -19,6 +19,7 @@
 #define TYLMP_LAMMPS_COMPAT_H
 
 #include "comm.h"
+#include "compute.h"
 #include "lmptype.h"
 #include "neigh_request.h"
 #include "neighbor.h"
@@ -60,6 +61,16 @@ inline void reverse_comm(LAMMPS_NS::Comm *comm, LAMMPS_NS::Pair *pair)
   comm->reverse_comm(pair);
 #else
   comm->reverse_comm_pair(pair);
+#endif
+}
+
+// the same for a compute's buffer
+inline void reverse_comm(LAMMPS_NS::Comm *comm, LAMMPS_NS::Compute *compute)
+{
+#if TYLMP_LAMMPS_NEW_REQUEST_AND_COMM
+  comm->reverse_comm(compute);
+#else
+  comm->reverse_comm_compute(compute);
 #endif
 }
 
