@@ -119,3 +119,28 @@ def test_fix_adapt_mu_sets_the_sliding_limit(tmp_path):
     P0, sliding0, T0 = force_of(run_ok(two_spheres("pair_coeff * * 70e9 0.3 0.3 0.0",
                                                    run="run 20", vy=1.0), tmp_path))
     assert sliding0 == 0.0 and 1e-4 * P0 < T0 < 0.3 * P0
+
+
+def g_star(E1, nu1, E2, nu2):
+    # Mindlin (1949): 1/G* = (2 - nu1)/G1 + (2 - nu2)/G2, G = E/(2(1 + nu)) (docs/theory.md §0)
+    G1, G2 = E1 / (2 * (1 + nu1)), E2 / (2 * (1 + nu2))
+    return 1.0 / ((2 - nu1) / G1 + (2 - nu2) / G2)
+
+
+def test_unlike_contact_tangential_stiffness_is_8_G_star_a(tmp_path):
+    # Glass on steel, mixed, against glass on glass and steel on steel: sphere 2 moves sideways
+    # at 1 mm/s for one step of 1 ns. A fresh contact (T = 0, theta = 1) then carries
+    # T = 8 G* a ds exactly (docs/theory.md §2.1), a = sqrt(R* delta) at Gamma = 0, ds = 1 pm.
+    # One step only: over more steps the tangential force spins the spheres (setforce holds
+    # forces, not torques), which takes a material-dependent share of ds.
+    a = np.sqrt(R_STAR * DELTA)
+    for name, coeffs, materials in (
+            ("unlike", "pair_coeff 1 1 70e9 0.3 0.3 0.0\npair_coeff 2 2 200e9 0.29 0.3 0.0",
+             GLASS + STEEL),
+            ("glass", "pair_coeff * * 70e9 0.3 0.3 0.0", GLASS + GLASS),
+            ("steel", "pair_coeff * * 200e9 0.29 0.3 0.0", STEEL + STEEL)):
+        (tmp_path / name).mkdir()
+        P, sliding, T = force_of(run_ok(two_spheres(coeffs, run="run 1", vy=1e-3), tmp_path / name))
+        assert sliding == 0.0
+        assert P == pytest.approx(hertz(e_star(*materials)), rel=1e-9)
+        assert T == pytest.approx(8 * g_star(*materials) * a * 1e-3 * 1e-9, rel=1e-9), name
