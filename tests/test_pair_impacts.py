@@ -11,7 +11,7 @@ from lmprun import LOAD_TYLMP, read_table, run_ok, two_spheres_box
 
 
 def impact_deck(R1, R2, E1, nu1, E2, nu2, rho1, rho2, mu, Gamma, v1, v2, dt, nsteps,
-                fixed_second=False, every=1, gap=None):
+                fixed_second=False, every=1, gap=None, damping=""):
     """Sphere 1 at the origin, sphere 2 along +x at contact distance + gap; velocities v1, v2.
     With fixed_second, sphere 2 is not integrated (a rigid obstacle)."""
     gap = gap if gap is not None else 1e-3 * min(R1, R2)
@@ -25,8 +25,8 @@ velocity one set {v1[0]} {v1[1]} {v1[2]}
 velocity two set {v2[0]} {v2[1]} {v2[2]}
 {LOAD_TYLMP}
 pair_style thornton/yin
-pair_coeff 1 1 {E1} {nu1} {mu} {Gamma}
-pair_coeff 2 2 {E2} {nu2} {mu} {Gamma}
+pair_coeff 1 1 {E1} {nu1} {mu} {Gamma} {damping}
+pair_coeff 2 2 {E2} {nu2} {mu} {Gamma} {damping}
 neighbor {max(0.5 * gap, 1e-3 * min(R1, R2))} bin
 neigh_modify every 1 delay 0 check yes
 timestep {dt}
@@ -158,3 +158,38 @@ def test_chung_ooi_2_sphere_on_rigid_plane(tmp_path, case):
     assert data["fx"].max() == pytest.approx(expected[1], rel=3e-3)
     assert contact.sum() * dt == pytest.approx(expected[2], rel=3e-3)
     assert -data["vx1"][-1] / 0.2 == pytest.approx(1.0, abs=1e-3)
+
+
+@pytest.mark.parametrize("beta", [0.05, 0.2])
+def test_damped_hertz_impact_restitution_matches_an_independent_integration(tmp_path, beta):
+    # Chung & Ooi test 1 (glass) with viscous normal damping -eta_n v_n, eta_n = 2 beta
+    # sqrt(m* 2 E* a), a = sqrt(R* delta) (docs/pair_thornton_yin.md): the restitution
+    # coefficient against the same equation of motion integrated here by scipy,
+    # m* delta'' = -(4/3) E* sqrt(R*) delta^(3/2) - 2 beta sqrt(2 m* E* sqrt(R* delta)) delta'
+    from scipy.integrate import solve_ivp
+    Em, nu, rho, Rc, v0 = 48e9, 0.20, 2800.0, 0.010, 20.0
+    m_star = rho * 4 / 3 * math.pi * Rc**3 / 2
+    e_star, r_star = ref.effective_modulus(Em, nu), Rc / 2
+
+    def motion(_, y):
+        d, v = max(y[0], 0.0), y[1]
+        return [v, -(4 / 3 * e_star * math.sqrt(r_star) * d**1.5
+                     + 2 * beta * math.sqrt(2 * m_star * e_star * math.sqrt(r_star * d)) * v)
+                / m_star]
+
+    def separated(_, y):
+        return y[0]
+    separated.terminal, separated.direction = True, -1
+    sol = solve_ivp(motion, (0, 1e-3), [0.0, v0], events=separated, rtol=1e-11, atol=1e-15,
+                    first_step=1e-10)
+    e_ode = -sol.y_events[0][0][1] / v0
+    assert 0.3 < e_ode < 0.95            # damped: well below 1, and the two betas differ
+
+    dt = 40.34e-6 / 4000
+    run_ok(impact_deck(Rc, Rc, Em, nu, Em, nu, rho, rho, 0.35, 0.0, (10, 0, 0), (-10, 0, 0), dt,
+                       nsteps=int(1.5 * 40.34e-6 / dt), gap=1e-7, damping=f"damping {beta} 0"),
+           tmp_path)
+    data = read_table(tmp_path / "out.txt")
+    assert data["d"][-1] < 0                                           # separated again
+    e_lammps = (data["vx2"][-1] - data["vx1"][-1]) / v0
+    assert e_lammps == pytest.approx(e_ode, rel=1e-3)
