@@ -5,14 +5,13 @@ restart; bad input named. Skipped when the launcher was not built (no LIGGGHTS f
 """
 import math
 import os
-import subprocess
 
 import numpy as np
 import pytest
 
 import jkr_reference as ref
 from conftest import BUILD, REPO
-from lmprun import run_ok
+from lmprun import run_deck, run_ok
 
 LAUNCHER = os.path.join(BUILD, "bin", "tyliggghts")
 DECKS = os.path.join(REPO, "inputs", "liggghts")
@@ -22,21 +21,13 @@ pytestmark = pytest.mark.skipif(not os.access(LAUNCHER, os.X_OK),
 
 
 def run_liggghts(deck, workdir, np_ranks=1, variables=None, text=None):
-    """Run a LIGGGHTS deck (a file, or `text` written to workdir/in.liggghts) with the
-    launcher; returns (returncode, output)."""
-    if text is not None:
-        deck = os.path.join(str(workdir), "in.liggghts")
-        with open(deck, "w") as fh:
-            fh.write(text)
-    cmd = [LAUNCHER, "-in", deck, "-log", "none"]
-    for key, value in (variables or {}).items():
-        cmd += ["-var", key, str(value)]
-    if np_ranks > 1:
-        cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(np_ranks)] + cmd
-    proc = subprocess.run(cmd, cwd=str(workdir), capture_output=True, text=True, timeout=600,
-                          errors="replace",    # LIGGGHTS prints stray bytes after some errors
-                          env=dict(os.environ, OMPI_MCA_btl_vader_single_copy_mechanism="none"))
-    return proc.returncode, proc.stdout + proc.stderr
+    """Run a LIGGGHTS deck (the file `deck`, or `text`) with the launcher in workdir;
+    returns (returncode, output)."""
+    if text is None:
+        with open(deck) as fh:
+            text = fh.read()
+    return run_deck(text, workdir, name="in.liggghts", np_ranks=np_ranks, variables=variables,
+                    program=(LAUNCHER,))
 
 
 def liggghts_ok(deck, workdir, **kw):

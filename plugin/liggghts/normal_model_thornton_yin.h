@@ -239,9 +239,9 @@ class NormalModel<THORNTON_YIN> : public NormalModelBase {
     const bool first_touch = !(*d.contact_flags & CONTACT_NORMAL_MODEL);
     double *history = &d.contact_history[history_offset];
     tycore::ContactBatch &b = *batch;
-    const tyliggghts::Sphere si{atom->v[i], atom->omega[i], atom->radius[i], atom->rmass[i]};
-    const tyliggghts::Sphere sj{atom->v[j], atom->omega[j], atom->radius[j], atom->rmass[j]};
-    tyliggghts::contact_geometry(b, 0, d.delta, d.rsq, si, sj, first_touch);
+    const tycore::SphereState si{atom->v[i], atom->omega[i], atom->radius[i], atom->rmass[i]};
+    const tycore::SphereState sj{atom->v[j], atom->omega[j], atom->radius[j], atom->rmass[j]};
+    tycore::contact_geometry<false>(b, 0, d.delta, d.rsq, std::sqrt(d.rsq), si, sj, first_touch);
     const double delta = b.delta[0];
     if (!(delta <= std::min(si.radius, sj.radius)) || !std::isfinite(delta))
       fail("atoms " + std::to_string(atom->tag[i]) + " " + std::to_string(atom->tag[j]) +
