@@ -292,6 +292,7 @@ def plot(csv_paths, png):
 
 
 def main(argv=None):
+    global TYLIGGGHTS
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     src = ap.add_mutually_exclusive_group()
     src.add_argument("--data", default=DATA,
@@ -321,7 +322,6 @@ def main(argv=None):
                     help="only redraw the figure from these CSV files (see --png)")
     ap.add_argument("--png", help="the figure of --plot")
     args = ap.parse_args(argv)
-    global TYLIGGGHTS
     TYLIGGGHTS = args.tyliggghts
     if args.plot:
         if not args.png:

@@ -139,6 +139,68 @@ def test_oblique_impact_of_unlike_spheres_equals_lammps_pair(tmp_path, Gamma):
         assert np.abs(a[:, col] - b[:, col]).max() <= 1e-10 * scale, col
 
 
+# ---- touch, slide, separate, touch again: a separated contact is forgotten ----
+
+def retouch_deck(liggghts, Gamma):
+    """Sphere 2 driven along x by a cosine (overlap 20 nm, then 40 nm apart, twice) while
+    sliding along y: the second contact must start without the first one's history."""
+    if liggghts:
+        head = "newton off\ncommunicate single vel yes\n"
+        pair = ("fix m1 all property/global youngsModulus peratomtype 70e9\n"
+                "fix m2 all property/global poissonsRatio peratomtype 0.3\n"
+                "fix m3 all property/global coefficientFriction peratomtypepair 1 0.3\n"
+                f"fix m4 all property/global interfaceEnergy peratomtypepair 1 {Gamma!r}\n"
+                "pair_style gran model thornton_yin tangential thornton_yin\npair_coeff * *\n")
+    else:
+        head = "comm_modify vel yes\n"
+        pair = ('python tylmp_load input 1 SELF format p here "from tylmp import load as '
+                'tylmp_load"\npython tylmp_load invoke\n'
+                f"pair_style thornton/yin\npair_coeff * * 70e9 0.3 0.3 {Gamma!r}\n")
+    return f"""units si
+atom_style sphere
+atom_modify map array
+boundary f f f
+{head}region box block -1e-3 1e-3 -1e-3 1e-3 -1e-3 1e-3
+create_box 1 box
+create_atoms 1 single 0 0 0
+create_atoms 1 single 2.0001e-4 0 0
+set atom * diameter 2.0e-4 density 2650
+group one id 1
+group two id 2
+{pair}neighbor 2e-7 bin
+neigh_modify delay 0
+timestep 1e-9
+variable w equal 2*PI/20e-6
+variable px equal "-3e-8*(1-cos(v_w*time))"
+variable vx equal "-3e-8*v_w*sin(v_w*time)"
+variable py equal "2e-3*time"
+variable vy equal "2e-3"
+fix hold one move linear 0 0 0
+fix drive two move variable v_px v_py NULL v_vx v_vy NULL
+variable t equal time
+variable fx equal fx[2]
+variable fy equal fy[2]
+fix csv all print 20 "${{t}},${{fx}},${{fy}}" file retouch.csv screen no title "time,fx,fy"
+run 40000
+"""
+
+
+@pytest.mark.parametrize("Gamma", [0.0, 0.3])
+def test_second_touch_starts_afresh_as_in_lammps(tmp_path, Gamma):
+    lg, lm = tmp_path / "liggghts", tmp_path / "lammps"
+    lg.mkdir(), lm.mkdir()
+    liggghts_ok(None, lg, text=retouch_deck(True, Gamma))
+    run_ok(retouch_deck(False, Gamma), lm)
+    a, b = csv(lg / "retouch.csv"), csv(lm / "retouch.csv")[1:]
+    assert len(a) == len(b) and np.array_equal(a[:, 0], b[:, 0])
+    touching = b[:, 1] != 0.0
+    assert 2 <= np.count_nonzero(np.diff(touching.astype(int)) == 1)    # two separate contacts
+    assert np.abs(b[:, 2]).max() > 0                                   # with friction
+    for col in (1, 2):
+        scale = np.abs(b[:, col]).max()
+        assert np.abs(a[:, col] - b[:, col]).max() <= 1e-10 * scale, col
+
+
 # ---- 512 spheres: neighbour rebuilds, 1 vs 2 ranks, restart ----
 
 def lattice_deck(steps, restart_in=None, restart_out=None):

@@ -219,8 +219,12 @@ class NormalModel<THORNTON_YIN> : public NormalModelBase {
                fault.quantity + " of the contact law is not finite at overlap " +
                number(fault.delta) + ": the material values are far outside what the law can "
                "represent");
+        // LIGGGHTS evaluates a separated pair only within the contact distance: a touched
+        // pair must not leave it in one step before the law has seen it beyond delta_f (its
+        // flag and history would stay, Gamma = 0 included), so the range is |delta_f| plus the
+        // skin, what no pair moves in a step without a dangerous neighbour build
         const double delta_f = tycore::jkr::break_overlap(R, c.E_star, c.Gamma);
-        factor = std::max(factor, 1.0 - 1.01 * delta_f / (2.0 * smallest));
+        factor = std::max(factor, 1.0 + (neighbor->skin - delta_f) / (2.0 * smallest));
       }
     neighbor->register_contact_dist_factor(factor);
   }
