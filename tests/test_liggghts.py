@@ -40,22 +40,35 @@ def csv(path):
     return np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
 
 
+def run_both(tmp_path, lammps_text, csv_name, deck=None, text=None, variables=None):
+    """The same case in LIGGGHTS (a deck file or text) and LAMMPS (text); both write csv_name
+    with time first. Returns the two tables, row for row the same times (LAMMPS's fix print
+    also writes step 0, which is dropped)."""
+    lg, lm = tmp_path / "liggghts", tmp_path / "lammps"
+    lg.mkdir(), lm.mkdir()
+    liggghts_ok(deck, lg, variables=variables, text=text)
+    run_ok(lammps_text, lm, variables=variables)
+    a, b = csv(lg / csv_name), csv(lm / csv_name)[1:]
+    assert len(a) == len(b) and np.array_equal(a[:, 0], b[:, 0])
+    return a, b
+
+
+def assert_same_columns(a, b, columns, rel=1e-10):
+    """Columns of a equal those of b to rel of each column's largest magnitude in b."""
+    for col in columns:
+        scale = np.abs(b[:, col]).max()
+        assert scale > 0 and np.abs(a[:, col] - b[:, col]).max() <= rel * scale, col
+
+
 # ---- two spheres under displacement control: the normal cycle ----
 
 @pytest.mark.parametrize("Gamma", [0.3, 0.0])
 def test_two_sphere_cycle_equals_lammps_pair_and_jkr_closed_form(tmp_path, Gamma):
-    lg, lm = tmp_path / "liggghts", tmp_path / "lammps"
-    lg.mkdir(), lm.mkdir()
-    liggghts_ok(os.path.join(DECKS, "two_spheres.in"), lg, variables={"Gamma": Gamma})
     with open(os.path.join(REPO, "inputs", "two_spheres.in")) as fh:
-        run_ok(fh.read(), lm, variables={"Gamma": Gamma})
-    a = csv(lg / "two_spheres.csv")
-    b = csv(lm / "two_spheres.csv")[1:]    # LAMMPS's fix print also writes step 0
-    assert a.shape == b.shape and np.array_equal(a[:, 0], b[:, 0])
-    np.testing.assert_allclose(a[:, 1], b[:, 1], rtol=0, atol=1e-10 * np.abs(b[:, 1]).max())
+        a, b = run_both(tmp_path, fh.read(), "two_spheres.csv", variables={"Gamma": Gamma},
+                        deck=os.path.join(DECKS, "two_spheres.in"))
+    assert_same_columns(a, b, (1, 2))    # overlap, force
     force_scale = np.abs(b[:, 2]).max()
-    assert force_scale > 0
-    assert np.abs(a[:, 2] - b[:, 2]).max() <= 1e-10 * force_scale
     if Gamma == 0.0:    # Hertz: F = 4/3 E* sqrt(R*) delta^1.5 (force on sphere 2 along +x)
         E_star, R_star = ref.effective_modulus(70e9, 0.3), 0.5e-4
         delta = np.maximum(a[:, 1], 0.0)
@@ -120,23 +133,16 @@ run 1000
 
 @pytest.mark.parametrize("Gamma", [0.3, 0.0])
 def test_oblique_impact_of_unlike_spheres_equals_lammps_pair(tmp_path, Gamma):
-    lg, lm = tmp_path / "liggghts", tmp_path / "lammps"
-    lg.mkdir(), lm.mkdir()
-    liggghts_ok(os.path.join(DECKS, "oblique_impact.in"), lg, variables={"Gamma": Gamma})
     # LAMMPS mixes the 1-2 pair from the like pairs: E*, G* from both materials, mu and Gamma
     # as geometric means, which the LIGGGHTS deck gives explicitly
-    run_ok(LAMMPS_OBLIQUE.format(G11=Gamma, G22=0.5 * Gamma), lm)
-    a = csv(lg / "oblique_impact.csv")
-    b = csv(lm / "oblique_impact.csv")[1:]
-    assert len(a) == len(b) and np.array_equal(a[:, 0], b[:, 0])
+    a, b = run_both(tmp_path, LAMMPS_OBLIQUE.format(G11=Gamma, G22=0.5 * Gamma),
+                    "oblique_impact.csv", deck=os.path.join(DECKS, "oblique_impact.in"),
+                    variables={"Gamma": Gamma})
     attached = np.nonzero(b[:, 2])[0]
     assert len(attached) > 100                        # a contact of hundreds of steps
     tangential = np.hypot(b[:, 2], b[:, 3])
     assert tangential.max() > 0.05 * np.abs(b[:, 1]).max()    # the tangential law acted
-    for col in range(1, 4):                           # the force on sphere 2
-        scale = np.abs(b[:, col]).max()
-        assert scale > 0
-        assert np.abs(a[:, col] - b[:, col]).max() <= 1e-10 * scale, col
+    assert_same_columns(a, b, (1, 2, 3))              # the force on sphere 2
 
 
 # ---- touch, slide, separate, touch again: a separated contact is forgotten ----
@@ -187,18 +193,12 @@ run 40000
 
 @pytest.mark.parametrize("Gamma", [0.0, 0.3])
 def test_second_touch_starts_afresh_as_in_lammps(tmp_path, Gamma):
-    lg, lm = tmp_path / "liggghts", tmp_path / "lammps"
-    lg.mkdir(), lm.mkdir()
-    liggghts_ok(None, lg, text=retouch_deck(True, Gamma))
-    run_ok(retouch_deck(False, Gamma), lm)
-    a, b = csv(lg / "retouch.csv"), csv(lm / "retouch.csv")[1:]
-    assert len(a) == len(b) and np.array_equal(a[:, 0], b[:, 0])
+    a, b = run_both(tmp_path, retouch_deck(False, Gamma), "retouch.csv",
+                    text=retouch_deck(True, Gamma))
     touching = b[:, 1] != 0.0
     assert 2 <= np.count_nonzero(np.diff(touching.astype(int)) == 1)    # two separate contacts
     assert np.abs(b[:, 2]).max() > 0                                   # with friction
-    for col in (1, 2):
-        scale = np.abs(b[:, col]).max()
-        assert np.abs(a[:, col] - b[:, col]).max() <= 1e-10 * scale, col
+    assert_same_columns(a, b, (1, 2))
 
 
 # ---- 512 spheres: neighbour rebuilds, 1 vs 2 ranks, restart ----
