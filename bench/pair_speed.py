@@ -140,7 +140,20 @@ CASES = {
         f"fix m4 all property/global coefficientFriction peratomtypepair 1 {MU}\n"
         "pair_style gran model hertz tangential history\npair_coeff * *\n"),
 }
-LIGGGHTS_CASES = {"liggghts hertz+history"}
+# LIGGGHTS with its simplified JKR cohesion (sjkr: F = k A_overlap, k = cohesionEnergyDensity;
+# 1e6 J/m^3, a value of its examples' order), and our law in LIGGGHTS (the launcher
+# build/bin/tyliggghts, --tyliggghts): the same specimen and material
+_LIGGGHTS_MATERIAL = CASES["liggghts hertz+history"].split("pair_style")[0]
+CASES["liggghts hertz+history+sjkr"] = (
+    _LIGGGHTS_MATERIAL + "fix m5 all property/global cohesionEnergyDensity peratomtypepair 1 1e6\n"
+    "pair_style gran model hertz tangential history cohesion sjkr\npair_coeff * *\n")
+for _label, _gamma in (("G=0.6", GAMMA), ("G=0", 0.0)):
+    CASES[f"liggghts thornton_yin {_label}"] = (
+        _LIGGGHTS_MATERIAL + f"fix m5 all property/global interfaceEnergy peratomtypepair 1 {_gamma}\n"
+        "pair_style gran model thornton_yin tangential thornton_yin\npair_coeff * *\n")
+TYLIGGGHTS_CASES = {"liggghts thornton_yin G=0.6", "liggghts thornton_yin G=0"}
+TYLIGGGHTS = os.path.join(REPO, "build", "bin", "tyliggghts")
+LIGGGHTS_CASES = {"liggghts hertz+history", "liggghts hertz+history+sjkr"} | TYLIGGGHTS_CASES
 LMP2025_SUFFIX = " @4Feb2025"       # label of a case run with the lmp of --lmp2025
 LIGGGHTS_MISSING = ("no LIGGGHTS binary '{}' on PATH: skipping the case 'liggghts hertz+history' "
                     "(install it with 'apt-get install liggghts'; Debian 12: LIGGGHTS-PUBLIC "
@@ -207,7 +220,7 @@ def run_deck(name, text, ranks, workdir, library=None, liggghts="liggghts", lmp=
     path = os.path.join(workdir, "in.bench")
     with open(path, "w") as fh:
         fh.write(text)
-    exe = liggghts if name in LIGGGHTS_CASES else lmp
+    exe = TYLIGGGHTS if name in TYLIGGGHTS_CASES else liggghts if name in LIGGGHTS_CASES else lmp
     cmd = [exe, "-in", path, "-log", "none", "-nocite"]
     if ranks > 1:
         cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(ranks)] + cmd
@@ -280,6 +293,7 @@ def plot(csv_paths, png):
 
 
 def main(argv=None):
+    global TYLIGGGHTS
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     src = ap.add_mutually_exclusive_group()
     src.add_argument("--data", default=DATA,
@@ -299,6 +313,8 @@ def main(argv=None):
                     help="build tylmp with these comma-separated CMake options into "
                          "build-bench-NAME and run it as --variant NAME")
     ap.add_argument("--liggghts", default="liggghts", help="LIGGGHTS executable")
+    ap.add_argument("--tyliggghts", default=TYLIGGGHTS,
+                    help="the launcher of our law in LIGGGHTS (CMake builds build/bin/tyliggghts)")
     ap.add_argument("--lmp2025", metavar="WRAPPER",
                     help="also run every LAMMPS case with this lmp of LAMMPS 4 Feb 2025 (the "
                          "last line of 'bash scripts/lammps2025.sh'), labelled 'CASE "
@@ -307,6 +323,7 @@ def main(argv=None):
                     help="only redraw the figure from these CSV files (see --png)")
     ap.add_argument("--png", help="the figure of --plot")
     args = ap.parse_args(argv)
+    TYLIGGGHTS = args.tyliggghts
     if args.plot:
         if not args.png:
             ap.error("--plot needs --png")
@@ -327,6 +344,10 @@ def main(argv=None):
     if any(name in LIGGGHTS_CASES for name in args.cases) and not shutil.which(args.liggghts):
         print(LIGGGHTS_MISSING.format(args.liggghts), flush=True)
         skipped = [name for name in args.cases if name in LIGGGHTS_CASES]
+    elif any(name in TYLIGGGHTS_CASES for name in args.cases) and not os.access(TYLIGGGHTS, os.X_OK):
+        print(f"no launcher {TYLIGGGHTS}: skipping the thornton_yin cases in LIGGGHTS (apt-get "
+              "install libliggghts-dev, rebuild)", flush=True)
+        skipped = [name for name in args.cases if name in TYLIGGGHTS_CASES]
     runs = []    # (label, case, library, lmp)
     for name in args.cases:
         if name in skipped:

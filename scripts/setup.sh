@@ -15,6 +15,11 @@ export DEBIAN_FRONTEND=noninteractive
 PACKAGES="lammps liblammps-dev python3-lammps openmpi-bin libopenmpi-dev libeigen3-dev
   cmake make g++ libgtest-dev dpkg-dev xz-utils python3-dev
   python3-numpy python3-scipy python3-matplotlib python3-pytest"
+# LIGGGHTS 3.8 and the headers of exactly its library (Debian's patched ones) for the
+# Thornton-Yin model in LIGGGHTS (cmake/Liggghts.cmake), where the release has them
+if apt-cache show libliggghts-dev >/dev/null 2>&1; then
+  PACKAGES="$PACKAGES liggghts libliggghts-dev"
+fi
 
 # deb-src entry of this Debian release: CMake fetches the LAMMPS headers of the installed
 # version with 'apt-get source' (bookworm: 29 Sep 2021, trixie: 4 Feb 2025)

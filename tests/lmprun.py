@@ -46,17 +46,20 @@ group two id 2
 """
 
 
-def run_deck(text, workdir, name="in.test", np_ranks=1, variables=None, timeout=600):
-    """Write `text` to workdir/name, run it; return (returncode, combined output)."""
+def run_deck(text, workdir, name="in.test", np_ranks=1, variables=None, timeout=600,
+             program=("lmp", "-nocite")):
+    """Write `text` to workdir/name, run it with `program` (the executable and its extra
+    flags; default the stock lmp); return (returncode, combined output)."""
     path = os.path.join(str(workdir), name)
     with open(path, "w") as fh:
         fh.write(text)
-    cmd = ["lmp", "-in", name, "-log", "none", "-nocite"]
+    cmd = [program[0], "-in", name, "-log", "none", *program[1:]]
     for key, value in (variables or {}).items():
         cmd += ["-var", key, str(value)]
     if np_ranks > 1:
         cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(np_ranks)] + cmd
     proc = subprocess.run(cmd, cwd=str(workdir), capture_output=True, text=True,
+                          errors="replace",    # LIGGGHTS prints stray bytes after some errors
                           timeout=timeout, env=dict(os.environ, OMPI_MCA_btl_vader_single_copy_mechanism="none"))
     return proc.returncode, proc.stdout + proc.stderr
 

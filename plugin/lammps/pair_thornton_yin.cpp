@@ -8,6 +8,7 @@
 #include "tylmp_numeric.h"
 #include "tylmp_citations.h"
 
+#include "contact_geometry.hpp"
 #include "contact_kernel.hpp"
 #include "law_domain.hpp"
 #include "thornton_yin.hpp"
@@ -723,38 +724,18 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
       Batch &bt = batch_of(type[i], type[j]);
       tycore::ContactBatch &b = bt.b;
       const int l = bt.n;
-      // R* = ri rj/(ri + rj) and 1/R* from one division
-      const double product = radi * radj;
-      const double inv = 1.0 / (product * radsum);
-      b.R[l] = product * product * inv;
-      b.Rinv[l] = radsum * radsum * inv;
-      b.delta[l] = delta;
-      b.rsq[l] = rsq;
-      const double rinv = 1.0 / r;
-      const double nx = delx * rinv, ny = dely * rinv, nz = delz * rinv;
-      b.n[0][l] = nx, b.n[1][l] = ny, b.n[2][l] = nz;
-      // relative velocity of i with respect to j at the contact point (docs/theory.md §5.1)
-      double vr1 = v[i][0] - v[j][0];
-      double vr2 = v[i][1] - v[j][1];
-      double vr3 = v[i][2] - v[j][2];
+      // lane l: geometry and velocities at the contact (docs/theory.md §5.1), with a deforming
+      // box the affine relative velocity L (x_i - x_j)
+      const double del[3] = {delx, dely, delz};
+      const tycore::SphereState si{v[i], omega[i], radi, rmass[i]};
+      const tycore::SphereState sj{v[j], omega[j], radj, rmass[j]};
       if (affine) {
-        vr1 += L[0][0] * delx + L[0][1] * dely + L[0][2] * delz;
-        vr2 += L[1][1] * dely + L[1][2] * delz;
-        vr3 += L[2][2] * delz;
+        const double affine_v[3] = {L[0][0] * delx + L[0][1] * dely + L[0][2] * delz,
+                                    L[1][1] * dely + L[1][2] * delz, L[2][2] * delz};
+        tycore::contact_geometry<true>(b, l, del, rsq, r, si, sj, !touch[jj], affine_v);
+      } else {
+        tycore::contact_geometry<false>(b, l, del, rsq, r, si, sj, !touch[jj]);
       }
-      const double vn = vr1 * nx + vr2 * ny + vr3 * nz;
-      const double lever_i = radi - 0.5 * delta, lever_j = radj - 0.5 * delta;
-      const double wr1 = lever_i * omega[i][0] + lever_j * omega[j][0];
-      const double wr2 = lever_i * omega[i][1] + lever_j * omega[j][1];
-      const double wr3 = lever_i * omega[i][2] + lever_j * omega[j][2];
-      b.vn[l] = vn;
-      b.vt[0][l] = vr1 - vn * nx + (ny * wr3 - nz * wr2);
-      b.vt[1][l] = vr2 - vn * ny + (nz * wr1 - nx * wr3);
-      b.vt[2][l] = vr3 - vn * nz + (nx * wr2 - ny * wr1);
-      b.spin_n[l] = (omega[i][0] + omega[j][0]) * nx + (omega[i][1] + omega[j][1]) * ny +
-                    (omega[i][2] + omega[j][2]) * nz;
-      b.m_star[l] = rmass[i] * rmass[j] / (rmass[i] + rmass[j]);
-      b.first_touch[l] = !touch[jj];
       double *slot = &allhistory[HISTORY_SIZE * jj];
       tycore::load_history(b, l, slot);
       bt.i[l] = i, bt.j[l] = j;

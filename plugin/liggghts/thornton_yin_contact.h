@@ -1,0 +1,49 @@
+// The Thornton-Yin law for LIGGGHTS: what the LIGGGHTS contact model (normal_model_thornton_yin.h)
+// needs from plugin/core, and nothing from LIGGGHTS. The law itself is not here: one contact is
+// one lane of the core's batch entry, tycore::advance_batch (a step) or
+// tycore::forces_without_step (LIGGGHTS's setup pass), the entry the LAMMPS pair runs
+// (plugin/lammps/pair_thornton_yin.cpp), so that both engines evaluate the same code.
+//  * the per-contact inputs of the batch come from tycore::contact_geometry, as in the pair;
+//  * evaluate_contact: the ONE call into the core;
+//  * the history layout: LIGGGHTS keeps named per-contact values (add_history_value) with a
+//    newton flag (1: the value changes sign seen from j); ours are tycore::ContactHistory
+//    verbatim, the flags from tycore::history_transfer_sign.
+#ifndef TYLIGGGHTS_THORNTON_YIN_CONTACT_H
+#define TYLIGGGHTS_THORNTON_YIN_CONTACT_H
+
+#include "contact_batch.hpp"
+#include "contact_geometry.hpp"
+#include "contact_kernel.hpp"
+#include "contact_types.hpp"
+
+#include <cmath>
+
+namespace tyliggghts {
+
+// ---- history layout: tycore::ContactHistory, in LIGGGHTS's named per-contact values ----
+constexpr int history_size = tycore::history_size;
+constexpr const char* history_names[history_size] = {
+    "ty_T_x",      "ty_T_y",      "ty_T_z",   "ty_load_dir_x", "ty_load_dir_y",
+    "ty_load_dir_z", "ty_T_star", "ty_T_star2", "ty_P_prev",   "ty_mode",
+    "ty_peeling",  "ty_sliding",  "ty_stored_energy", "ty_radius"};
+// LIGGGHTS's newtonflag of value k: "1" if it changes sign seen from the other sphere
+inline const char* history_newton_flag(int k)
+{
+  return tycore::history_transfer_sign[k] < 0.0 ? "1" : "0";
+}
+
+// THE call into the core: contact 0 of batch b, with its history loaded, one step of the law
+// (step) or its forces without a step (a setup pass). Adhesive: any Gamma > 0 in the
+// simulation, Damped: any damping ratio > 0, as the LAMMPS pair chooses them. The scalar build:
+// one contact at a time, bit for bit what the vector builds give (contact_batch.hpp).
+template <bool Adhesive, bool Damped>
+inline void evaluate_contact(tycore::ContactBatch& b, const tycore::PairConstants& k,
+                             const tycore::BatchParameters& p, bool step)
+{
+  if (step) tycore::advance_batch<Adhesive, Damped>(b, 1, k, p, tycore::Isa::scalar);
+  else tycore::forces_without_step<Adhesive, Damped>(b, 1, k, p);
+}
+
+}    // namespace tyliggghts
+
+#endif

@@ -1,0 +1,325 @@
+"""The Thornton-Yin model in Debian's LIGGGHTS 3.8 (plugin/liggghts/, launcher build/bin/tyliggghts)
+against pair thornton/yin in LAMMPS (same steps, same integrator settings) and the closed-form
+JKR values of tests/jkr_reference.py; history through neighbour rebuilds, 1 vs 2 ranks and a
+restart; bad input named. Skipped when the launcher was not built (no LIGGGHTS found by CMake).
+"""
+import math
+import os
+
+import numpy as np
+import pytest
+
+import jkr_reference as ref
+from conftest import BUILD, REPO
+from lmprun import run_deck, run_ok
+
+LAUNCHER = os.path.join(BUILD, "bin", "tyliggghts")
+DECKS = os.path.join(REPO, "inputs", "liggghts")
+pytestmark = pytest.mark.skipif(not os.access(LAUNCHER, os.X_OK),
+                                reason="no build/bin/tyliggghts (apt-get install liggghts "
+                                       "libliggghts-dev, then rebuild)")
+
+
+def run_liggghts(deck, workdir, np_ranks=1, variables=None, text=None):
+    """Run a LIGGGHTS deck (the file `deck`, or `text`) with the launcher in workdir;
+    returns (returncode, output)."""
+    if text is None:
+        with open(deck) as fh:
+            text = fh.read()
+    return run_deck(text, workdir, name="in.liggghts", np_ranks=np_ranks, variables=variables,
+                    program=(LAUNCHER,))
+
+
+def liggghts_ok(deck, workdir, **kw):
+    rc, out = run_liggghts(deck, workdir, **kw)
+    assert rc == 0 and "ERROR" not in out, out[-3000:]
+    return out
+
+
+def csv(path):
+    return np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+
+
+def run_both(tmp_path, lammps_text, csv_name, deck=None, text=None, variables=None):
+    """The same case in LIGGGHTS (a deck file or text) and LAMMPS (text); both write csv_name
+    with time first. Returns the two tables, row for row the same times (LAMMPS's fix print
+    also writes step 0, which is dropped)."""
+    lg, lm = tmp_path / "liggghts", tmp_path / "lammps"
+    lg.mkdir(), lm.mkdir()
+    liggghts_ok(deck, lg, variables=variables, text=text)
+    run_ok(lammps_text, lm, variables=variables)
+    a, b = csv(lg / csv_name), csv(lm / csv_name)[1:]
+    assert len(a) == len(b) and np.array_equal(a[:, 0], b[:, 0])
+    return a, b
+
+
+def assert_same_columns(a, b, columns, rel=1e-10):
+    """Columns of a equal those of b to rel of each column's largest magnitude in b."""
+    for col in columns:
+        scale = np.abs(b[:, col]).max()
+        assert scale > 0 and np.abs(a[:, col] - b[:, col]).max() <= rel * scale, col
+
+
+# ---- two spheres under displacement control: the normal cycle ----
+
+@pytest.mark.parametrize("Gamma", [0.3, 0.0])
+def test_two_sphere_cycle_equals_lammps_pair_and_jkr_closed_form(tmp_path, Gamma):
+    with open(os.path.join(REPO, "inputs", "two_spheres.in")) as fh:
+        a, b = run_both(tmp_path, fh.read(), "two_spheres.csv", variables={"Gamma": Gamma},
+                        deck=os.path.join(DECKS, "two_spheres.in"))
+    assert_same_columns(a, b, (1, 2))    # overlap, force
+    force_scale = np.abs(b[:, 2]).max()
+    if Gamma == 0.0:    # Hertz: F = 4/3 E* sqrt(R*) delta^1.5 (force on sphere 2 along +x)
+        E_star, R_star = ref.effective_modulus(70e9, 0.3), 0.5e-4
+        delta = np.maximum(a[:, 1], 0.0)
+        np.testing.assert_allclose(a[:, 2], 4 / 3 * E_star * math.sqrt(R_star) * delta ** 1.5,
+                                   rtol=0, atol=1e-9 * force_scale)
+        return
+    R_star, E_star = 0.5e-4, ref.effective_modulus(70e9, 0.3)
+    Pc = ref.pull_off_force(Gamma, R_star)
+    delta_f = ref.break_overlap(R_star, E_star, Gamma)
+    # fx[2]: the force on sphere 2 along +x, negative when the spheres attract
+    attached = np.nonzero(a[:, 2])[0]
+    # snap-in at delta = 0 with -8/9 Pc
+    assert a[attached[0], 1] == pytest.approx(0.0, abs=1e-15)
+    assert a[attached[0], 2] / Pc == pytest.approx(-8 / 9, rel=1e-9)
+    # the minimum force under displacement control is -Pc (rows 10 steps = 1e-10 m apart)
+    assert a[:, 2].min() / Pc == pytest.approx(-1.0, abs=1e-6)
+    # break at delta_f: the last attached row lies within one row (1e-10 m) above delta_f, with
+    # the JKR force there close to -5/9 Pc; afterwards no force
+    last = attached[-1]
+    assert delta_f < a[last, 1] <= delta_f + 1.0001e-10
+    assert a[last + 1, 1] <= delta_f + 1e-15
+    assert a[last, 2] / Pc == pytest.approx(ref.normal_force(a[last, 1], R_star, E_star, Gamma) / Pc,
+                                            abs=1e-6)
+    assert a[last, 2] / Pc == pytest.approx(-5 / 9, abs=0.02)
+    assert np.all(a[last + 1:, 2] == 0.0)
+
+
+# ---- oblique impact of unlike spheres: tangential force history ----
+
+LAMMPS_OBLIQUE = """
+units si
+atom_style sphere
+atom_modify map array
+boundary f f f
+comm_modify vel yes
+region box block -1e-3 1e-3 -1e-3 1e-3 -1e-3 1e-3
+create_box 2 box
+create_atoms 1 single 0 0 0
+create_atoms 2 single 1.8005e-4 0 0
+set atom 1 diameter 2.0e-4 density 2650
+set atom 2 diameter 1.6e-4 density 7800
+group one id 1
+group two id 2
+velocity two set -0.5 0.3 0.1
+python tylmp_load input 1 SELF format p here "from tylmp import load as tylmp_load"
+python tylmp_load invoke
+pair_style thornton/yin
+pair_coeff 1 1 70e9 0.3 0.3 {G11!r}
+pair_coeff 2 2 200e9 0.29 0.4 {G22!r}
+neighbor 2e-6 bin
+neigh_modify delay 0
+timestep 1e-9
+fix integrate all nve/sphere
+variable t equal time
+variable fx equal fx[2]
+variable fy equal fy[2]
+variable fz equal fz[2]
+fix csv all print 1 "${{t}},${{fx}},${{fy}},${{fz}}" file oblique_impact.csv screen no title "time,fx,fy,fz"
+run 1000
+"""
+
+
+@pytest.mark.parametrize("Gamma", [0.3, 0.0])
+def test_oblique_impact_of_unlike_spheres_equals_lammps_pair(tmp_path, Gamma):
+    # LAMMPS mixes the 1-2 pair from the like pairs: E*, G* from both materials, mu and Gamma
+    # as geometric means, which the LIGGGHTS deck gives explicitly
+    a, b = run_both(tmp_path, LAMMPS_OBLIQUE.format(G11=Gamma, G22=0.5 * Gamma),
+                    "oblique_impact.csv", deck=os.path.join(DECKS, "oblique_impact.in"),
+                    variables={"Gamma": Gamma})
+    attached = np.nonzero(b[:, 2])[0]
+    assert len(attached) > 100                        # a contact of hundreds of steps
+    tangential = np.hypot(b[:, 2], b[:, 3])
+    assert tangential.max() > 0.05 * np.abs(b[:, 1]).max()    # the tangential law acted
+    assert_same_columns(a, b, (1, 2, 3))              # the force on sphere 2
+
+
+# ---- touch, slide, separate, touch again: a separated contact is forgotten ----
+
+def retouch_deck(liggghts, Gamma):
+    """Sphere 2 driven along x by a cosine (overlap 20 nm, then 40 nm apart, twice) while
+    sliding along y: the second contact must start without the first one's history."""
+    if liggghts:
+        head = "newton off\ncommunicate single vel yes\n"
+        pair = ("fix m1 all property/global youngsModulus peratomtype 70e9\n"
+                "fix m2 all property/global poissonsRatio peratomtype 0.3\n"
+                "fix m3 all property/global coefficientFriction peratomtypepair 1 0.3\n"
+                f"fix m4 all property/global interfaceEnergy peratomtypepair 1 {Gamma!r}\n"
+                "pair_style gran model thornton_yin tangential thornton_yin\npair_coeff * *\n")
+    else:
+        head = "comm_modify vel yes\n"
+        pair = ('python tylmp_load input 1 SELF format p here "from tylmp import load as '
+                'tylmp_load"\npython tylmp_load invoke\n'
+                f"pair_style thornton/yin\npair_coeff * * 70e9 0.3 0.3 {Gamma!r}\n")
+    return f"""units si
+atom_style sphere
+atom_modify map array
+boundary f f f
+{head}region box block -1e-3 1e-3 -1e-3 1e-3 -1e-3 1e-3
+create_box 1 box
+create_atoms 1 single 0 0 0
+create_atoms 1 single 2.0001e-4 0 0
+set atom * diameter 2.0e-4 density 2650
+group one id 1
+group two id 2
+{pair}neighbor 2e-7 bin
+neigh_modify delay 0
+timestep 1e-9
+variable w equal 2*PI/20e-6
+variable px equal "-3e-8*(1-cos(v_w*time))"
+variable vx equal "-3e-8*v_w*sin(v_w*time)"
+variable py equal "2e-3*time"
+variable vy equal "2e-3"
+fix hold one move linear 0 0 0
+fix drive two move variable v_px v_py NULL v_vx v_vy NULL
+variable t equal time
+variable fx equal fx[2]
+variable fy equal fy[2]
+fix csv all print 20 "${{t}},${{fx}},${{fy}}" file retouch.csv screen no title "time,fx,fy"
+run 40000
+"""
+
+
+@pytest.mark.parametrize("Gamma", [0.0, 0.3])
+def test_second_touch_starts_afresh_as_in_lammps(tmp_path, Gamma):
+    a, b = run_both(tmp_path, retouch_deck(False, Gamma), "retouch.csv",
+                    text=retouch_deck(True, Gamma))
+    touching = b[:, 1] != 0.0
+    assert 2 <= np.count_nonzero(np.diff(touching.astype(int)) == 1)    # two separate contacts
+    assert np.abs(b[:, 2]).max() > 0                                   # with friction
+    assert_same_columns(a, b, (1, 2))
+
+
+# ---- 512 spheres: neighbour rebuilds, 1 vs 2 ranks, restart ----
+
+def lattice_deck(steps, restart_in=None, restart_out=None):
+    """A periodic simple-cubic lattice of touching adhesive spheres (8^3, 0.1 % overlap) sheared
+    in three directions at once (velocity ramps; LIGGGHTS's velocity has no `create`): contacts
+    slide, peel, break and form; the small skin rebuilds the neighbour lists every few steps."""
+    head = f"read_restart {restart_in}\nnewton off\n" if restart_in else """
+units si
+atom_style sphere
+atom_modify map array
+boundary p p p
+newton off
+lattice sc 1.998e-4
+region box block 0 8 0 8 0 8 units lattice
+create_box 1 box
+create_atoms 1 box
+set atom * diameter 2.0e-4 density 2650
+velocity all ramp vx -0.5 0.5 y 0 0.0015984 units box
+velocity all ramp vy -0.4 0.4 z 0 0.0015984 sum yes units box
+velocity all ramp vz -0.3 0.3 x 0 0.0015984 sum yes units box
+"""
+    tail = f"write_restart {restart_out}\n" if restart_out else ""
+    return head + f"""communicate single vel yes
+fix m1 all property/global youngsModulus peratomtype 70e9
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientFriction peratomtypepair 1 0.3
+fix m4 all property/global interfaceEnergy peratomtypepair 1 0.3
+pair_style gran model thornton_yin tangential thornton_yin
+pair_coeff * *
+neighbor 5e-8 bin
+neigh_modify delay 0
+timestep 1e-9
+fix integrate all nve/sphere
+thermo 100
+run {steps}
+dump forces all custom 1 forces.txt id x y z fx fy fz omegax omegay omegaz
+dump_modify forces sort id
+run 0
+{tail}"""
+
+
+def final_state(workdir):
+    with open(workdir / "forces.txt") as fh:
+        lines = fh.read().splitlines()
+    start = lines.index(next(l for l in lines if l.startswith("ITEM: ATOMS"))) + 1
+    return np.array([[float(v) for v in l.split()] for l in lines[start:]])
+
+
+def test_lattice_one_and_two_ranks_and_restart_agree(tmp_path):
+    runs = {}
+    for name, ranks in [("serial", 1), ("mpi", 2)]:
+        d = tmp_path / name
+        d.mkdir()
+        out = liggghts_ok(None, d, np_ranks=ranks, text=lattice_deck(600))
+        builds = [l for l in out.splitlines() if l.startswith("Neighbor list builds")]
+        assert builds and int(builds[0].split("=")[1]) >= 10, out[-2000:]
+        runs[name] = final_state(d)
+    d = tmp_path / "restart"
+    d.mkdir()
+    liggghts_ok(None, d, text=lattice_deck(300, restart_out="half.restart"))
+    liggghts_ok(None, d, text=lattice_deck(300, restart_in="half.restart"))
+    runs["restart"] = final_state(d)
+    ref_state = runs["serial"]
+    assert ref_state.shape == (512, 10)
+    force_scale = np.abs(ref_state[:, 4:7]).max()
+    assert force_scale > 0
+    for name in ("mpi", "restart"):
+        s = runs[name]
+        assert np.array_equal(s[:, 0], ref_state[:, 0])
+        assert np.abs(s[:, 4:7] - ref_state[:, 4:7]).max() <= 1e-9 * force_scale, name
+        assert np.abs(s[:, 1:4] - ref_state[:, 1:4]).max() <= 1e-9 * 2e-4, name
+        spin_scale = np.abs(ref_state[:, 7:10]).max()
+        assert np.abs(s[:, 7:10] - ref_state[:, 7:10]).max() <= 1e-9 * spin_scale, name
+
+
+# ---- bad input: named errors ----
+
+TWO_SPHERES_HEAD = """units si
+atom_style sphere
+boundary f f f
+newton off
+communicate single vel yes
+region box block -1e-3 1e-3 -1e-3 1e-3 -1e-3 1e-3
+create_box 1 box
+create_atoms 1 single 0 0 0
+create_atoms 1 single 1.999e-4 0 0
+set atom * diameter 2.0e-4 density 2650
+timestep 1e-9
+fix integrate all nve/sphere
+"""
+GOOD = {"youngsModulus": "peratomtype 70e9", "poissonsRatio": "peratomtype 0.3",
+        "coefficientFriction": "peratomtypepair 1 0.3", "interfaceEnergy": "peratomtypepair 1 0.3"}
+
+
+@pytest.mark.parametrize("change, pair, message", [
+    ({"interfaceEnergy": None}, "thornton_yin tangential thornton_yin",
+     "needs 'fix ID all property/global interfaceEnergy peratomtypepair"),
+    ({"youngsModulus": None}, "thornton_yin tangential thornton_yin",
+     "needs 'fix ID all property/global youngsModulus peratomtype"),
+    ({"youngsModulus": "peratomtype 1e400"}, "thornton_yin tangential thornton_yin",
+     "youngsModulus of type 1 must be finite and > 0"),
+    ({"youngsModulus": "peratomtype -1e9"}, "thornton_yin tangential thornton_yin",
+     "youngsModulus of type 1 must be finite and > 0"),
+    ({"poissonsRatio": "peratomtype 0.5"}, "thornton_yin tangential thornton_yin",
+     "poissonsRatio of type 1 must be finite and in (-1, 0.5)"),
+    ({"coefficientFriction": "peratomtypepair 1 -0.1"}, "thornton_yin tangential thornton_yin",
+     "coefficientFriction of type 1 1 must be finite and >= 0"),
+    ({"interfaceEnergy": "peratomtypepair 1 -1e400"}, "thornton_yin tangential thornton_yin",
+     "interfaceEnergy of type 1 1 must be finite and >= 0"),
+    ({"interfaceEnergy": "peratomtypepair 1 1e9"}, "thornton_yin tangential thornton_yin",
+     "interfaceEnergy must be below E* R*/(9 pi)"),
+    ({}, "thornton_yin tangential history", "thornton_yin is one law"),
+    ({}, "hertz tangential thornton_yin", "thornton_yin is one law"),
+    ({}, "thornton_yin tangential thornton_yin cohesion sjkr", "thornton_yin is one law"),
+])
+def test_bad_input_stops_with_a_named_error(tmp_path, change, pair, message):
+    props = dict(GOOD, **change)
+    fixes = "".join(f"fix p{k} all property/global {name} {value}\n"
+                    for k, (name, value) in enumerate(props.items()) if value is not None)
+    text = TWO_SPHERES_HEAD + fixes + f"pair_style gran model {pair}\npair_coeff * *\nrun 10\n"
+    rc, out = run_liggghts(None, tmp_path, text=text)
+    assert "ERROR" in out and message in out, out[-2000:]
