@@ -16,7 +16,11 @@ PACKAGES="lammps liblammps-dev python3-lammps openmpi-bin libopenmpi-dev libeige
   cmake make g++ libgtest-dev dpkg-dev xz-utils python3-dev
   python3-numpy python3-scipy python3-matplotlib python3-pytest"
 # LIGGGHTS 3.8 and the headers of exactly its library (Debian's patched ones) for the
-# Thornton-Yin model in LIGGGHTS (cmake/Liggghts.cmake), where the release has them
+# Thornton-Yin model in LIGGGHTS (cmake/Liggghts.cmake), where the release has them; apt-cache
+# knows only what the package lists hold, so a machine without lists gets them first
+if [ -z "$(find /var/lib/apt/lists -maxdepth 1 -name '*_Packages*' -print -quit 2>/dev/null)" ]; then
+  $SUDO apt-get update -qq
+fi
 if apt-cache show libliggghts-dev >/dev/null 2>&1; then
   PACKAGES="$PACKAGES liggghts libliggghts-dev"
 fi
