@@ -331,3 +331,35 @@ def test_bad_input_stops_with_a_named_error(tmp_path, change, pair, message):
     text = TWO_SPHERES_HEAD + fixes + f"pair_style gran model {pair}\npair_coeff * *\nrun 10\n"
     rc, out = run_liggghts(None, tmp_path, text=text)
     assert "ERROR" in out and message in out, out[-2000:]
+
+
+def test_axisymmetric_deck_holds_the_lateral_stress_and_reads_as_a_cell_record(tmp_path):
+    # inputs/liggghts/axisym.in on the committed 3620-sphere dense specimen to 0.2 % axial
+    # strain: LIGGGHTS's fix deform shortens x at the true rate 5e-5 1/s while its lateral edges
+    # follow the deck's stress servo; tyanalysis reads the record as a fix cell/servo one
+    from tyanalysis import liggghts
+    from tyanalysis.io import read_sphere_data
+    specimen = os.path.join(REPO, "bench", "data", "dense_paper_100kPa.data")
+    liggghts_ok(os.path.join(DECKS, "axisym.in"), tmp_path,
+                variables={"strain": 0.002, "data": specimen})
+    rec = liggghts.servo_record(str(tmp_path / "axisym_liggghts_raw.csv"))
+    # the axial natural strain grows at the prescribed rate
+    assert rec["eps1"] == pytest.approx(5e-5 * rec["time"], rel=1e-9)
+    assert rec["eps1"][-1] >= 0.002 - 5e-5 * 100 * 0.0144
+    # the lateral stresses are held at 100 kPa (within 2 % once the servo has caught up) and
+    # equal to each other, while the axial stress rises
+    late = slice(len(rec) // 2, None)
+    for k in ("sig2", "sig3"):
+        assert np.all(np.abs(rec[k][late] / 1e5 - 1.0) < 0.02), k
+    assert np.all(np.abs(rec["sig2"] - rec["sig3"]) < 2e3)
+    assert rec["sig1"][-1] - rec["sig3"][-1] > 5e4
+    # the record's state against the data file: the deck's solid volume is the sum of the
+    # sphere volumes, so the void ratio is the cell's volume over it
+    lo, hi, _, diameters, _ = read_sphere_data(specimen)
+    solid = float(np.sum(np.pi / 6.0 * diameters ** 3))
+    strain = np.exp(-(rec["eps1"] + rec["eps2"] + rec["eps3"]))
+    assert rec["void_ratio"] == pytest.approx(float(np.prod(hi - lo)) * strain / solid - 1.0,
+                                              rel=1e-9)
+    # the same packing as LAMMPS reads it (Z = 5.336 at step 0, tests/test_cell_servo_any_pair.py)
+    assert rec["Z"][0] == pytest.approx(5.336, rel=0.01)
+    assert np.all(np.isnan(rec["sliding_fraction"]))

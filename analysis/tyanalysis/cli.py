@@ -76,6 +76,11 @@ def cmd_axisym(a):
     _wrote(figures.axisym(tables, labels, a.out))
 
 
+def cmd_liggghts_record(a):
+    from . import liggghts
+    _wrote(liggghts.write_servo_csv(liggghts.servo_record(a.raw), a.out))
+
+
 def cmd_cyclic(a):
     from . import cyclic
     tables = _read_all(a.files)
@@ -449,6 +454,11 @@ def build_parser():
     p.add_argument("--out", help="also write the markdown to this file")
     p.set_defaults(func=cmd_compare)
 
+    p = sub.add_parser("liggghts-record", help="the raw record of inputs/liggghts/axisym.in as a "
+                       "fix cell/servo record, which every other command reads")
+    p.add_argument("raw", help="OUT_raw.csv written by the LIGGGHTS deck")
+    p.add_argument("--out", required=True, help="CSV to write")
+    p.set_defaults(func=cmd_liggghts_record)
     p = sub.add_parser("two-spheres", help="normal force vs overlap from a fix print table")
     p.add_argument("table")
     p.add_argument("--out", required=True)
