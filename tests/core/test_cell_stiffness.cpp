@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <vector>
 
@@ -247,6 +248,9 @@ TEST(CellStiffness, FccLatticeFiniteDifference)
       fd.col(J) = tycore::stress_from_tensor(dsigma / (2 * step));
       geometric.col(J) = tycore::stress_from_tensor(geometric_response(lat, e) / step);
     }
+    // the measured differences, quoted in docs/theory.md §12
+    std::printf("FCC lattice, p = %g Pa: |FD - (C + geometric)| = %.2g, |FD - C| = %.2g of |C|\n",
+                p, relative_difference(fd, c + geometric), relative_difference(fd, c));
     EXPECT_LT(relative_difference(fd, c + geometric), 1e-6) << fd << "\n\n" << c + geometric;
     EXPECT_GT(relative_difference(fd, c), 1e-5);    // the geometric part is resolved
     EXPECT_LT(relative_difference(c, rotated(cubic(tycore::fcc_lattice_affine_stiffness(
