@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
@@ -170,6 +171,45 @@ TEST(CellControl, DrainedSimpleShearOfAnElasticCell)
   const double eps_zz = (sigma_n - sigma0) / (lambda + 2 * mu);
   EXPECT_NEAR(cell.strain(2), eps_zz, 1e-9 * eps_zz);
   EXPECT_NEAR(stress(0), sigma0 + lambda * eps_zz, 1e-9 * sigma0);
+}
+
+// objectivity: an anisotropic cell sheared in xz, and the same cell with its axes relabelled
+// (y <-> z: sheared in xy; x <-> y: sheared in yz), give the same tau, sigma_n and normal strain
+// histories
+TEST(CellControl, SimpleShearIsTheSameInEveryPlaneOfAPermutedCell)
+{
+  std::mt19937 rng(6);
+  const Matrix6d C = random_spd(rng, 1e8);
+  const tycore::ShearPlane xz{0, 2};
+  auto history = [&](const std::array<int, 3>& axis, const tycore::ShearPlane& plane) {
+    Matrix6d P = Matrix6d::Zero();    // Voigt6 component (i, j) -> (axis[i], axis[j])
+    for (int I = 0; I < 6; ++I)
+      P(tycore::voigt_index(axis[tycore::voigt_pairs[I][0]], axis[tycore::voigt_pairs[I][1]]), I) = 1;
+    LinearCell cell{P * C * P.transpose(), Vector6d::Zero()};
+    cell.stress0.head<3>().setConstant(1e5);
+    const tycore::DrainedSimpleShear test{plane, 0.03, 1.3e5};
+    tycore::ServoMemoryOf<6> memory;
+    std::vector<Vector3d> out;
+    for (int s = 0; s < 400; ++s) {
+      cell.advance(tycore::servo_step(test.control(), cell.measure(), settings(), 1e-5, memory)
+                       .strain_rate,
+                   1e-5);
+      const Vector6d stress = cell.measure().stress;
+      out.emplace_back(tycore::shear_stress(stress, plane), tycore::normal_stress(stress, plane),
+                       cell.strain(plane.normal));
+    }
+    return out;
+  };
+  const std::vector<Vector3d> reference = history({0, 1, 2}, xz);
+  const std::vector<Vector3d> in_xy = history({0, 2, 1}, {0, 1});
+  const std::vector<Vector3d> in_yz = history({1, 0, 2}, {1, 2});
+  for (std::size_t k = 0; k < reference.size(); ++k)
+    for (int q = 0; q < 3; ++q) {
+      const double scale = reference.back().cwiseAbs()(q);
+      EXPECT_NEAR(in_xy[k](q), reference[k](q), 1e-10 * scale) << k << " " << q;
+      EXPECT_NEAR(in_yz[k](q), reference[k](q), 1e-10 * scale) << k << " " << q;
+    }
+  EXPECT_GT(std::abs(reference.back()(0)), 1e3);    // it did shear
 }
 
 // undrained triaxial on an anisotropic cell: eps_v = 0 to round-off, sigma_2 = sigma_3 held,
