@@ -204,6 +204,19 @@ inline Eigen::Matrix3d advance_cell(const Eigen::Matrix3d& h, const Eigen::Matri
   return next;
 }
 
+// LAMMPS's domain->h_rate (lx ly lz yz xz xy) of the cell h moving with L: h_dot = L h. The
+// pair reads L back as h_dot h^-1 (docs/theory.md §5.1); on an orthogonal cell the diagonal is
+// fix cell/servo's h_rate[k] = -eps_dot_k l_k
+inline std::array<double, 6> lammps_h_rate(const Eigen::Matrix3d& L, const Eigen::Matrix3d& h)
+{
+  std::array<double, 6> rate;
+  for (int i = 0; i < 3; ++i) rate[i] = L(i, i) * h(i, i);
+  rate[3] = L(1, 1) * h(1, 2) + L(1, 2) * h(2, 2);
+  rate[4] = L(0, 0) * h(0, 2) + L(0, 1) * h(1, 2) + L(0, 2) * h(2, 2);
+  rate[5] = L(0, 0) * h(0, 1) + L(0, 1) * h(1, 1);
+  return rate;
+}
+
 // mean-field velocity difference between a point and its periodic image shifted by the
 // integer image offset n: L (h n) (docs/theory.md §10.1)
 inline Eigen::Vector3d image_velocity(const Eigen::Matrix3d& L, const Eigen::Matrix3d& h,

@@ -81,6 +81,23 @@ TEST(CellKinematics, OrthogonalUpdateBitIdentical)
   EXPECT_EQ(next(1, 2), 0.0);
 }
 
+// h_rate for LAMMPS: h_dot h^-1 (as the pair forms it) gives L back; on an orthogonal cell the
+// diagonal is bit for bit fix cell/servo's h_rate[k] = -rate[k] * length
+TEST(CellKinematics, LammpsHRate)
+{
+  const Matrix3d h = upper(2.0, 3.0, 5.0, 0.25, -0.5, 0.75);
+  const Matrix3d L = upper(0.1, -0.2, 0.05, 0.3, -0.7, 0.4);
+  const std::array<double, 6> r = tycore::lammps_h_rate(L, h);
+  const Matrix3d h_dot = tycore::cell_matrix_from_lammps(r.data());
+  EXPECT_LT(max_abs(h_dot * h.inverse() - L), 1e-15);
+  const double rate = 3.7, length = 0.0123;
+  Vector6d strain_rate = Vector6d::Zero();
+  strain_rate(1) = rate;
+  EXPECT_EQ(tycore::lammps_h_rate(tycore::velocity_gradient(strain_rate),
+                                  upper(1.0, length, 1.0, 0, 0, 0))[1],
+            -rate * length);
+}
+
 // the six strain-rate components map one-to-one onto L: sym(L) = -eps_dot, D_ij = L_ij/2
 TEST(CellKinematics, VelocityGradientFromStrainRate)
 {
