@@ -36,6 +36,7 @@
 #ifndef TYCORE_CELL_SERVO_HPP
 #define TYCORE_CELL_SERVO_HPP
 
+#include "cell_kinematics.hpp"
 #include "pi_plane.hpp"
 #include "strain_path.hpp"
 
@@ -45,6 +46,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -120,11 +122,21 @@ inline double quasi_static_strain_rate(double inertial_number, double mean_stres
 // ---------------------------------------------------------------------------------------------
 // Data the fix exchanges with the servo
 
-struct CellMeasurement {
-  Eigen::Vector3d stress;      // principal stresses along x, y, z, compression positive [Pa]
-  Eigen::Matrix3d stiffness;   // affine stiffness C [Pa]
-  Eigen::Vector3d strain;      // natural strains from the reference cell, compression positive
+// The cell's state and the servo's data, on N controlled components: N = 3 for the principal
+// axes of an orthogonal cell, N = 6 for the full stress and strain of a triclinic cell (Voigt6
+// order xx yy zz xy xz yz, engineering shears; cell_kinematics.hpp, docs/theory.md §11.2)
+template <int N>
+using VectorN = Eigen::Matrix<double, N, 1>;
+template <int N>
+using MatrixN = Eigen::Matrix<double, N, N>;
+
+template <int N>
+struct CellMeasurementOf {
+  VectorN<N> stress;      // compression positive [Pa]; principal stresses along x, y, z if N = 3
+  MatrixN<N> stiffness;   // affine stiffness C [Pa]
+  VectorN<N> strain;      // strains from the reference cell, compression positive
 };
+using CellMeasurement = CellMeasurementOf<3>;
 
 // A principal strain of 1 % in one step is no laboratory test: at a quasi-static inertial
 // number (I < 1e-3, docs/theory.md) a step strains a packing by ~1e-6; beyond this the contacts
@@ -143,47 +155,55 @@ struct ServoSettings {
   double max_strain_rate = 0.0;   // cap on each axis' servo rate [1/s]; must be set
 };
 
-struct ServoMemory {
-  Eigen::Vector3d integral = Eigen::Vector3d::Zero();          // S [Pa], one per held stress
-  Eigen::Vector3d last_strain_rate = Eigen::Vector3d::Zero();  // rate commanded last step
-  double path_length = 0.0;                                    // progress s along a PiPath
+template <int N>
+struct ServoMemoryOf {
+  VectorN<N> integral = VectorN<N>::Zero();          // S [Pa], one per held stress
+  VectorN<N> last_strain_rate = VectorN<N>::Zero();  // rate commanded last step
+  double path_length = 0.0;                          // progress s along a PiPath
 
-  static constexpr int size = 7;
+  static constexpr int size = 2 * N + 1;
   void to_array(double* a) const
   {
-    for (int i = 0; i < 3; ++i) a[i] = integral(i), a[3 + i] = last_strain_rate(i);
-    a[6] = path_length;
+    for (int i = 0; i < N; ++i) a[i] = integral(i), a[N + i] = last_strain_rate(i);
+    a[2 * N] = path_length;
   }
-  static ServoMemory from_array(const double* a)
+  static ServoMemoryOf from_array(const double* a)
   {
-    ServoMemory m;
-    for (int i = 0; i < 3; ++i) m.integral(i) = a[i], m.last_strain_rate(i) = a[3 + i];
-    m.path_length = a[6];
+    ServoMemoryOf m;
+    for (int i = 0; i < N; ++i) m.integral(i) = a[i], m.last_strain_rate(i) = a[N + i];
+    m.path_length = a[2 * N];
     return m;
   }
 };
+using ServoMemory = ServoMemoryOf<3>;
 
-struct MixedControl {
-  Eigen::Vector3d prescribed_strain_rate = Eigen::Vector3d::Zero();   // r_p [1/s]
-  int actuator_count = 0;                                             // m
-  Eigen::Matrix3d actuators = Eigen::Matrix3d::Zero();       // columns 0..m-1: w_k
-  Eigen::Matrix3d stress_rows = Eigen::Matrix3d::Zero();     // rows 0..m-1: a_k
-  Eigen::Vector3d stress_targets = Eigen::Vector3d::Zero();  // t_k [Pa]
+template <int N>
+struct MixedControlOf {
+  VectorN<N> prescribed_strain_rate = VectorN<N>::Zero();   // r_p [1/s]
+  int actuator_count = 0;                                   // m
+  MatrixN<N> actuators = MatrixN<N>::Zero();        // columns 0..m-1: w_k
+  MatrixN<N> stress_rows = MatrixN<N>::Zero();      // rows 0..m-1: a_k
+  VectorN<N> stress_targets = VectorN<N>::Zero();   // t_k [Pa]
 
-  void add(const Eigen::Vector3d& actuator, const Eigen::Vector3d& row, double target)
+  void add(const VectorN<N>& actuator, const VectorN<N>& row, double target)
   {
+    if (actuator_count == N)
+      throw std::invalid_argument("more held stresses than controlled components");
     actuators.col(actuator_count) = actuator;
     stress_rows.row(actuator_count) = row.transpose();
     stress_targets(actuator_count) = target;
     ++actuator_count;
   }
 };
+using MixedControl = MixedControlOf<3>;
 
-struct ServoCommand {
-  Eigen::Vector3d strain_rate;   // principal strain rates for the next step [1/s]
+template <int N>
+struct ServoCommandOf {
+  VectorN<N> strain_rate;        // strain rates for the next step [1/s]
   bool saturated;                // the strain-rate cap limited the servo part
   double stress_error = 0.0;     // largest |target - stress| of the held stresses [Pa]
 };
+using ServoCommand = ServoCommandOf<3>;
 
 // ---------------------------------------------------------------------------------------------
 // Programmes
@@ -201,17 +221,25 @@ struct AxisProgramme {
   double value;   // strain rate [1/s] or target stress [Pa]
 };
 
-inline MixedControl per_axis_control(const std::array<AxisProgramme, 3>& axes)
+// each component at a prescribed strain rate or a target stress; N = 3: the principal axes
+// (targets positive), N = 6: also the shears of a triclinic cell (targets of any sign)
+template <std::size_t N = 3>
+MixedControlOf<int(N)> per_axis_control(const std::array<AxisProgramme, N>& components)
 {
-  MixedControl c;
-  for (int i = 0; i < 3; ++i) {
-    const Eigen::Vector3d unit = Eigen::Vector3d::Unit(i);
-    if (axes[i].control == AxisControl::STRAIN_RATE) {
-      c.prescribed_strain_rate(i) = axes[i].value;
-    } else {
-      require_positive_stress(std::string("sigma_") + axis_name(i), axes[i].value);
-      c.add(unit, unit, axes[i].value);
+  MixedControlOf<int(N)> c;
+  for (int i = 0; i < int(N); ++i) {
+    const VectorN<int(N)> unit = VectorN<int(N)>::Unit(i);
+    const double value = components[i].value;
+    if (components[i].control == AxisControl::STRAIN_RATE) {
+      c.prescribed_strain_rate(i) = value;
+      continue;
     }
+    if (i < 3)
+      require_positive_stress(std::string("sigma_") + axis_name(i), value);
+    else if (!std::isfinite(value))
+      throw std::invalid_argument(std::string("target shear stress sigma_") + voigt_names[i]
+                                  + " is not finite");
+    c.add(unit, unit, value);
   }
   return c;
 }
@@ -263,7 +291,8 @@ inline MixedControl axisymmetric_control(int axis, double axial_strain_rate, dou
 }
 
 // the free axes must be able to move every held stress combination
-inline void require_controllable(const MixedControl& c)
+template <int N>
+void require_controllable(const MixedControlOf<N>& c)
 {
   const int m = c.actuator_count;
   if (m == 0) return;
@@ -290,12 +319,13 @@ inline void require_valid(const ServoSettings& s)
 // ---------------------------------------------------------------------------------------------
 // The control law (see the header comment; docs/theory.md §6.2)
 
-inline ServoCommand servo_step(const MixedControl& control, const CellMeasurement& cell,
-                               const ServoSettings& settings, double dt, ServoMemory& memory)
+template <int N>
+ServoCommandOf<N> servo_step(const MixedControlOf<N>& control, const CellMeasurementOf<N>& cell,
+                             const ServoSettings& settings, double dt, ServoMemoryOf<N>& memory)
 {
   if (!(dt > 0.0)) throw std::invalid_argument("servo time step must be positive");
   const int m = control.actuator_count;
-  ServoCommand command{control.prescribed_strain_rate, false};
+  ServoCommandOf<N> command{control.prescribed_strain_rate, false};
   if (m == 0) {
     memory.last_strain_rate = command.strain_rate;
     return command;
@@ -308,34 +338,33 @@ inline ServoCommand servo_step(const MixedControl& control, const CellMeasuremen
     memory.last_strain_rate = command.strain_rate;
     return command;
   }
-  const Eigen::Matrix3d C = cell.stiffness + 1e-9 * scale * Eigen::Matrix3d::Identity();
-  const Eigen::Vector3d prescribed_step = control.prescribed_strain_rate * dt;
+  const MatrixN<N> C = cell.stiffness + 1e-9 * scale * MatrixN<N>::Identity();
+  const VectorN<N> prescribed_step = control.prescribed_strain_rate * dt;
 
-  // padded to 3x3 with identity on unused actuators so one fixed-size solve serves all m
-  Eigen::Matrix3d response = Eigen::Matrix3d::Identity();
+  // padded to NxN with identity on unused actuators so one fixed-size solve serves all m
+  MatrixN<N> response = MatrixN<N>::Identity();
   response.topLeftCorner(m, m) =
       control.stress_rows.topRows(m) * C * control.actuators.leftCols(m);
-  Eigen::Vector3d error = Eigen::Vector3d::Zero(), feed_forward = Eigen::Vector3d::Zero();
+  VectorN<N> error = VectorN<N>::Zero(), feed_forward = VectorN<N>::Zero();
   error.head(m) = control.stress_targets.head(m) - control.stress_rows.topRows(m) * cell.stress;
   for (int k = 0; k < m; ++k)
     command.stress_error = std::max(command.stress_error, std::abs(error(k)));
   feed_forward.head(m) = control.stress_rows.topRows(m) * C * prescribed_step;
 
-  const Eigen::FullPivLU<Eigen::Matrix3d> lu(response);
+  const Eigen::FullPivLU<MatrixN<N>> lu(response);
   if (!lu.isInvertible())
     throw std::runtime_error("servo: the free axes cannot move the held stresses "
                              "(singular response matrix)");
-  const Eigen::Vector3d normalised_error = lu.solve(error);
+  const VectorN<N> normalised_error = lu.solve(error);
   const double stress_level = std::max(control.stress_targets.head(m).cwiseAbs().maxCoeff(),
-                                       std::abs(mean_stress(cell.stress)));
+                                       std::abs(mean_stress(cell.stress.template head<3>())));
   const bool near_target = error.cwiseAbs().maxCoeff() <= settings.integral_band * stress_level;
-  const Eigen::Vector3d integral = memory.integral + (near_target ? error
-                                                                  : Eigen::Vector3d::Zero());
-  Eigen::Vector3d u = settings.gain * normalised_error - lu.solve(feed_forward)
+  const VectorN<N> integral = memory.integral + (near_target ? error : VectorN<N>::Zero());
+  VectorN<N> u = settings.gain * normalised_error - lu.solve(feed_forward)
                       + settings.integral_gain * lu.solve(integral);
-  u.tail(3 - m).setZero();
+  u.tail(N - m).setZero();
 
-  Eigen::Vector3d servo_rate = control.actuators * u / dt;
+  VectorN<N> servo_rate = control.actuators * u / dt;
   const double largest = servo_rate.cwiseAbs().maxCoeff();
   if (largest > settings.max_strain_rate) {
     servo_rate *= settings.max_strain_rate / largest;

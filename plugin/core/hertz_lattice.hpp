@@ -19,6 +19,8 @@
 #ifndef TYCORE_HERTZ_LATTICE_HPP
 #define TYCORE_HERTZ_LATTICE_HPP
 
+#include "pi_plane.hpp"
+
 #include <Eigen/Core>
 
 #include <algorithm>
@@ -91,6 +93,42 @@ inline double hertz_lattice_strain(double mean_stress, double contact_modulus)
     y = next;
   }
   return -std::log1p(-y * y);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Face-centred cubic lattice of equal Hertz-Mindlin spheres under isotropic pressure
+// (docs/theory.md §12). Nearest neighbours at d = 2R(1 - x) along the 12 directions
+// (+-1, +-1, 0)/sqrt2 and permutations, 6 contacts and V_p = d^3/sqrt2 per grain, all in
+// equilibrium under an affine strain (a Bravais lattice). With k_N = 2 E* a, a = R sqrt(x),
+// k_T = kappa k_N (Mindlin: kappa = 4 G*/E* = 2(1 - nu)/(2 - nu) for like spheres):
+//     p = (4 sqrt2/3) E* x^(3/2)/(1 - x)^2 = 2 sqrt2 p_simple-cubic(x),
+//     C11 = K0 (1 + kappa), C12 = K0 (1 - kappa)/2, C44 = K0 (1 + kappa)/2,
+//     K0 = sqrt2 E* sqrt(x)/(1 - x)   (cubic axes, Voigt engineering shears).
+
+struct CubicStiffness {
+  double c11, c12, c44;
+};
+
+inline double fcc_lattice_pressure(double relative_overlap, double contact_modulus)
+{
+  const double x = relative_overlap;
+  return 4.0 * piplane::sqrt2 / 3.0 * contact_modulus * x * std::sqrt(x) / ((1 - x) * (1 - x));
+}
+
+// x at pressure p: the simple-cubic root at p/(2 sqrt2), since the two laws differ by that factor
+inline double fcc_lattice_relative_overlap(double pressure, double contact_modulus)
+{
+  return hertz_lattice_relative_overlap(
+      hertz_lattice_strain(pressure / (2.0 * piplane::sqrt2), contact_modulus));
+}
+
+inline CubicStiffness fcc_lattice_affine_stiffness(double relative_overlap,
+                                                   double contact_modulus,
+                                                   double tangential_ratio)
+{
+  const double x = relative_overlap, kappa = tangential_ratio;
+  const double k0 = piplane::sqrt2 * contact_modulus * std::sqrt(x) / (1 - x);
+  return {k0 * (1 + kappa), 0.5 * k0 * (1 - kappa), 0.5 * k0 * (1 + kappa)};
 }
 
 }    // namespace tycore

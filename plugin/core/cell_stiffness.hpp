@@ -1,0 +1,81 @@
+// The full affine stiffness of a periodic cell (docs/theory.md §11): d sigma_I = C_IJ d eps_J in
+// Voigt6 (xx yy zz xy xz yz, engineering shears, compression positive; cell_kinematics.hpp),
+//     C_ijkl = (1/V) sum_c l^2 [k_N n_i n_j n_k n_l + k_T (sym(delta_ik n_j n_l) - n_i n_j n_k n_l)],
+// sym(delta_ik n_j n_l) = (delta_ik n_j n_l + delta_jk n_i n_l + delta_il n_j n_k + delta_jl n_i n_k)/4,
+// from 21 independent sums over the contacts. Its principal block (I, J < 3) is cell_servo.hpp's
+// affine_stiffness, computed by the same function.
+#ifndef TYCORE_CELL_STIFFNESS_HPP
+#define TYCORE_CELL_STIFFNESS_HPP
+
+#include "cell_kinematics.hpp"
+#include "cell_servo.hpp"
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <array>
+
+namespace tycore {
+
+// per-rank sums of V*C over contacts, upper triangle of the 6x6 row by row; summed across ranks
+// element by element (MPI_SUM over `size` doubles), like the fix's stiffness_sums[6]
+struct AffineStiffnessSums {
+  static constexpr int size = 21;
+  std::array<double, size> sum{};
+
+  static constexpr int index(int I, int J)
+  {
+    if (I > J) return index(J, I);
+    return I * 6 - I * (I - 1) / 2 + (J - I);
+  }
+
+  // one contact, branch = x2 - x1 (image-shifted), counted once
+  void add_contact(const Eigen::Vector3d& branch, double normal_stiffness,
+                   double tangential_stiffness)
+  {
+    const Matrix6d c = affine_stiffness_contribution_voigt(branch, normal_stiffness,
+                                                           tangential_stiffness);
+    for (int I = 0; I < 6; ++I)
+      for (int J = I; J < 6; ++J) sum[index(I, J)] += c(I, J);
+  }
+
+  AffineStiffnessSums& operator+=(const AffineStiffnessSums& other)
+  {
+    for (int k = 0; k < size; ++k) sum[k] += other.sum[k];
+    return *this;
+  }
+
+  Matrix6d stiffness(double volume) const
+  {
+    Matrix6d c;
+    for (int I = 0; I < 6; ++I)
+      for (int J = 0; J < 6; ++J) c(I, J) = sum[index(I, J)] / volume;
+    return c;
+  }
+
+  // one contact's share of V*C (Voigt6); the principal block is cell_servo.hpp's
+  static Matrix6d affine_stiffness_contribution_voigt(const Eigen::Vector3d& branch,
+                                                      double normal_stiffness,
+                                                      double tangential_stiffness)
+  {
+    Matrix6d c;
+    c.topLeftCorner<3, 3>() =
+        affine_stiffness_contribution(branch, normal_stiffness, tangential_stiffness);
+    const double l2 = branch.squaredNorm();
+    const Eigen::Vector3d& b = branch;
+    for (int I = 0; I < 6; ++I)
+      for (int J = std::max(I, 3); J < 6; ++J) {
+        const int i = voigt_pairs[I][0], j = voigt_pairs[I][1];
+        const int k = voigt_pairs[J][0], l = voigt_pairs[J][1];
+        const double nnnn = b(i) * b(j) * b(k) * b(l) / l2;   // l^2 n_i n_j n_k n_l
+        const double delta_nn = 0.25 * ((i == k) * b(j) * b(l) + (j == k) * b(i) * b(l)
+                                        + (i == l) * b(j) * b(k) + (j == l) * b(i) * b(k));
+        c(I, J) = c(J, I) = normal_stiffness * nnnn + tangential_stiffness * (delta_nn - nnnn);
+      }
+    return c;
+  }
+};
+
+}    // namespace tycore
+
+#endif
