@@ -308,30 +308,51 @@ template <bool Adhesive, bool Damped, bool Tally>
   }
 }
 
-// the scalar build of the law: the stages of contact_kernel.hpp lane after lane, in the
-// pair's order; returns the k_T the law used, or -1
+// lane i of the batch as the law's lanes (contact_law.hpp)
+[[gnu::always_inline]] inline law::History<double> lane_history(const ContactBatch& b, int i)
+{
+  law::History<double> h;
+  for (int d = 0; d < 3; ++d) h.T[d] = b.T[d][i], h.dir[d] = b.dir[d][i];
+  h.T_star = b.T_star[i], h.T_star2 = b.T_star2[i], h.P_prev = b.P_prev[i], h.mode = b.mode[i];
+  h.peeling = b.peeling[i], h.sliding = b.sliding[i], h.stored_energy = b.stored_energy[i];
+  h.radius = b.radius[i];
+  return h;
+}
+
+// the law's step back into lane i: its new history and outputs, or where the lane separated at
+// the break overlap this step (touch_or_break) a cleared history and zeros
+[[gnu::always_inline]] inline void store_lane(ContactBatch& b, int i, const law::History<double>& h,
+                                              const law::Outputs<double>& out, bool gone)
+{
+  for (int d = 0; d < 3; ++d) {
+    b.T[d][i] = gone ? 0.0 : h.T[d];
+    b.dir[d][i] = gone ? 0.0 : h.dir[d];
+  }
+  b.T_star[i] = gone ? 0.0 : h.T_star;
+  b.T_star2[i] = gone ? 0.0 : h.T_star2;
+  b.P_prev[i] = gone ? 0.0 : h.P_prev;
+  b.mode[i] = gone ? 0.0 : h.mode;
+  b.peeling[i] = gone ? 0.0 : h.peeling;
+  b.sliding[i] = gone ? 0.0 : h.sliding;
+  b.stored_energy[i] = gone ? 0.0 : h.stored_energy;
+  b.radius[i] = gone ? 0.0 : h.radius;
+  b.P[i] = gone ? 0.0 : out.P;
+  b.contact_radius[i] = gone ? 0.0 : out.a;
+  b.dissipation[i] = gone ? 0.0 : out.dissipation;
+}
+
+// the scalar build of the law: law::scalar_step lane after lane; returns the k_T the law used,
+// or -1
 template <bool Adhesive>
 inline double scalar_lane(ContactBatch& b, int i, const PairConstants& k, double dt)
 {
-  ContactHistory h = stored_history(b, i);
+  law::History<double> h = lane_history(b, i);
   const double n[3] = {b.n[0][i], b.n[1][i], b.n[2][i]};
-  const double twist = 0.5 * dt * b.spin_n[i];
   const double ds[3] = {-b.vt[0][i] * dt, -b.vt[1][i] * dt, -b.vt[2][i] * dt};
-  StepState st;
-  carry_history(n, twist, h, st);
-  normal_force_step<Adhesive>(k, b.R[i], b.Rinv[i], b.delta[i], h, st);
-  begin_tangential<Adhesive>(k, b.R[i], ds, h, st);
-  stiffness_of(k, st);
-  slip_decision(k, h, st);
-  theta_of(st);
-  double dissipation = 0.0;
-  finish_step(h, st, dissipation);
-  const bool gone = b.broken[i] != 0.0;
-  load_history(b, i, gone ? ContactHistory{} : h);
-  b.P[i] = gone ? 0.0 : st.P;
-  b.contact_radius[i] = gone ? 0.0 : st.contact_radius;
-  b.dissipation[i] = gone ? 0.0 : dissipation;
-  return (st.frictionless || st.peeled_step) ? -1.0 : st.stiffness;
+  const law::Outputs<double> out =
+      law::scalar_step<Adhesive>(k, b.R[i], b.Rinv[i], b.delta[i], n, 0.5 * dt * b.spin_n[i], ds, h);
+  store_lane(b, i, h, out, b.broken[i] != 0.0);
+  return out.stiffness;
 }
 
 #ifdef TYCORE_BENCH_PLUMBING
