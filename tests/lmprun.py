@@ -46,8 +46,10 @@ group two id 2
 """
 
 
-def run_deck(text, workdir, name="in.test", np_ranks=1, variables=None, timeout=600):
-    """Write `text` to workdir/name, run it; return (returncode, combined output)."""
+def run_deck(text, workdir, name="in.test", np_ranks=1, variables=None, timeout=600,
+             environment=None):
+    """Write `text` to workdir/name, run it (with the variables of `environment` added to the
+    process's environment); return (returncode, combined output)."""
     path = os.path.join(str(workdir), name)
     with open(path, "w") as fh:
         fh.write(text)
@@ -57,7 +59,8 @@ def run_deck(text, workdir, name="in.test", np_ranks=1, variables=None, timeout=
     if np_ranks > 1:
         cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(np_ranks)] + cmd
     proc = subprocess.run(cmd, cwd=str(workdir), capture_output=True, text=True,
-                          timeout=timeout, env=dict(os.environ, OMPI_MCA_btl_vader_single_copy_mechanism="none"))
+                          timeout=timeout, env=dict(os.environ, OMPI_MCA_btl_vader_single_copy_mechanism="none",
+                                                    **(environment or {})))
     return proc.returncode, proc.stdout + proc.stderr
 
 
