@@ -53,7 +53,8 @@ def count(case, data, steps, work, branch_sim=False):
     cmd = ["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}",
            f"--toggle-collect={toggle_for(case)}"] + (["--branch-sim=yes"] if branch_sim else [])
     cmd += [exe, "-in", path, "-log", "none", "-nocite"]
-    proc = subprocess.run(cmd, cwd=work, capture_output=True, text=True)
+    env = dict(os.environ, **pair_speed.CASE_ENVIRONMENT.get(case, {}))
+    proc = subprocess.run(cmd, cwd=work, capture_output=True, text=True, env=env)
     if proc.returncode != 0:
         raise RuntimeError(f"{case}: {proc.stderr[-2000:]}")
     summary = subprocess.run(["callgrind_annotate", out], capture_output=True, text=True).stdout

@@ -1,7 +1,6 @@
-// Kernel-level benchmark of the staged contact kernel (plugin/core/contact_kernel.hpp): ns per
-// contact-step of tycore::advance_contact called contact after contact, against the same
-// stages run over batches of B contacts (as pair thornton/yin does), the reference law
-// (rotate_history + evaluate_contact), and the batch entry tycore::advance_batch
+// Kernel-level benchmark of the contact law (plugin/core/contact_law.hpp): ns per contact-step
+// of its scalar entry tycore::advance_contact called contact after contact, against the
+// reference law (rotate_history + evaluate_contact), and the batch entry tycore::advance_batch
 // (plugin/core/contact_batch.hpp) in each build this processor runs (scalar, sse2, avx2,
 // avx512), its structure-of-arrays batch filled from and written back to the contacts'
 // histories as a pair would. Pure C++, no LAMMPS, no memory traffic beyond the contacts' own
@@ -103,29 +102,6 @@ void run_scene(const Scene& scene)
   });
   std::printf("%-28s reference %6.1f ns   fused, one contact at a time %6.1f ns", scene.name,
               reference, sequential);
-  for (int B : {4, 16, 64}) {
-    std::vector<StepState> st(B);
-    const double batched = time_sweep([&] {
-      double lost = 0.0;
-      for (int i0 = 0; i0 < kContacts; i0 += B) {
-        for (int b = 0; b < B; ++b) {
-          const int i = i0 + b;
-          carry_history(&n[3 * i], twist[i], h[i], st[b]);
-          normal_force_step<Adhesive>(k, kR, 1.0 / kR, delta[i], h[i], st[b]);
-          begin_tangential<Adhesive>(k, kR, &ds[3 * i], h[i], st[b]);
-        }
-        if (Adhesive)
-          for (int b = 0; b < B; ++b) stiffness_of(k, st[b]);
-        for (int b = 0; b < B; ++b) slip_decision(k, h[i0 + b], st[b]);
-        for (int b = 0; b < B; ++b) theta_of(st[b]);
-        for (int b = 0; b < B; ++b) {
-          finish_step(h[i0 + b], st[b], lost);
-          sink += st[b].P;
-        }
-      }
-    });
-    std::printf("   batch %2d %6.1f ns", B, batched);
-  }
   std::printf("\n%-28s", "");
   // the batch entry: dt = 2 makes twist = spin_n and ds = -2 vt exact
   BatchParameters p;

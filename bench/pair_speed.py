@@ -23,7 +23,7 @@ yes`, velocities communicated to ghosts, `fix nve/sphere`, the same timestep (0.
 times of the smallest sphere, 0.0144 s with the scaled density 2.65e15 kg/m^3).
 
 Cases: thornton/yin with Gamma = 0.6 and 0, each also through the scalar build of the law
-(`isa scalar`); LAMMPS
+("isa scalar": run with the environment variable TYLMP_LAW_ISA=scalar); LAMMPS
 `granular` jkr+mindlin and hertz/material+mindlin; LAMMPS `gran/hertz/history`; and
 "liggghts hertz+history": LIGGGHTS `pair_style gran model hertz tangential history` with
 the material in `fix property/global` (youngsModulus 70e9, poissonsRatio 0.3,
@@ -64,17 +64,19 @@ With --variant (repeatable) every thornton/yin case runs once per build of the l
 table then also gives, per case, the median over repeats of the per-repeat time ratio of each
 variant to the first one. --build-variant NAME=OPTIONS (repeatable) first builds such a variant
 with the CMake options given (comma-separated) into build-bench-NAME/ of the repository and
-then runs it as --variant NAME=build-bench-NAME/python/tylmp/tylmp.so; the benchmark builds of
-CMakeLists.txt:
+then runs it as --variant NAME=build-bench-NAME/python/tylmp/tylmp.so, e.g.
+--build-variant scalar=-DTYLMP_VECTOR_LAW=OFF for the plugin built with the scalar law alone.
+The benchmark builds of the plugin (bench/variants.cmake; not part of the product) are
+targets of a build configured with -DTYLMP_BENCH=ON:
 
+    cmake -S . -B build -DTYLMP_BENCH=ON && cmake --build build --target tylmp tylmp_generic tylmp_plumbing
     /usr/bin/python3 bench/pair_speed.py --variant specialised=build/python/tylmp/tylmp.so \
-        --build-variant generic=-DTYLMP_GENERIC_PATHS=ON \
-        --build-variant plumbing=-DTYLMP_BENCH_PLUMBING=ON \
+        --variant generic=build/bench/generic/tylmp.so \
+        --variant plumbing=build/bench/plumbing/tylmp.so \
         --cases "thornton/yin G=0.6" "thornton/yin G=0"
 
-(generic: the adhesive, damped kernel for every scene, what the specialisations gain;
-plumbing: the law replaced by a Hertz normal force, what everything around it costs), and
---build-variant scalar=-DTYLMP_VECTOR_LAW=OFF for the scalar build of the law.
+(generic: the adhesive, damped law for every scene, what the specialisations gain;
+plumbing: the law replaced by a Hertz normal force, what everything around it costs).
 Writes OUT.csv (every run), OUT.json (medians and ratios), OUT.png (atom-steps per second of
 every case: median and the range of the repeats) and prints a table.
 
@@ -118,12 +120,11 @@ CASES = {
     "thornton/yin G=0": f"pair_style thornton/yin\npair_coeff * * {E} {NU} {MU} 0.0\n",
     # frictionless, as the dense specimen's preparation (inputs/common/prepare.in)
     "thornton/yin G=0 mu=0": f"pair_style thornton/yin\npair_coeff * * {E} {NU} 0.0 0.0\n",
-    # the same law through the scalar build of the batch entry (pair_style keyword isa): what
-    # the SIMD builds gain in situ (the results are bitwise the same)
-    "thornton/yin G=0.6 isa scalar": (f"pair_style thornton/yin isa scalar\n"
-                                      f"pair_coeff * * {E} {NU} {MU} {GAMMA}\n"),
-    "thornton/yin G=0 isa scalar": (f"pair_style thornton/yin isa scalar\n"
-                                    f"pair_coeff * * {E} {NU} {MU} 0.0\n"),
+    # the same law through the scalar build of the batch entry (the environment variable
+    # TYLMP_LAW_ISA=scalar, CASE_ENVIRONMENT): what the SIMD builds gain in situ (the results
+    # are bitwise the same)
+    "thornton/yin G=0.6 isa scalar": f"pair_style thornton/yin\npair_coeff * * {E} {NU} {MU} {GAMMA}\n",
+    "thornton/yin G=0 isa scalar": f"pair_style thornton/yin\npair_coeff * * {E} {NU} {MU} 0.0\n",
     "granular jkr+mindlin": (f"pair_style granular\npair_coeff * * jkr {E} 0.0 {NU} {GAMMA} "
                              f"damping viscoelastic tangential mindlin NULL 0.0 {MU}\n"),
     "granular hertz/material+mindlin": (
@@ -215,6 +216,11 @@ def restart_to_data(restart, workdir):
     return path
 
 
+# environment of the cases that run another build of the law than the pair's own choice
+CASE_ENVIRONMENT = {"thornton/yin G=0.6 isa scalar": {"TYLMP_LAW_ISA": "scalar"},
+                    "thornton/yin G=0 isa scalar": {"TYLMP_LAW_ISA": "scalar"}}
+
+
 def run_deck(name, text, ranks, workdir, library=None, liggghts="liggghts", lmp="lmp"):
     """Run one deck (LIGGGHTS for the LIGGGHTS cases, `lmp` otherwise); returns its stdout."""
     path = os.path.join(workdir, "in.bench")
@@ -224,7 +230,7 @@ def run_deck(name, text, ranks, workdir, library=None, liggghts="liggghts", lmp=
     cmd = [exe, "-in", path, "-log", "none", "-nocite"]
     if ranks > 1:
         cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(ranks)] + cmd
-    env = dict(os.environ)
+    env = dict(os.environ, **CASE_ENVIRONMENT.get(name.split(" @")[0], {}))
     if library:
         env["TYLMP_LIBRARY"] = library
     proc = subprocess.run(cmd, cwd=workdir, capture_output=True, text=True, env=env)

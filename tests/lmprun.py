@@ -47,9 +47,10 @@ group two id 2
 
 
 def run_deck(text, workdir, name="in.test", np_ranks=1, variables=None, timeout=600,
-             program=("lmp", "-nocite")):
+             program=("lmp", "-nocite"), environment=None):
     """Write `text` to workdir/name, run it with `program` (the executable and its extra
-    flags; default the stock lmp); return (returncode, combined output)."""
+    flags; default the stock lmp) and the variables of `environment` added to the process's
+    environment; return (returncode, combined output)."""
     path = os.path.join(str(workdir), name)
     with open(path, "w") as fh:
         fh.write(text)
@@ -60,7 +61,8 @@ def run_deck(text, workdir, name="in.test", np_ranks=1, variables=None, timeout=
         cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(np_ranks)] + cmd
     proc = subprocess.run(cmd, cwd=str(workdir), capture_output=True, text=True,
                           errors="replace",    # LIGGGHTS prints stray bytes after some errors
-                          timeout=timeout, env=dict(os.environ, OMPI_MCA_btl_vader_single_copy_mechanism="none"))
+                          timeout=timeout, env=dict(os.environ, OMPI_MCA_btl_vader_single_copy_mechanism="none",
+                                                    **(environment or {})))
     return proc.returncode, proc.stdout + proc.stderr
 
 

@@ -2,20 +2,20 @@
 // (ContactBatch): geometry and velocities at the contact in; forces, the torque's ingredient,
 // the updated history and the per-contact tallies out. Everything the pair style does per
 // contact besides finding it and scattering its force: first touch (JKR snap-on), separation
-// at the break overlap with its energy, the law (contact_kernel.hpp's stages), viscous
-// damping, the servo's affine-stiffness tally (docs/theory.md §6.1) and the stored energy.
+// at the break overlap with its energy, the law (contact_law.hpp), viscous damping, the
+// servo's affine-stiffness tally (docs/theory.md §6.1) and the stored energy.
 //
-// Two builds of the same entry:
-//  * advance_batch<Adhesive, Damped>(b, n, k, p, Isa::scalar): lane after lane through the
-//    scalar stages of contact_kernel.hpp, in the order the pair runs them;
-//  * Isa::sse2 / avx2 / avx512: the same law over the lanes of the batch in SIMD registers
-//    (contact_batch.cpp; branch decisions as lane selects, the cube roots and the JKR Halley
-//    iteration lane-wide). Both compile into every build; best_isa() picks the widest the
-//    processor has, once, at run time, so one binary serves every x86-64 processor (or the
-//    scalar build, in a build configured with -DTYLMP_VECTOR_LAW=OFF).
-// The vector build does the scalar kernel's arithmetic operation for operation (no fused
-// multiply-add, the same cube root bit for bit: simd_cbrt), so the two agree to the last bit;
-// tests/core/test_contact_batch.cpp checks this on every ISA the machine has, and both against
+// Builds of the same entry, all instantiations of the law's one text (contact_law.hpp):
+//  * advance_batch<Adhesive, Damped>(b, n, k, p, Isa::scalar): lane after lane through
+//    law::scalar_step (contact_kernel.hpp);
+//  * Isa::sse2 / avx2 / avx512 (x86-64 with GCC or Clang): the law over the lanes of the batch
+//    in SIMD registers (contact_batch_loops.hpp, compiled per instruction set by
+//    contact_batch.cpp); best_isa() picks the widest the processor has, once, at run time, so
+//    one binary serves every x86-64 processor. Other compilers and architectures, and a build
+//    configured with -DTYLMP_VECTOR_LAW=OFF, have the scalar build alone.
+// Every build does the same arithmetic operation for operation (no fused multiply-add, the same
+// cube root bit for bit: simd_cbrt), so they agree to the last bit;
+// tests/core/test_contact_batch.cpp checks this on every ISA the machine has, and each against
 // the reference law (thornton_yin.hpp).
 #ifndef TYCORE_CONTACT_BATCH_HPP
 #define TYCORE_CONTACT_BATCH_HPP
@@ -145,6 +145,14 @@ inline void store_history(const ContactBatch& b, int lane, double* slot)
   std::memcpy(slot, &h, sizeof(h));
 }
 
+// The vector builds of the law exist on x86-64 with GCC or Clang (the instruction sets are
+// chosen per function by target attributes and at run time by __builtin_cpu_supports); other
+// compilers and architectures, and a build configured with -DTYLMP_VECTOR_LAW=OFF
+// (TYCORE_SCALAR_LAW), have the scalar build alone.
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(TYCORE_SCALAR_LAW)
+#define TYCORE_VECTOR_BUILDS 1
+#endif
+
 // instruction sets of the batch entry, narrowest first
 enum class Isa { scalar, sse2, avx2, avx512 };
 
@@ -158,9 +166,10 @@ inline const char* isa_name(Isa isa)
   }
 }
 
-// does this processor run `isa` (scalar and sse2: every x86-64)
+// does this build have `isa` and this processor run it (scalar: always; sse2: every x86-64)
 inline bool isa_supported(Isa isa)
 {
+#ifdef TYCORE_VECTOR_BUILDS
   __builtin_cpu_init();    // idempotent; needed where this runs before main (static init)
   switch (isa) {
     case Isa::avx512:
@@ -169,20 +178,20 @@ inline bool isa_supported(Isa isa)
     case Isa::avx2: return __builtin_cpu_supports("avx2");
     default: return true;
   }
+#else
+  return isa == Isa::scalar;
+#endif
 }
 
-// the widest vector build this processor runs, determined once; Isa::scalar in a build
-// configured with -DTYLMP_VECTOR_LAW=OFF (TYCORE_SCALAR_LAW), for comparison
+// the widest build this processor runs, determined once (Isa::scalar where the build has no
+// vector builds)
 inline Isa best_isa()
 {
-#ifdef TYCORE_SCALAR_LAW
-  return Isa::scalar;
-#else
   static const Isa best = isa_supported(Isa::avx512) ? Isa::avx512
                           : isa_supported(Isa::avx2) ? Isa::avx2
-                                                     : Isa::sse2;
+                          : isa_supported(Isa::sse2) ? Isa::sse2
+                                                     : Isa::scalar;
   return best;
-#endif
 }
 
 namespace detail {
@@ -308,55 +317,55 @@ template <bool Adhesive, bool Damped, bool Tally>
   }
 }
 
-// the scalar build of the law: the stages of contact_kernel.hpp lane after lane, in the
-// pair's order; returns the k_T the law used, or -1
+// lane i of the batch as the law's lanes (contact_law.hpp)
+[[gnu::always_inline]] inline law::History<double> lane_history(const ContactBatch& b, int i)
+{
+  law::History<double> h;
+  for (int d = 0; d < 3; ++d) h.T[d] = b.T[d][i], h.dir[d] = b.dir[d][i];
+  h.T_star = b.T_star[i], h.T_star2 = b.T_star2[i], h.P_prev = b.P_prev[i], h.mode = b.mode[i];
+  h.peeling = b.peeling[i], h.sliding = b.sliding[i], h.stored_energy = b.stored_energy[i];
+  h.radius = b.radius[i];
+  return h;
+}
+
+// the law's step back into lane i: its new history and outputs, or where the lane separated at
+// the break overlap this step (touch_or_break) a cleared history and zeros
+[[gnu::always_inline]] inline void store_lane(ContactBatch& b, int i, const law::History<double>& h,
+                                              const law::Outputs<double>& out, bool gone)
+{
+  for (int d = 0; d < 3; ++d) {
+    b.T[d][i] = gone ? 0.0 : h.T[d];
+    b.dir[d][i] = gone ? 0.0 : h.dir[d];
+  }
+  b.T_star[i] = gone ? 0.0 : h.T_star;
+  b.T_star2[i] = gone ? 0.0 : h.T_star2;
+  b.P_prev[i] = gone ? 0.0 : h.P_prev;
+  b.mode[i] = gone ? 0.0 : h.mode;
+  b.peeling[i] = gone ? 0.0 : h.peeling;
+  b.sliding[i] = gone ? 0.0 : h.sliding;
+  b.stored_energy[i] = gone ? 0.0 : h.stored_energy;
+  b.radius[i] = gone ? 0.0 : h.radius;
+  b.P[i] = gone ? 0.0 : out.P;
+  b.contact_radius[i] = gone ? 0.0 : out.a;
+  b.dissipation[i] = gone ? 0.0 : out.dissipation;
+}
+
+// the scalar build of the law: law::scalar_step lane after lane; returns the k_T the law used,
+// or -1
 template <bool Adhesive>
 inline double scalar_lane(ContactBatch& b, int i, const PairConstants& k, double dt)
 {
-  ContactHistory h = stored_history(b, i);
+  law::History<double> h = lane_history(b, i);
   const double n[3] = {b.n[0][i], b.n[1][i], b.n[2][i]};
-  const double twist = 0.5 * dt * b.spin_n[i];
   const double ds[3] = {-b.vt[0][i] * dt, -b.vt[1][i] * dt, -b.vt[2][i] * dt};
-  StepState st;
-  carry_history(n, twist, h, st);
-  normal_force_step<Adhesive>(k, b.R[i], b.Rinv[i], b.delta[i], h, st);
-  begin_tangential<Adhesive>(k, b.R[i], ds, h, st);
-  stiffness_of(k, st);
-  slip_decision(k, h, st);
-  theta_of(st);
-  double dissipation = 0.0;
-  finish_step(h, st, dissipation);
-  const bool gone = b.broken[i] != 0.0;
-  load_history(b, i, gone ? ContactHistory{} : h);
-  b.P[i] = gone ? 0.0 : st.P;
-  b.contact_radius[i] = gone ? 0.0 : st.contact_radius;
-  b.dissipation[i] = gone ? 0.0 : dissipation;
-  return (st.frictionless || st.peeled_step) ? -1.0 : st.stiffness;
+  const law::Outputs<double> out =
+      law::scalar_step<Adhesive>(k, b.R[i], b.Rinv[i], b.delta[i], n, 0.5 * dt * b.spin_n[i], ds, h);
+  store_lane(b, i, h, out, b.broken[i] != 0.0);
+  return out.stiffness;
 }
 
-#ifdef TYCORE_BENCH_PLUMBING
-// A benchmark build only (-DTYLMP_BENCH_PLUMBING=ON; docs/performance.md): the law replaced by
-// a Hertz normal force, the history read and written, everything around the law kept (first
-// touch and separation, damping, tallies, energies), to measure what the plumbing costs.
-// Its forces are not the Thornton-Yin law.
-template <bool Adhesive, bool Damped>
-inline void plumbing_only(ContactBatch& b, int n, const PairConstants& k, const BatchParameters& p)
-{
-  touch_or_break<Adhesive>(b, n, k);
-  for (int i = 0; i < n; ++i) {
-    const double delta = std::max(b.delta[i], 0.0);
-    const double a = std::sqrt(b.R[i] * delta);
-    b.contact_radius[i] = a;
-    b.P[i] = (4.0 / 3.0) * k.c.E_star * a * delta;
-    b.T[0][i] += 1e-30 * -b.vt[0][i] * p.dt;
-    b.dissipation[i] = 0.0;
-    if (p.tally) lane_outputs<Adhesive, Damped, true>(b, i, k.c, p, -1.0);
-    else lane_outputs<Adhesive, Damped, false>(b, i, k.c, p, -1.0);
-  }
-  if (p.energy) stored_energies(b, n, k);
-}
-#endif
 
+#ifdef TYCORE_VECTOR_BUILDS
 // the vector builds, contact_batch.cpp (declared with the instruction set they are built for)
 #define TYCORE_AVX512 "avx512f,avx512dq,avx512vl"
 template <bool Adhesive, bool Damped>    // the x86-64 baseline, SSE2
@@ -372,6 +381,8 @@ void cube_roots_sse2(const double*, double*, int);
 __attribute__((target("avx2"))) void cube_roots_avx2(const double*, double*, int);
 __attribute__((target(TYCORE_AVX512))) void cube_roots_avx512(const double*, double*, int);
 
+#endif
+
 }    // namespace detail
 
 // One step of contacts 0 .. n-1 of the batch (n <= batch_lanes), all of the material pair k:
@@ -383,15 +394,13 @@ template <bool Adhesive, bool Damped>
 inline void advance_batch(ContactBatch& b, int n, const PairConstants& k, const BatchParameters& p,
                           Isa isa = best_isa())
 {
-#ifdef TYCORE_BENCH_PLUMBING
-  (void) isa;
-  detail::plumbing_only<Adhesive, Damped>(b, n, k, p);
-#else
   switch (isa) {
+#ifdef TYCORE_VECTOR_BUILDS
     case Isa::avx512: detail::advance_batch_avx512<Adhesive, Damped>(b, n, k, p); break;
     case Isa::avx2: detail::advance_batch_avx2<Adhesive, Damped>(b, n, k, p); break;
     case Isa::sse2: detail::advance_batch_sse2<Adhesive, Damped>(b, n, k, p); break;
-    case Isa::scalar:
+#endif
+    default:    // Isa::scalar, and every isa in a build without the vector builds
       detail::touch_or_break<Adhesive>(b, n, k);
       for (int i = 0; i < n; ++i) {
         const double k_T = detail::scalar_lane<Adhesive>(b, i, k, p.dt);
@@ -401,7 +410,6 @@ inline void advance_batch(ContactBatch& b, int n, const PairConstants& k, const 
       if (p.energy) detail::stored_energies(b, n, k);
       break;
   }
-#endif
   for (int i = 0; i < n; ++i) b.slides[i] = b.sliding[i];
 }
 

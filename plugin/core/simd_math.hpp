@@ -1,6 +1,6 @@
-// Scalar functions written so that GCC vectorises loops that call them (no branches, no libm):
-// the cube root of jkr::fast_cbrt, operation for operation, for the batch law
-// (contact_batch.cpp). Vector libm (libmvec) has no cube root.
+// The lane operations of the contact law (contact_law.hpp) for the lane type double, written so
+// that GCC vectorises loops that call them (no branches, no libm): select, max, clamp, and the
+// cube root of jkr::fast_cbrt, operation for operation. Vector libm (libmvec) has no cube root.
 #ifndef TYCORE_SIMD_MATH_HPP
 #define TYCORE_SIMD_MATH_HPP
 
@@ -10,6 +10,10 @@
 #include <cstring>
 
 namespace tycore {
+
+// c ? a : b, the lane select of the law (contact_law.hpp) for V = double: inlined into a lane
+// loop of contact_batch.cpp it becomes a SIMD blend
+[[gnu::always_inline]] inline double lane_select(bool c, double a, double b) { return c ? a : b; }
 
 // std::max and std::clamp by value, with their results (NaN and signed zeros included): the
 // std versions return a reference to an argument, which GCC then loads through a pointer

@@ -31,6 +31,7 @@
 
 #include <cfloat>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 
 using namespace LAMMPS_NS;
@@ -165,35 +166,29 @@ void PairThorntonYin::allocate()
 
 void PairThorntonYin::settings(int narg, char **arg)
 {
-  // pair_style thornton/yin [isa auto|scalar|sse2|avx2|avx512]: the build of the batch law
-  // (tycore::advance_batch); auto = the widest this processor runs (tycore::best_isa). All
-  // builds give the same forces to the bit.
+  // pair_style thornton/yin: no arguments
+  if (narg > 0)
+    error->all(FLERR, "pair_style thornton/yin takes no arguments, got '{}'; material "
+               "parameters go in pair_coeff I J E nu mu Gamma [damping beta_n beta_t]", arg[0]);
+  // the build of the batch law (tycore::advance_batch): the widest this processor runs
+  // (tycore::best_isa). Tests and benchmarks may name another in the environment variable
+  // TYLMP_LAW_ISA (scalar, sse2, avx2, avx512); all builds give the same forces to the bit.
   isa = tycore::best_isa();
-  for (int iarg = 0; iarg < narg; iarg += 2) {
-    const std::string keyword = arg[iarg];
-    if (keyword != "isa")
-      error->all(FLERR, "pair_style thornton/yin: unknown keyword '{}' (it takes 'isa "
-                 "auto|scalar|sse2|avx2|avx512'); material parameters go in pair_coeff I J E "
-                 "nu mu Gamma [damping beta_n beta_t]", keyword);
-    if (iarg + 2 > narg)
-      error->all(FLERR, "pair_style thornton/yin: keyword '{}' needs a value", keyword);
-    const std::string value = arg[iarg + 1];
-    const tycore::Isa isas[] = {tycore::Isa::scalar, tycore::Isa::sse2, tycore::Isa::avx2,
-                                tycore::Isa::avx512};
-    bool known = value == "auto";
-    for (const tycore::Isa choice : isas)
-      if (value == tycore::isa_name(choice)) {
-        known = true;
-        if (!tycore::isa_supported(choice))
-          error->all(FLERR, "pair_style thornton/yin: isa {}: this processor does not run "
-                     "{} instructions; use 'isa auto' (here: {}) or a narrower build",
-                     value, value, tycore::isa_name(tycore::best_isa()));
-        isa = choice;
-      }
-    if (!known)
-      error->all(FLERR, "pair_style thornton/yin: isa must be auto, scalar, sse2, avx2 or "
-                 "avx512, got '{}'", value);
-  }
+  const char *forced = std::getenv("TYLMP_LAW_ISA");
+  if (!forced) return;
+  const std::string value = forced;
+  for (const tycore::Isa choice : {tycore::Isa::scalar, tycore::Isa::sse2, tycore::Isa::avx2,
+                                   tycore::Isa::avx512})
+    if (value == tycore::isa_name(choice)) {
+      if (!tycore::isa_supported(choice))
+        error->all(FLERR, "pair thornton/yin: TYLMP_LAW_ISA={}: this build or processor does "
+                   "not run {} instructions (here the widest is {}); unset it or name a "
+                   "narrower build", value, value, tycore::isa_name(tycore::best_isa()));
+      isa = choice;
+      return;
+    }
+  error->all(FLERR, "pair thornton/yin: the environment variable TYLMP_LAW_ISA (a setting for "
+             "tests and benchmarks) must be scalar, sse2, avx2 or avx512, got '{}'", value);
 }
 
 /* ----------------------------------------------------------------------
@@ -349,17 +344,6 @@ void PairThorntonYin::init_style()
     }
   check_break_against_skin();
   check_timestep_against_rayleigh();
-#if defined(TYLMP_GENERIC_PATHS) || defined(TYCORE_BENCH_PLUMBING)
-  if (comm->me == 0)
-    error->warning(FLERR, "pair thornton/yin: this is a benchmark build of tylmp ({}): {}",
-#ifdef TYCORE_BENCH_PLUMBING
-                   "-DTYLMP_BENCH_PLUMBING=ON", "the contact law is replaced by a Hertz "
-                   "normal force, the results are not the Thornton-Yin law");
-#else
-                   "-DTYLMP_GENERIC_PATHS=ON", "the adhesive, damped kernel runs for every "
-                   "scene (same results, slower)");
-#endif
-#endif
 }
 
 /* ----------------------------------------------------------------------
@@ -641,9 +625,6 @@ void PairThorntonYin::compute(int eflag, int vflag)
       if (surface_energy[i][j] > 0.0) adhesive = 1;
       if (damp_n[i][j] > 0.0 || damp_t[i][j] > 0.0) damped = 1;
     }
-#ifdef TYLMP_GENERIC_PATHS
-  adhesive = damped = 1;    // a benchmark build: what the specialisations gain (CMakeLists.txt)
-#endif
   if (adhesive) {
     if (damped) eval<true, true>(eflag, vflag);
     else eval<true, false>(eflag, vflag);

@@ -84,7 +84,7 @@ class PairThorntonYin : public tylmp_compat::PairWithHistory, public CellTallySo
 
   double **damp_n, **damp_t;                     // damping ratios beta_n, beta_t; 0 = off
   int adhesive, damped;                          // chosen once per compute()
-  tycore::Isa isa;                               // build of the batch law (pair_style isa)
+  tycore::Isa isa;                               // build of the batch law (settings)
   double *maxrad_type;                           // largest radius per type (init_style)
 
   class FixDummy *fix_dummy;
