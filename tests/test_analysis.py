@@ -688,11 +688,7 @@ def test_tyanalysis_command_uses_its_own_interpreter(files, tmp_path):
 def drawn(monkeypatch):
     """Run the CLI in this process and keep, for every figure it saves, its axes' legend
     entries (label -> x, y data), titles and whether every axis label lies inside the figure."""
-    from tyanalysis import cli, figures
-    kept = []
-    save = figures.save_figure
-
-    def keep(fig, out, dpi=120):
+    def keep(fig):
         fig.tight_layout()
         fig.canvas.draw()
         renderer = fig.canvas.get_renderer()
@@ -708,7 +704,20 @@ def drawn(monkeypatch):
             legend = ax.get_legend()
             axes.append({"title": ax.get_title(), "lines": lines, "labels_inside": labels_inside,
                          "legend": [t.get_text() for t in legend.get_texts()] if legend else []})
-        kept.append(axes)
+        return axes
+
+    return capture_figures(monkeypatch, keep)
+
+
+def capture_figures(monkeypatch, describe):
+    """A function running the CLI in this process that returns describe(fig) of the last figure
+    it saved (describe may lay the figure out)."""
+    from tyanalysis import cli, figures
+    kept = []
+    save = figures.save_figure
+
+    def keep(fig, out, dpi=120):
+        kept.append(describe(fig))
         return save(fig, out, dpi)
 
     monkeypatch.setattr(figures, "save_figure", keep)
@@ -857,11 +866,7 @@ def test_fidelity_table_shifts_from_the_base(tmp_path, capsys):
 def figure(monkeypatch):
     """Run the CLI in this process and keep the last figure it saves (its texts, and for each
     axes its title, y label and limits, line styles and legend)."""
-    from tyanalysis import cli, figures
-    kept = []
-    save = figures.save_figure
-
-    def keep(fig, out, dpi=120):
+    def keep(fig):
         axes = []
         for ax in fig.axes:
             legend = ax.get_legend()
@@ -869,15 +874,9 @@ def figure(monkeypatch):
                          "xlabel": ax.get_xlabel(), "ylim": ax.get_ylim(),
                          "lines": {ln.get_label(): ln for ln in ax.get_lines()},
                          "legend": [t.get_text() for t in legend.get_texts()] if legend else []})
-        kept.append({"texts": [t.get_text() for t in fig.texts], "axes": axes})
-        return save(fig, out, dpi)
+        return {"texts": [t.get_text() for t in fig.texts], "axes": axes}
 
-    monkeypatch.setattr(figures, "save_figure", keep)
-
-    def run(*args):
-        assert cli.main([str(a) for a in args]) == 0
-        return kept[-1]
-    return run
+    return capture_figures(monkeypatch, keep)
 
 
 def _ax(fig, title_part):
@@ -979,3 +978,29 @@ def test_q_is_labelled_by_its_definition(files, figure, tmp_path):
         fig = figure(command, _cyclic_file(tmp_path), "--out", tmp_path / "f.png")
         for ax in fig["axes"]:
             assert "q = σ1 − σ3" not in ax["ylabel"], (command, ax["ylabel"])
+
+
+def test_cycle_work_is_numbered_as_the_cyclic_deck_numbers_cycles(tmp_path):
+    """inputs/cyclic.in: cycle k runs from -A (the first from 0) to +A and back to -A. A
+    synthetic record of 3 cycles whose deviator is +s_k while compressing and -s_k while
+    extending in cycle k (p and eps_v constant): the loop of cycle k encloses 2A x 2 s_k, its
+    work is (2/3)(4 A s_k); cycles 2 and 3 are complete, cycle 1 is not."""
+    from tyanalysis import cyclic as cyc
+    A, s_k, m = 0.01, {1: 10e3, 2: 20e3, 3: 40e3}, 400
+    legs = [(0.0, A, 1)] + [(A, -A, 1)] + [(-A, A, 2), (A, -A, 2), (-A, A, 3), (A, -A, 3)]
+    d13, s, rate = [], [], []
+    for a, b, k in legs:
+        x = np.linspace(a, b, m + 1)[1:] if d13 else np.linspace(a, b, m + 1)
+        d13 += list(x)
+        s += [np.sign(b - a) * s_k[k]] * len(x)
+        rate += [np.sign(b - a)] * len(x)
+    d13, s = np.array(d13), np.array(s)
+    sig = np.stack([P0 + 2 * s / 3, P0 - s / 3, P0 - s / 3], axis=1)
+    eps = np.stack([d13 * 2 / 3, -d13 / 3, -d13 / 3], axis=1)
+    rec = dict(record(sig, eps), rate1=np.array(rate))
+    path = tmp_path / "cyclic.csv"
+    io.write_servo_csv(path, rec)
+    works = cyc.cycle_work(io.read_servo_csv(path))
+    assert sorted(works) == [2, 3]
+    for k in (2, 3):      # the switch of sign within one row costs s_k x one row's strain
+        assert works[k] == pytest.approx(2 / 3 * 4 * A * s_k[k], rel=2 / m)

@@ -433,3 +433,20 @@ def test_cli_users_distribution(tmp_path):
                         "uniform:1", "--out", str(out)],
                        capture_output=True, text=True, env=env, timeout=120)
     assert r.returncode == 2 and "uniform takes uniform:D_MIN:D_MAX" in r.stderr
+
+
+def test_find_overlaps_does_what_its_description_says(tmp_path):
+    """find_overlaps returns index arrays i < j of the pairs closer than r_i + r_j across the
+    periodic faces, touching pairs excluded, and takes the box as read_data returns it."""
+    d = np.array([1e-3, 1e-3, 1e-3, 0.5e-3])
+    pos = np.array([[0.1e-3, 1e-3, 1e-3], [4.95e-3, 1e-3, 1e-3],      # 0.15 mm apart across x
+                    [2.5e-3, 2.5e-3, 2.5e-3], [2.5e-3, 2.5e-3 + 0.75e-3, 2.5e-3]])  # touching
+    i, j = sp.find_overlaps(pos, d, 5e-3)
+    assert (i.tolist(), j.tolist()) == ([0], [1])
+    path = tmp_path / "four.data"
+    sp.write_data(path, 5e-3, d, pos)
+    box, diam, _, xyz = sp.read_data(path)
+    i, j = sp.find_overlaps(xyz, diam, box)
+    assert (i.tolist(), j.tolist()) == ([0], [1])
+    with pytest.raises(ValueError, match="the cell must be a cube"):
+        sp.find_overlaps(xyz, diam, [5e-3, 5e-3, 6e-3])

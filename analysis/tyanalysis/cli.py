@@ -87,8 +87,7 @@ def cmd_cyclic(a):
     labels = _labels(a.files, a.labels)
     for t, lab in zip(tables, labels):
         _kv(lab, [("reversals", len(cyclic.reversals(t)))]
-            + [(f"work_cycle{k + 1}_J_per_m3", float(w))
-               for k, w in enumerate(cyclic.cycle_work(t))])
+            + [(f"work_cycle{k}_J_per_m3", float(w)) for k, w in cyclic.cycle_work(t).items()])
     _wrote(figures.cyclic(tables, labels, a.out, about=_about(a)))
 
 

@@ -402,7 +402,14 @@ def _pairs_within(pos, L, cutoff):
 
 
 def find_overlaps(positions, diameters, L, gap=0.0):
-    """Pairs (i, j) whose minimum-image distance is < (r_i + r_j)(1 + gap)."""
+    """Two index arrays (i, j), i < j, of the pairs whose minimum-image centre distance in the
+    periodic cube of side L is below (r_i + r_j)(1 + gap): overlapping pairs at gap = 0 (touching
+    pairs, at exactly r_i + r_j, are not listed). L is the side, or the three sides of a cube
+    as read_data returns them."""
+    sides = np.atleast_1d(np.asarray(L, dtype=float))
+    if not np.all(sides == sides[0]):
+        raise ValueError(f"find_overlaps: the cell must be a cube, got sides {sides.tolist()}")
+    L = float(sides[0])
     pos = np.asarray(positions, dtype=float)
     d = np.asarray(diameters, dtype=float)
     i, j, _, dist = _pairs_within(np.mod(pos, L), L, float(d.max()) * (1.0 + gap))
