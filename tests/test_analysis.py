@@ -951,10 +951,10 @@ def test_clockwise_and_anticlockwise_paths_differ_in_black_and_white(files, figu
 
 
 def test_eps_v_axis_is_not_autoscaled_into_round_off(figure, tmp_path):
-    """A record whose εv stays at round-off level (1e-17) is drawn on a span of at least
-    1e-3 %, not zoomed into its noise."""
+    """A record whose εv stays at -2 % but for round-off (1e-15 of it) is drawn on a span of
+    at least 1e-3 %, not zoomed into its noise."""
     rec = axisym_record(kmax=0.4, kcv=0.25)
-    rec["eps_v"] = 1e-17 * np.sin(np.arange(len(rec["eps_v"])))
+    rec["eps_v"] = -0.02 * (1 + 1e-15 * np.sin(np.arange(len(rec["eps_v"]))))
     path = _cyclic_file(tmp_path, rec)
     for command, title in (("axisym", "Volumetric"), ("cyclic", "Volumetric")):
         lo, hi = _ax(figure(command, path, "--out", tmp_path / "f.png"), title)["ylim"]
