@@ -951,11 +951,15 @@ def test_clockwise_and_anticlockwise_paths_differ_in_black_and_white(files, figu
 
 
 def test_eps_v_axis_is_not_autoscaled_into_round_off(figure, tmp_path):
-    """A record whose εv stays at -2 % but for round-off (1e-15 of it) is drawn on a span of
-    at least 1e-3 %, not zoomed into its noise."""
-    rec = axisym_record(kmax=0.4, kcv=0.25)
-    rec["eps_v"] = -0.02 * (1 + 1e-15 * np.sin(np.arange(len(rec["eps_v"]))))
-    path = _cyclic_file(tmp_path, rec)
+    """A record whose εv = ε1 + ε2 + ε3 stays at -2 % but for round-off (the three strains
+    summed) is drawn on a span of at least 1e-3 %, not zoomed into its noise."""
+    x = np.linspace(0.0, 0.4, 401)
+    k = np.minimum(x / 0.05, 1.0) * 0.3
+    sig = np.stack([P0 * (1 + 2 * k), P0 * (1 - k), P0 * (1 - k)], axis=1)
+    eps = np.stack([2 * x / 3 - 0.02 / 3, -x / 3 - 0.02 / 3, -x / 3 - 0.02 / 3], axis=1)
+    ev = eps.sum(axis=1)
+    assert 0 < np.ptp(ev) < 1e-15            # round-off only
+    path = _cyclic_file(tmp_path, record(sig, eps))
     for command, title in (("axisym", "Volumetric"), ("cyclic", "Volumetric")):
         lo, hi = _ax(figure(command, path, "--out", tmp_path / "f.png"), title)["ylim"]
         assert hi - lo >= 1e-3
