@@ -8,5 +8,5 @@ repo="$(cd "$(dirname "$0")/.." && pwd)"
 bash "$repo/scripts/setup.sh"
 cd "$repo"
 lmp -in inputs/axisym.in -log axisym.log "$@"
-/usr/bin/python3 -m tyanalysis axisym axisym.csv --out axisym.png
+/usr/bin/python3 -m tyanalysis axisym axisym.csv --paper --out axisym.png
 echo "main: wrote $repo/axisym.csv and $repo/axisym.png"

@@ -688,11 +688,7 @@ def test_tyanalysis_command_uses_its_own_interpreter(files, tmp_path):
 def drawn(monkeypatch):
     """Run the CLI in this process and keep, for every figure it saves, its axes' legend
     entries (label -> x, y data), titles and whether every axis label lies inside the figure."""
-    from tyanalysis import cli, figures
-    kept = []
-    save = figures.save_figure
-
-    def keep(fig, out, dpi=120):
+    def keep(fig):
         fig.tight_layout()
         fig.canvas.draw()
         renderer = fig.canvas.get_renderer()
@@ -708,7 +704,20 @@ def drawn(monkeypatch):
             legend = ax.get_legend()
             axes.append({"title": ax.get_title(), "lines": lines, "labels_inside": labels_inside,
                          "legend": [t.get_text() for t in legend.get_texts()] if legend else []})
-        kept.append(axes)
+        return axes
+
+    return capture_figures(monkeypatch, keep)
+
+
+def capture_figures(monkeypatch, describe):
+    """A function running the CLI in this process that returns describe(fig) of the last figure
+    it saved (describe may lay the figure out)."""
+    from tyanalysis import cli, figures
+    kept = []
+    save = figures.save_figure
+
+    def keep(fig, out, dpi=120):
+        kept.append(describe(fig))
         return save(fig, out, dpi)
 
     monkeypatch.setattr(figures, "save_figure", keep)
@@ -730,7 +739,8 @@ def _paper_line(ax, text):
 
 
 def test_axisym_figure_carries_the_papers_void_ratios(files, drawn, tmp_path):
-    fig = drawn("axisym", files["dense.csv"], files["loose.csv"], "--out", tmp_path / "a.png")
+    fig = drawn("axisym", files["dense.csv"], files["loose.csv"], "--paper", "--out",
+                tmp_path / "a.png")
     e = _axes(fig, "Void ratio (Fig. 2)")
     # §3: 0.598 dense, 0.606 loose at 30 %; §2: start e = 1/0.660 - 1, 1/0.618 - 1
     for text, x, y in (("dense at 30 %", 30.0, 0.598), ("loose at 30 %", 30.0, 0.606),
@@ -744,7 +754,7 @@ def test_axisym_figure_carries_the_papers_void_ratios(files, drawn, tmp_path):
 
 def test_radial_figure_labels_by_b_in_order_and_explains_the_surfaces(files, drawn, tmp_path):
     fig = drawn("radial", files["b1.0.csv"], files["b0.0.csv"], files["b0.5.csv"],
-                "--out", tmp_path / "r.png")
+                "--paper", "--out", tmp_path / "r.png")
     # the records' own b, in increasing order, whatever the order of the files
     assert _axes(fig, "Mobilised")["legend"] == ["b = 0", "b = 0.5", "b = 1"]
     pi = _axes(fig, "Fig. 4")
@@ -766,7 +776,8 @@ def test_radial_figure_labels_by_b_in_order_and_explains_the_surfaces(files, dra
 
 
 def test_pi_plane_figure_carries_the_papers_prestrain_and_rotation(files, drawn, tmp_path):
-    fig = drawn("pi-plane", files["ps.csv"], "--labels", "ps", "--out", tmp_path / "p.png")
+    fig = drawn("pi-plane", files["ps.csv"], "--labels", "ps", "--paper", "--out",
+                tmp_path / "p.png")
     stress = _axes(fig, "stress path")
     xs, ys = _paper_line(stress, "51.4 kPa")
     # Pi radius of q = 51.4 kPa in axisymmetric compression: sqrt(2/3) q, on axis 1
@@ -847,3 +858,153 @@ def test_fidelity_table_shifts_from_the_base(tmp_path, capsys):
         assert message in capsys.readouterr().err
     cmd = reproduce.command("seed2_axisym_loose", "paper", "inputs", prog)
     assert cmd[cmd.index("seed") + 1] == "2" and cmd[cmd.index("specimen") + 1] == "loose"
+
+
+# ---- figures for a user's runs (issue 31 item 5) ------------------------------------------------
+
+@pytest.fixture
+def figure(monkeypatch):
+    """Run the CLI in this process and keep the last figure it saves (its texts, and for each
+    axes its title, y label and limits, line styles and legend)."""
+    def keep(fig):
+        axes = []
+        for ax in fig.axes:
+            legend = ax.get_legend()
+            axes.append({"title": ax.get_title(), "ylabel": ax.get_ylabel(),
+                         "xlabel": ax.get_xlabel(), "ylim": ax.get_ylim(),
+                         "lines": {ln.get_label(): ln for ln in ax.get_lines()},
+                         "legend": [t.get_text() for t in legend.get_texts()] if legend else []})
+        return {"texts": [t.get_text() for t in fig.texts], "axes": axes}
+
+    return capture_figures(monkeypatch, keep)
+
+
+def _ax(fig, title_part):
+    (ax,) = [a for a in fig["axes"] if title_part in a["title"]]
+    return ax
+
+
+@pytest.mark.parametrize("command,names", [
+    ("axisym", ["dense.csv", "loose.csv"]), ("radial", ["b0.0.csv", "b0.5.csv", "b1.0.csv"]),
+    ("pi-plane", ["ps.csv"]), ("friction", ["sweep_mu0.1.csv", "sweep_mu0.3.csv"])])
+def test_paper_values_are_drawn_only_with_paper(files, figure, tmp_path, command, names):
+    """A user's records get no overlay of the paper's numbers unless --paper asks for it."""
+    paths = [files[n] for n in names]
+    for flag, expected in (([], False), (["--paper"], True)):
+        fig = figure(command, *paths, *flag, "--out", tmp_path / "f.png")
+        drawn = [k for a in fig["axes"] for k in a["lines"] if k.startswith("paper")] + \
+            [t for a in fig["axes"] for t in a["legend"] if t.startswith("paper")]
+        if command == "friction":      # the paper gives no numbers for Fig. 3, only a note
+            drawn = [t for t in fig["texts"] if "paper" in t]
+            drawn += [1] if expected and not drawn else []
+        assert bool(drawn) == expected, (command, flag, drawn)
+
+
+def test_pq_plot_draws_the_critical_state_line(files, figure, tmp_path):
+    """q = √(3J2) against p, and the critical-state line q = M p with M the mean q/p of the last
+    10 % of the rows: 3 kcv for the synthetic axisymmetric records (q = 3pk)."""
+    fig = figure("pq", files["dense.csv"], files["sweep_mu0.5.csv"], "--out", tmp_path / "pq.png")
+    ax = _ax(fig, "p–q")
+    (line,) = [ln for k, ln in ax["lines"].items() if k.startswith("critical state")]
+    x, y = np.asarray(line.get_xdata(), float), np.asarray(line.get_ydata(), float)
+    M = np.mean([3 * 0.25, 3 * 0.3])        # kcv of the two records
+    assert y[-1] / x[-1] == pytest.approx(M, rel=1e-9) and y[0] == 0
+    assert ax["ylabel"].startswith("q = √(3J2)")
+    so = run_cli("pq", files["dense.csv"], "--out", tmp_path / "pq2.png")
+    assert kv(so, "dense")["M_critical_state"] == pytest.approx(0.75, rel=1e-6)
+
+
+def _cyclic_file(tmp_path, rec=None):
+    """A synthetic axisymmetric record with the rate1 column of a cyclic record."""
+    rec = dict(rec or axisym_record(kmax=0.4, kcv=0.25))
+    rec["rate1"] = np.full(len(rec["p"]), 1.0)
+    path = tmp_path / "cyc.csv"
+    io.write_servo_csv(path, rec)
+    return path
+
+
+def test_figures_state_n_rate_and_specimen(files, figure, tmp_path):
+    """Under every figure: the number of spheres and the specimen as given, and the records'
+    deviatoric strain rate ε̇_q: 2/3 of d(ε1 − ε3)/dt = (2/3)(0.001/1e-3 s) in the synthetic
+    axisymmetric record."""
+    paths = dict(files, cyclic=_cyclic_file(tmp_path))
+    for command in ("axisym", "cyclic", "pq", "radial", "pi-plane"):
+        name = {"radial": "b0.5.csv", "pi-plane": "cdst.csv", "cyclic": "cyclic"}.get(
+            command, "dense.csv")
+        fig = figure(command, paths[name], "--n", 500, "--specimen", "dense",
+                     "--out", tmp_path / "f.png")
+        (text,) = fig["texts"]
+        assert "N = 500 spheres" in text and "specimen dense" in text, text
+    fig = figure("axisym", files["dense.csv"], "--n", 500, "--out", tmp_path / "f.png")
+    rate = float(re.search(r"ε̇_q = (\S+) 1/s", fig["texts"][0]).group(1))
+    assert rate == pytest.approx(2 / 3, rel=0.02)
+    assert "specimen not given" in fig["texts"][0]
+
+
+def test_clockwise_and_anticlockwise_paths_differ_in_black_and_white(files, figure, tmp_path):
+    """Two records on one figure differ by line style, not only by colour."""
+    fig = figure("pi-plane", files["ps.csv"], files["cdst.csv"], "--labels", "cw", "ccw",
+                 "--out", tmp_path / "p.png")
+    for panel in ("strain path", "stress path"):
+        lines = _ax(fig, panel)["lines"]
+        assert lines["cw"].get_linestyle() != lines["ccw"].get_linestyle()
+
+
+def test_eps_v_axis_is_not_autoscaled_into_round_off(figure, tmp_path):
+    """A record whose εv = ε1 + ε2 + ε3 stays at -2 % but for round-off (the three strains
+    summed) is drawn on a span of at least 1e-3 %, not zoomed into its noise."""
+    x = np.linspace(0.0, 0.4, 401)
+    k = np.minimum(x / 0.05, 1.0) * 0.3
+    sig = np.stack([P0 * (1 + 2 * k), P0 * (1 - k), P0 * (1 - k)], axis=1)
+    eps = np.stack([2 * x / 3 - 0.02 / 3, -x / 3 - 0.02 / 3, -x / 3 - 0.02 / 3], axis=1)
+    ev = eps.sum(axis=1)
+    assert 0 < np.ptp(ev) < 1e-15            # round-off only
+    path = _cyclic_file(tmp_path, record(sig, eps))
+    for command, title in (("axisym", "Volumetric"), ("cyclic", "Volumetric")):
+        lo, hi = _ax(figure(command, path, "--out", tmp_path / "f.png"), title)["ylim"]
+        assert hi - lo >= 1e-3
+
+
+def test_no_duplicate_legend_entries(files, figure, tmp_path):
+    """Two plane-strain records with surfaces through one strength (Figs 8-9): each label once
+    in every legend."""
+    fig = figure("pi-plane", files["ps.csv"], files["cdst.csv"], "--labels", "cw", "ccw",
+                 "--sinphi-tc", 0.45, "--out", tmp_path / "p.png")
+    for ax in fig["axes"]:
+        assert len(ax["legend"]) == len(set(ax["legend"])), ax["legend"]
+    assert any(t.startswith("Lade–Duncan") for t in _ax(fig, "stress path")["legend"])
+
+
+def test_q_is_labelled_by_its_definition(files, figure, tmp_path):
+    """q is √(3J2) in the record (docs/fix_cell_servo.md, output 11): no figure calls the signed
+    σ1 − σ3 'q'."""
+    for command in ("axisym", "cyclic"):
+        fig = figure(command, _cyclic_file(tmp_path), "--out", tmp_path / "f.png")
+        for ax in fig["axes"]:
+            assert "q = σ1 − σ3" not in ax["ylabel"], (command, ax["ylabel"])
+
+
+def test_cycle_work_is_numbered_as_the_cyclic_deck_numbers_cycles(tmp_path):
+    """inputs/cyclic.in: cycle k runs from -A (the first from 0) to +A and back to -A. A
+    synthetic record of 3 cycles whose deviator is +s_k while compressing and -s_k while
+    extending in cycle k (p and eps_v constant): the loop of cycle k encloses 2A x 2 s_k, its
+    work is (2/3)(4 A s_k); cycles 2 and 3 are complete, cycle 1 is not."""
+    from tyanalysis import cyclic as cyc
+    A, s_k, m = 0.01, {1: 10e3, 2: 20e3, 3: 40e3}, 400
+    legs = [(0.0, A, 1)] + [(A, -A, 1)] + [(-A, A, 2), (A, -A, 2), (-A, A, 3), (A, -A, 3)]
+    d13, s, rate = [], [], []
+    for a, b, k in legs:
+        x = np.linspace(a, b, m + 1)[1:] if d13 else np.linspace(a, b, m + 1)
+        d13 += list(x)
+        s += [np.sign(b - a) * s_k[k]] * len(x)
+        rate += [np.sign(b - a)] * len(x)
+    d13, s = np.array(d13), np.array(s)
+    sig = np.stack([P0 + 2 * s / 3, P0 - s / 3, P0 - s / 3], axis=1)
+    eps = np.stack([d13 * 2 / 3, -d13 / 3, -d13 / 3], axis=1)
+    rec = dict(record(sig, eps), rate1=np.array(rate))
+    path = tmp_path / "cyclic.csv"
+    io.write_servo_csv(path, rec)
+    works = cyc.cycle_work(io.read_servo_csv(path))
+    assert sorted(works) == [2, 3]
+    for k in (2, 3):      # the switch of sign within one row costs s_k x one row's strain
+        assert works[k] == pytest.approx(2 / 3 * 4 * A * s_k[k], rel=2 / m)

@@ -215,7 +215,10 @@ def test_cyclic_figure(dense_strain, tmp_path):
     proc = subprocess.run([PY, "-m", "tyanalysis", "cyclic", str(work / "cyclic.csv"),
                            "--out", str(out)], capture_output=True, text=True, env=_env())
     assert proc.returncode == 0, proc.stdout + proc.stderr
-    assert "reversals=3" in proc.stdout and "work_cycle1_J_per_m3=" in proc.stdout
+    # 2 cycles (run_cyclic), the first from 0: cycle 2 is the one complete loop (from -A to
+    # -A), numbered as inputs/cyclic.in numbers it
+    assert "reversals=3" in proc.stdout and "work_cycle2_J_per_m3=" in proc.stdout
+    assert "work_cycle1_" not in proc.stdout and "work_cycle3_" not in proc.stdout
     assert out.is_file() and out.stat().st_size > 10_000
 
 

@@ -20,6 +20,7 @@ once per session (both at once, one process each) and copied into every director
 Uses the build of TYLMP_BUILD_DIR (default build/) through PYTHONPATH as set by conftest.py,
 and TYLMP_LIBRARY if set (tylmp.library_path). About 3-4 minutes on a quiet 2-core machine.
 """
+import math
 import os
 import re
 import shutil
@@ -490,8 +491,10 @@ def _complete(path):
         ("friction", "scale", "papers", "quick, paper"),
         ("cdst", "rotation", "clockwise", "cw, ccw"),
         ("plane_strain", "plane", "strain", "total, deviatoric"),
-        ("axisym", "distribution", "lognormal", "maxent, geometric, mean-only, volume-mean"),
         ("radial", "prep_protocol", "fast", "damped, two_stage")]] + [
+    # a size distribution that tylmp.specimen cannot read (docs/specimen.md)
+    ("axisym", "distribution", "lognormal", "size distribution 'lognormal': lognormal takes "
+                                            "lognormal:D50:SIGMA"),
     # the numeric options (tylmp.decks.NUMBERS)
     ("axisym", "seed", "-1", "must be at least 0; seed is the specimen generator's seed"),
     ("axisym", "seed", "2.5", "not an integer; seed is the specimen generator's seed"),
@@ -787,8 +790,8 @@ def test_shear_gamma_reaches_the_pair(tmp_path_factory, specimens, deck, variabl
     work = _workdir(tmp_path_factory, f"gamma_{deck}", specimens)
     rc, out = _run_echo(f"inputs/{deck}.in", work, dict(variables, gamma=0.25))
     _check(rc, out, f"{deck}.in -var gamma 0.25")
-    assert "pair_coeff      * * 70e9 0.3 0.3 0.25\n" in out
-    assert "pair_coeff      * * 70e9 0.3 0.3 0.6\n" not in out
+    assert "pair_coeff      * * 70e9 0.3 0.3 0.25 damping 0 0\n" in out
+    assert "pair_coeff      * * 70e9 0.3 0.3 0.6 damping 0 0\n" not in out
 
 
 def test_prep_gamma_reaches_the_preparation(tmp_path):
@@ -797,7 +800,7 @@ def test_prep_gamma_reaches_the_preparation(tmp_path):
     os.symlink(os.path.join(REPO, "inputs"), tmp_path / "inputs")
     rc, out = _run_echo("inputs/axisym.in", tmp_path, dict(SHORT, **QUICK_PREP, prep_gamma=0.3))
     _check(rc, out, "axisym.in -var prep_gamma 0.3")
-    assert "pair_coeff      * * 70e9 0.3 0 0.3\n" in out        # mu_prep = 0
+    assert "pair_coeff      * * 70e9 0.3 0 0.3 damping 0 0\n" in out        # mu_prep = 0
     (path,) = (tmp_path / "tylmp_specimens").glob("dense_quick_*.restart")
     assert _record(path)["settings"]["prep_gamma"] == "0.3"
 
@@ -852,3 +855,114 @@ def test_two_stage_preparation(tmp_path):
     assert data["step"][-1] > stage1
     assert abs(data["p"][-1] - P0) < 5e-3 * P0
     assert data["unbalanced"][-1] < 0.05
+
+
+# ---------------------------------------------------------------------------------------------
+# a user's material and size distribution (issue 31 item 1, docs/tutorial.md)
+
+STEEL = ("variable E index 200e9\nvariable nu index 0.29\nvariable rho index 7800e12\n"
+         "variable mu index 0.4\nvariable gamma index 0\nvariable damping index 0.05\n")
+
+
+def rayleigh_step(d_min, E, nu, rho, fraction=0.2):
+    """fraction x the Rayleigh time of a sphere of diameter d_min (docs/theory.md §4.1)."""
+    G = E / (2 * (1 + nu))
+    return fraction * math.pi * d_min / 2 * math.sqrt(rho / G) / (0.1631 * nu + 0.8766)
+
+
+def _timesteps(out):
+    return [float(v) for v in re.findall(r"^timestep (\S+) s: ", out, re.M)]
+
+
+def test_material_file_reaches_the_pairs_the_data_and_the_timestep(tmp_path):
+    """-var material FILE and a uniform size distribution: the preparation's and the shear's
+    pair_coeff take E, nu, damping (dense preparation: mu = 0, Gamma = 0; shear: the file's mu
+    and Gamma), the data file the density, and the timestep is 0.2 of the Rayleigh time of the
+    smallest sphere, the midpoint quantile D_MIN + (D_MAX - D_MIN)/(2n) of n spheres."""
+    from tylmp import specimen
+    (tmp_path / "steel.in").write_text(STEEL)
+    n = 120
+    os.symlink(os.path.join(REPO, "inputs"), tmp_path / "inputs")
+    rc, out = _run_echo("inputs/axisym.in", tmp_path, dict(
+        SHORT, **QUICK_PREP, material="steel.in", distribution="uniform:0.1e-3:0.2e-3",
+        nspheres=n))
+    _check(rc, out, "axisym.in -var material steel.in")
+    assert "pair_coeff      * * 200e9 0.29 0 0 damping 0.05 0.05\n" in out
+    assert "pair_coeff      * * 200e9 0.29 0.4 0 damping 0.05 0.05\n" in out
+    d_min = 0.1e-3 + 0.1e-3 * 0.5 / n
+    steps = _timesteps(out)
+    assert len(steps) == 3          # printed by specimen.in, the preparation and the shear
+    assert steps == pytest.approx([rayleigh_step(d_min, 200e9, 0.29, 7800e12)] * 3, rel=1e-12)
+    (data,) = (tmp_path / "tylmp_specimens").glob("*.data")
+    _, diam, rho, _ = specimen.read_data(str(data))
+    assert np.all(rho == 7800e12) and len(diam) == n
+    assert diam.min() == pytest.approx(d_min, rel=1e-12)
+
+
+def test_default_material_keeps_the_glass_timestep(axisym_dense):
+    """The default material file is the paper's glass: the timestep is the one the decks used
+    before materials existed, 0.2 of the Rayleigh time of the 0.135 mm sphere, to the bit."""
+    out = OUTPUT["axisym"]
+    assert "material " in out and "glass.in: E = 70e9 Pa, nu = 0.3, rho = 2650e12" in out
+    # the formula of numerics.in before this change, evaluated by LAMMPS as it was
+    proc = subprocess.run(["lmp", "-log", "none", "-nocite", "-echo", "none"], input=(
+        "variable dt_fraction index 0.2\n"
+        "variable rayleigh_time equal PI*0.0675e-3*sqrt(2650e12/(70e9/2.6))/(0.1631*0.3+0.8766)\n"
+        'print "before $(v_dt_fraction*v_rayleigh_time)"\n'),
+        capture_output=True, text=True, timeout=60, env=_env())
+    (before,) = re.findall(r"^before (\S+)$", proc.stdout, re.M)
+    assert re.findall(r"^timestep (\S+) s: ", out, re.M) == [before, before]  # specimen.in, shear
+    assert float(before) == pytest.approx(0.2 * math.pi * 0.0675e-3 * math.sqrt(
+        2650e12 / (70e9 / 2.6)) / (0.1631 * 0.3 + 0.8766), rel=1e-14)
+
+
+def test_given_timestep_is_used(tmp_path):
+    """-var dt DT replaces the derived timestep (printed, and in the shear's record: time =
+    step x DT)."""
+    os.symlink(os.path.join(REPO, "inputs"), tmp_path / "inputs")
+    rc, out = _run("inputs/axisym.in", tmp_path, dict(SHORT, **QUICK_PREP, nspheres=100,
+                                                       dt=0.005))
+    _check(rc, out, "axisym.in -var dt 0.005")
+    assert _timesteps(out) == [0.005] * 3
+    data, _ = read_csv(tmp_path / "axisym.csv")
+    assert np.allclose(np.diff(data["time"]), 0.005 * np.diff(data["step"]), rtol=1e-9)
+
+
+@pytest.mark.parametrize("text,message", [
+    (STEEL.replace("0.29", "0.5"), "material steel.in: nu 0.5: must be below 0.5; nu is "
+                                   "Poisson's ratio"),
+    (STEEL.replace("7800e12", "-1"), "material steel.in: rho -1: must be above 0; rho is the "
+                                     "particle density"),
+    (STEEL.replace("variable damping index 0.05\n", ""),
+     "material steel.in: damping not defined; a material file defines E, nu, rho, mu, gamma "
+     "and damping")])
+def test_bad_material_is_an_error(tmp_path, text, message):
+    (tmp_path / "steel.in").write_text(text)
+    os.symlink(os.path.join(REPO, "inputs"), tmp_path / "inputs")
+    rc, out = _run("inputs/axisym.in", tmp_path, {"material": "steel.in"})
+    assert rc != 0 and "ERROR: " + message in out
+    assert not (tmp_path / "tylmp_specimens").exists()
+
+
+def test_preparation_reports_progress_and_what_to_change(tmp_path):
+    """A frictional (loose) damped preparation stopped after 3000 steps, far from its kinetic
+    criterion: while it runs it prints p, solid fraction, Z and each criterion against its limit
+    with the ones still failing (every prep_progress steps); at its end, each failed criterion
+    with the factor by which it misses its limit and what to change (issue 31 item 3)."""
+    os.symlink(os.path.join(REPO, "inputs"), tmp_path / "inputs")
+    rc, out = _run("inputs/axisym.in", tmp_path, dict(
+        SHORT, specimen="loose", prep_protocol="damped", prep_max_steps=3000, nspheres=120,
+        prep_progress=1000))
+    _check(rc, out, "axisym.in, a short loose preparation")
+    progress = re.findall(r"^preparation step (\d+): p = (\S+) Pa, solid fraction (\S+), Z = (\S+),"
+                          r".*; kinetic (\S+) \(limit 1e-07\).*; (failing at the last check: [a-z, ]+|"
+                          r"every criterion met at the last check|no equilibrium check yet.*)$",
+                          out, re.M)
+    assert [int(p[0]) for p in progress] == [0, 1000, 2000, 3000]
+    assert all("kinetic" in p[5] for p in progress[1:])
+    (ratio,) = re.findall(r"FAILED kinetic energy of the load-bearing particles E_k/\(pV\) = (\S+) "
+                          r"\(criterion eq_kinetic 1e-7\): (\S+) times its limit\. Change: more "
+                          r"damping \(-var prep_damping D", out)
+    # the factor is the value over the limit (both as printed, 3 digits)
+    assert float(ratio[1]) == pytest.approx(float(ratio[0]) / 1e-7, rel=2e-3)
+    assert float(progress[-1][4]) == pytest.approx(float(ratio[0]), rel=2e-3)

@@ -353,3 +353,100 @@ def test_cli_distributions_table(capsys):
         # φ0 of 3620 spheres in the 4.3 mm cube, recomputed here
         phi = math.pi / 6 * float(c @ d ** 3) / (4.3 * MM) ** 3
         assert float(table[name][6]) == pytest.approx(phi, abs=6e-5)
+
+
+# ---- a user's size distribution (docs/specimen.md, "Your own size distribution") ----------
+
+def test_uniform_distribution_is_the_midpoint_quantiles():
+    """uniform:A:B by number: n diameters A + (B - A)(k + 1/2)/n, mean (A + B)/2."""
+    n = 400
+    d = sp.diameters(n, "uniform:0.1e-3:0.3e-3")
+    expected = 0.1e-3 + 0.2e-3 * (np.arange(n) + 0.5) / n
+    assert np.allclose(np.sort(d), expected, rtol=1e-13, atol=0)
+    assert d.mean() == pytest.approx(0.2e-3, rel=1e-12)
+
+
+def test_lognormal_distribution_has_its_median_and_spread():
+    """lognormal:D50:SIGMA by number: ln d of the n diameters has median ln D50 and standard
+    deviation SIGMA (to the sampling of the tails by n quantiles: 2 % at n = 4000)."""
+    d = sp.diameters(4000, "lognormal:0.2e-3:0.3")
+    assert np.median(d) == pytest.approx(0.2e-3, rel=1e-3)
+    assert np.std(np.log(d)) == pytest.approx(0.3, rel=0.02)
+    # a quarter of the spheres lie below the lower quartile exp(ln D50 - 0.6745 SIGMA)
+    q1 = 0.2e-3 * math.exp(-0.6744897501960817 * 0.3)
+    assert np.count_nonzero(d < q1) == 1000
+
+
+@pytest.mark.parametrize("basis", ["number", "mass"])
+def test_size_table_by_number_or_mass(tmp_path, basis):
+    """A table of diameters and fractions: by number the counts are n x the fractions; by mass
+    the counts make the mass shares Σ c d³ of each size equal to the fractions."""
+    table = tmp_path / "psd.txt"
+    table.write_text("# diameter [m]  fraction\n0.1e-3 1\n0.2e-3 3   # the coarse size\n")
+    n = 1000
+    d = sp.diameters(n, f"{basis}:{table}")
+    small = np.count_nonzero(d == 0.1e-3)
+    assert small + np.count_nonzero(d == 0.2e-3) == n
+    if basis == "number":
+        assert small == 250
+    else:
+        share = small * 1e-12 / (small * 1e-12 + (n - small) * 8e-12)
+        assert share == pytest.approx(0.25, abs=1e-3)
+        assert small == round(n * (1 / 1) / (1 / 1 + 3 / 8))    # counts ∝ fraction / d³
+
+
+def test_generate_with_a_users_distribution():
+    """The generator places n spheres of a user's distribution without overlap at the target
+    solid fraction."""
+    L, d, pos = sp.generate(200, 0.5, seed=4, distribution="lognormal:0.2e-3:0.25")
+    assert np.array_equal(d, sp.diameters(200, "lognormal:0.2e-3:0.25"))
+    assert abs(vol_fraction(d, L) - 0.5) < 1e-12
+    assert len(sp.find_overlaps(pos, d, L)[0]) == 0
+
+
+@pytest.mark.parametrize("spec,message", [
+    ("uniform:0.3e-3:0.1e-3", "D_MIN must be below D_MAX"),
+    ("lognormal:0.2e-3", "lognormal takes lognormal:D50:SIGMA"),
+    ("lognormal:0.2e-3:-1", "SIGMA must be a finite number > 0, got -1"),
+    ("uniform:nan:1e-3", "D_MIN must be a finite number > 0, got nan"),
+    ("number:/nonexistent/psd.txt", "cannot read /nonexistent/psd.txt"),
+    ("weibull:1:2", "unknown size distribution 'weibull:1:2'")])
+def test_bad_distribution_is_named(spec, message):
+    with pytest.raises(ValueError, match=re.escape(message)):
+        sp.parse_distribution(spec)
+
+
+def test_cli_users_distribution(tmp_path):
+    """python3 -m tylmp.specimen --distribution lognormal:...: the data file holds those
+    diameters; a bad one is a usage error naming it."""
+    out = tmp_path / "ln.data"
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.pathsep.join(
+        [MODULE_DIR, SRC_PY] + [p for p in env.get("PYTHONPATH", "").split(os.pathsep) if p])
+    r = subprocess.run([sys.executable, "-m", "tylmp.specimen", "--n", "150", "--distribution",
+                        "lognormal:0.2e-3:0.25", "--out", str(out)],
+                       capture_output=True, text=True, env=env, timeout=120)
+    assert r.returncode == 0, r.stderr
+    _, d, _, _ = sp.read_data(out)
+    assert np.array_equal(np.sort(d), np.sort(sp.diameters(150, "lognormal:0.2e-3:0.25")))
+    r = subprocess.run([sys.executable, "-m", "tylmp.specimen", "--n", "150", "--distribution",
+                        "uniform:1", "--out", str(out)],
+                       capture_output=True, text=True, env=env, timeout=120)
+    assert r.returncode == 2 and "uniform takes uniform:D_MIN:D_MAX" in r.stderr
+
+
+def test_find_overlaps_does_what_its_description_says(tmp_path):
+    """find_overlaps returns index arrays i < j of the pairs closer than r_i + r_j across the
+    periodic faces, touching pairs excluded, and takes the box as read_data returns it."""
+    d = np.array([1e-3, 1e-3, 1e-3, 0.5e-3])
+    pos = np.array([[0.1e-3, 1e-3, 1e-3], [4.95e-3, 1e-3, 1e-3],      # 0.15 mm apart across x
+                    [2.5e-3, 2.5e-3, 2.5e-3], [2.5e-3, 2.5e-3 + 0.75e-3, 2.5e-3]])  # touching
+    i, j = sp.find_overlaps(pos, d, 5e-3)
+    assert (i.tolist(), j.tolist()) == ([0], [1])
+    path = tmp_path / "four.data"
+    sp.write_data(path, 5e-3, d, pos)
+    box, diam, _, xyz = sp.read_data(path)
+    i, j = sp.find_overlaps(xyz, diam, box)
+    assert (i.tolist(), j.tolist()) == ([0], [1])
+    with pytest.raises(ValueError, match="the cell must be a cube"):
+        sp.find_overlaps(xyz, diam, [5e-3, 5e-3, 6e-3])

@@ -46,6 +46,11 @@ def _wrote(out):
     print(f"wrote {out}")
 
 
+def _about(a):
+    """(number of spheres, specimen) for the figure's caption (figures.about_text)."""
+    return a.n, a.specimen
+
+
 # ---- subcommands ---------------------------------------------------------------------------------
 
 def _by_parameter(files):
@@ -73,7 +78,7 @@ def cmd_axisym(a):
                   ("sinphi_end", s["sinphi_end"]), ("void_ratio_end", s.get("void_ratio_end")),
                   ("void_ratio_at_30pct", s.get("void_ratio_at_30pct")),
                   ("eps_v_end_pct", s["eps_v_end_pct"]), ("eps_d13_end_pct", s["eps_d13_end_pct"])])
-    _wrote(figures.axisym(tables, labels, a.out))
+    _wrote(figures.axisym(tables, labels, a.out, paper_marks=a.paper, about=_about(a)))
 
 
 def cmd_liggghts_record(a):
@@ -87,9 +92,8 @@ def cmd_cyclic(a):
     labels = _labels(a.files, a.labels)
     for t, lab in zip(tables, labels):
         _kv(lab, [("reversals", len(cyclic.reversals(t)))]
-            + [(f"work_cycle{k + 1}_J_per_m3", float(w))
-               for k, w in enumerate(cyclic.cycle_work(t))])
-    _wrote(figures.cyclic(tables, labels, a.out))
+            + [(f"work_cycle{k}_J_per_m3", float(w)) for k, w in cyclic.cycle_work(t).items()])
+    _wrote(figures.cyclic(tables, labels, a.out, about=_about(a)))
 
 
 def _mu_of(path):
@@ -108,7 +112,8 @@ def cmd_friction(a):
         smax.append(s["sinphi_max"])
         scv.append(s["sinphi_end"])
         _kv(t.name, [("mu", float(mu)), ("sinphi_max", s["sinphi_max"]), ("sinphi_cv", s["sinphi_end"])])
-    _wrote(figures.friction(mus, smax, scv, a.out))
+    _wrote(figures.friction(mus, smax, scv, a.out, paper_marks=a.paper, tables=tables,
+                            about=_about(a)))
 
 
 def _peak(table):
@@ -159,7 +164,8 @@ def cmd_radial(a):
             ("eta_eps_d_spread", metrics.curve_spread(eta_curves, np.linspace(1.0, eta_top, 13))),
             ("max_dilation_rate_min", min(max_dilation)),
             ("max_dilation_rate_max", max(max_dilation))])
-    _wrote(figures.radial(tables, labels, a.out, peaks, sinphi_tc, p_ref, strain=a.strain))
+    _wrote(figures.radial(tables, labels, a.out, peaks, sinphi_tc, p_ref, strain=a.strain,
+                          paper_marks=a.paper, about=_about(a)))
 
 
 def cmd_pi_plane(a):
@@ -205,13 +211,13 @@ def cmd_pi_plane(a):
             guides.append((f"{lab}: circle r = {100 * r0:.3g} %", *inv.circle_pi(r0)))
         if r0 and guide in ("triangle", "both"):
             guides.append((f"{lab}: plane-strain triangle", *inv.plane_strain_triangle_pi(r0)))
-        # the paper's values (tyanalysis/paper.py)
-        if i0 is not None and "q0" not in drawn:
+        # the paper's values (tyanalysis/paper.py), with --paper
+        if a.paper and i0 is not None and "q0" not in drawn:
             drawn.add("q0")
             marks.append(("stress", paper.label("prestrain_q_kPa",
                           f"q = {paper.value('prestrain_q_kPa'):g} kPa after the prestrain"),
                           [0.0], [paper.prestrain_q_pi_radius()], "o"))
-        if rot is not None:
+        if a.paper and rot is not None:
             sign = compare.turn_direction(t)
             rs = 1.05 * float(np.nanmax(np.hypot(d["pi_x"], d["pi_y"])))
             turn = paper.value("ps_stress_rotation_deg")
@@ -222,7 +228,23 @@ def cmd_pi_plane(a):
             x, y = inv.pi_point(np.array([0.0, 2.0 * radius]), sign * paper.PS_STRAIN_ROTATION_DEG)
             marks.append(("strain", f"{lab}: strain turned {paper.PS_STRAIN_ROTATION_DEG:g}° (paper §5)",
                           x, y, "-."))
-    _wrote(figures.pi_plane(tables, labels, a.out, surfaces, guides, marks))
+    _wrote(figures.pi_plane(tables, labels, a.out, surfaces, guides, marks, about=_about(a)))
+
+
+def critical_state_ratio(table):
+    """M = q/p at the critical state: the mean of q/p over the record's last 10 % of rows."""
+    return float(metrics.tail_mean(np.asarray(table["q"]) / np.asarray(table["p"])))
+
+
+def cmd_pq(a):
+    tables = _read_all(a.files)
+    labels = _labels(a.files, a.labels)
+    ratios = [critical_state_ratio(t) for t in tables]
+    for lab, M in zip(labels, ratios):
+        _kv(lab, [("M_critical_state", M)])
+    M = float(np.mean(ratios))
+    _kv("critical state line", [("M", M)])
+    _wrote(figures.p_q(tables, labels, a.out, M, about=_about(a)))
 
 
 def cmd_prestrain(a):
@@ -390,6 +412,11 @@ def build_parser():
         if out:
             p.add_argument("--out", required=True, help="PNG to write")
             p.add_argument("--labels", nargs="+", help="one legend label per file")
+            p.add_argument("--paper", action="store_true",
+                           help="draw the paper's values over the records (tyanalysis/paper.py)")
+            p.add_argument("--n", type=int, help="number of spheres, stated under the figure")
+            p.add_argument("--specimen", help="the specimen (e.g. dense, loose), stated under "
+                                              "the figure")
         p.set_defaults(func=func)
         return p
 
@@ -397,6 +424,8 @@ def build_parser():
     p.add_argument("--void-ratio", action="store_true",
                    help="accepted for old commands: the void ratio (Fig. 2) and εv panels are both drawn")
     files_cmd("cyclic", cmd_cyclic, "cyclic axisymmetric test: q and εv against ε1 − ε3")
+    files_cmd("pq", cmd_pq, "q = √(3J2) against p with the critical-state line q = M p (M: "
+              "mean q/p of the last 10 %% of the rows)")
     p = files_cmd("friction", cmd_friction, "Fig. 3: sinφ_max and sinφ_cv against μ")
     p.add_argument("--mu", type=float, nargs="+", help="μ of each file (default: from names like mu0.3)")
     p = files_cmd("radial", cmd_radial, "Figs 4-6: radial b tests, peak states on the Π plane")

@@ -20,15 +20,22 @@ def reversals(table):
 
 
 def cycle_work(table):
-    """Work per unit volume [J/m3] of each complete cycle between every other reversal
-    (from one reversal to the next reversal of the same sign): (2/3) the loop area of the
-    signed deviator against eps1 - eps3 plus the integral of p deps_v."""
+    """Work per unit volume [J/m3] of each complete cycle, numbered as inputs/cyclic.in numbers
+    them: cycle k runs from -A (where cycle k - 1 ended; the first from 0) to +A and back to -A,
+    so the complete loops are cycles 2, 3, ...: from one turn at -A to the next (the record's
+    last row is the last turn when the test ends in extension, as the deck ends it). Each
+    work is (2/3) the loop area of the signed deviator against eps1 - eps3 plus the integral of
+    p deps_v. Returns {cycle number: work}."""
     d = derived(table)
-    turns = reversals(table)
-    works = []
-    for a, b in zip(turns[:-2], turns[2:]):
+    sign = np.sign(table["rate1"])
+    ends = [int(t) for t in reversals(table) if sign[t] < 0]
+    moving = np.flatnonzero(sign != 0)
+    if len(moving) and sign[moving[-1]] < 0 and (not ends or ends[-1] != len(sign) - 1):
+        ends.append(len(sign) - 1)
+    works = {}
+    for k, (a, b) in enumerate(zip(ends[:-1], ends[1:])):
         seg = slice(a, b + 1)
         deviatoric = np.trapz(d["dev_stress"][seg], d["eps_d13"][seg])
         volumetric = np.trapz(d["p"][seg], d["eps_v"][seg])
-        works.append(2.0 / 3.0 * deviatoric + volumetric)
-    return np.array(works[::2]) if len(works) else np.array([])
+        works[k + 2] = 2.0 / 3.0 * deviatoric + volumetric
+    return works

