@@ -289,6 +289,31 @@ def test_axisym_mean_stress_held(which, request):
     assert p_held(t, t["eps_d13"] > 0.01) < 0.01
 
 
+@pytest.mark.parametrize("law, extra", [("granular", {}), ("gran_hertz_history", {"gamma": 0})])
+def test_axisym_deck_holds_p_with_lammps_own_laws(tmp_path_factory, specimens, law, extra):
+    # -var law: the same deck and specimen sheared with LAMMPS's pair granular (jkr + mindlin
+    # at the material's Gamma) and gran/hertz/history (Gamma 0); fix cell/servo estimates their
+    # contact stiffness and warns that they lack the affine contact velocity (theory.md §6.5)
+    work, out = run_deck(tmp_path_factory, specimens, "axisym",
+                         {"law": law, "strain": 0.02, "out": f"axisym_{law}", **extra},
+                         tag=f"axisym_{law}")
+    style = {"granular": "granular", "gran_hertz_history": "gran/hertz/history"}[law]
+    assert f"WARNING: fix cell/servo with pair_style {style}:" in out
+    t, _ = read_csv(work / f"axisym_{law}.csv")
+    late = t["eps_d13"] > 0.002
+    assert t["eps_d13"][-1] >= 0.02
+    assert np.all(np.abs(t["p"][late] / 1e5 - 1.0) < 2e-3)
+    q_over_p = (t["sig1"] - t["sig3"])[late] / t["p"][late]
+    assert 0.6 < q_over_p[-1] < 1.2            # a dense specimen resists at about its friction
+
+
+def test_an_unknown_law_is_refused(tmp_path):
+    proc = subprocess.run(_lmp_cmd(f"{REPO}/inputs/axisym.in", {"law": "hooke"}), cwd=str(tmp_path),
+                          capture_output=True, text=True, timeout=TIMEOUT, env=_env())
+    out = proc.stdout + proc.stderr
+    assert proc.returncode != 0 and "-var law hooke: unknown value" in out
+
+
 def test_axisym_figure(axisym_dense, axisym_loose, tmp_path):
     out = tmp_path / "axisym.png"
     cli("axisym", str(axisym_dense / "axisym.csv"), str(axisym_loose / "axisym_loose.csv"),

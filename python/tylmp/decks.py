@@ -37,6 +37,8 @@ CHOICES = {
     "plane": ("total", "deviatoric"),
     "control": ("strain", "stress"),
     "prep_protocol": ("damped", "two_stage"),
+    # the contact law of the shearing stage (common/pair.in)
+    "law": ("thornton_yin", "granular", "gran_hertz_history"),
 }
 
 # -var distribution: a candidate of tylmp.specimen or a user's distribution string, checked by
@@ -72,8 +74,11 @@ RECIPE = ("prepare.in", "prepare_damped.in", "prepare_two_stage.in", "numerics.i
 # variables the cache itself sets or that do not change the prepared state
 # (the preparation's fix cell/servo outputs, v_iso_p, v_iso_Z, ..., which the fragments read,
 # exist only while that fix does: _defined leaves them out of the settings)
+# (the shearing law does not key the specimen: the preparation always uses thornton/yin,
+# common/pair.in)
 NOT_KEYED = {"specimen_file", "specimen_tmp", "specimen_stem", "specimen_dir", "tylmp_common",
-             "tylmp_prepare", "contact_mu", "contact_gamma", "material", "prep_progress"}
+             "tylmp_prepare", "contact_mu", "contact_gamma", "material", "prep_progress",
+             "law", "contact_law", "contact_stage"}
 
 _collected = []
 _pending = {}           # specimen path -> key and settings, for specimen_commit
