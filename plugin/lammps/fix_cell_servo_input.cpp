@@ -99,12 +99,12 @@ void FixCellServo::check_until_direction()
     error->all(FLERR, "fix cell/servo {}: until {} {:g}: the test this fix continues has passed "
                "that target already ({} went from {:.6g} at its start to {:.6g} when this "
                "fix took over) and moves on away from it: give a target beyond {:.6g}, or "
-               "'continue no' to start a new test", id, name, until_value, name, start,
-               until_run_start, until_run_start);
+               "'continue no' to start a new test", id, name, until_value, name, start + 0.0,
+               until_run_start + 0.0, until_run_start + 0.0);    // (+ 0.0: no "-0")
   if (comm->me == 0)
     error->warning(FLERR, "fix cell/servo {}: until {} {:g}: {} moves away from the target "
                    "(from {:.6g} at the start of the run to {:.6g} at step {}): the run will "
                    "not stop there unless the programme turns back; check the sign of the "
-                   "target and of the rates", id, name, until_value, name, until_run_start, now,
-                   update->ntimestep);
+                   "target and of the rates", id, name, until_value, name,
+                   until_run_start + 0.0, now, update->ntimestep);
 }

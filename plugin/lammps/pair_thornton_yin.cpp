@@ -104,6 +104,12 @@ PairThorntonYin::PairThorntonYin(LAMMPS *lmp) : PairWithHistory(lmp)
   nmax_count = 0;
   comm_reverse = 1;
 
+  // one instance only: its contact history has one store, named by fixed IDs (restart files)
+  if (modify->find_fix(FIX_DUMMY_ID) >= 0 || modify->find_fix(FIX_HISTORY_ID) >= 0)
+    error->all(FLERR, "pair thornton/yin may appear only once in a hybrid pair style (its "
+               "contact history has one store): give all its type pairs to one thornton/yin "
+               "('pair_coeff I J thornton/yin E nu mu Gamma'; the materials may differ by type)");
+
   // placeholder keeps the history fix at the position of the pair_style command
   fix_history = nullptr;
   fix_dummy = (FixDummy *) modify->add_fix(std::string(FIX_DUMMY_ID) + " all DUMMY");
@@ -323,7 +329,7 @@ void PairThorntonYin::init_style()
     error->all(FLERR, "pair thornton/yin needs a mechanically consistent unit system "
                "(units si, cgs, micro or nano), got 'units {}'", units);
 
-  refuse_scaled_outputs();
+  check_hybrid_outputs();
 
   tylmp_compat::request_history_list(neighbor, this, instance_me);
   // one batch per type pair, made when its first contact comes (eval)
@@ -354,6 +360,7 @@ void PairThorntonYin::init_style()
   // the checks below see the mixed coefficients of unlike types (init_one mixes them later)
   for (int i = 1; i <= ntypes; ++i)
     for (int j = i; j <= ntypes; ++j) {
+      if (!handles(i, j)) continue;
       if (!setflag[i][j]) mix_pair(i, j);
       const double rad_i = largest_radius(i), rad_j = largest_radius(j);
       if (rad_i > 0.0 && rad_j > 0.0) check_law_domain(i, j, rad_i, rad_j, true);
@@ -384,7 +391,7 @@ void PairThorntonYin::check_break_against_skin()
   const int ntypes = atom->ntypes;
   for (int i = 1; i <= ntypes; ++i) {
     for (int j = i; j <= ntypes; ++j) {
-      if (maxrad_type[i] <= 0.0 || maxrad_type[j] <= 0.0) continue;
+      if (maxrad_type[i] <= 0.0 || maxrad_type[j] <= 0.0 || !handles(i, j)) continue;
       const double R = tycore::effective_radius(maxrad_type[i], maxrad_type[j]);
       const double gap = -tycore::jkr::break_overlap(R, E_star[i][j], surface_energy[i][j]);
       if (gap > 0.0 && neighbor->skin <= gap)
@@ -922,6 +929,13 @@ void PairThorntonYin::record_contact(const Batch &bt, int l, double Fn, const do
    on the first contact. Force and energy of single() stay available.
 ------------------------------------------------------------------------- */
 
+// the type pairs this pair computes: all of them alone; under a hybrid style those given to
+// it by pair_coeff, and the unlike pairs hybrid lets it mix (I I and J J both its own)
+bool PairThorntonYin::handles(int i, int j) const
+{
+  return force->pair == this || setflag[i][j] || (material_set[i] && material_set[j]);
+}
+
 bool PairThorntonYin::sub_style_of(const char *style) const
 {
   return force->pair && force->pair != this && force->pair_style &&
@@ -929,14 +943,27 @@ bool PairThorntonYin::sub_style_of(const char *style) const
 }
 
 /* ----------------------------------------------------------------------
-   pair_style hybrid/scaled s multiplies the forces on the atoms by s, but not the contact
-   records, tallies and stiffness that the contact computes and fix cell/servo read from this
-   pair: they would report 1/s of the applied force. Refused while one of them reads the pair.
+   outputs under a hybrid pair style. pair_style hybrid/scaled s multiplies the forces on the
+   atoms by s, but not the contact records, tallies and stiffness that the contact computes
+   and fix cell/servo read from this pair: they would report 1/s of the applied force, so the
+   combination is refused while one of them reads the pair. Under plain hybrid compute
+   pair/local gets force and energy only (see sub_style_of): said before LAMMPS's own error
+   for a requested p1..pN ("Pair style does not have extra field").
 ------------------------------------------------------------------------- */
 
-void PairThorntonYin::refuse_scaled_outputs()
+void PairThorntonYin::check_hybrid_outputs()
 {
-  if (force->pair == this || !utils::strmatch(force->pair_style, "^hybrid/scaled")) return;
+  if (force->pair == this) return;
+  for (int k = 0; k < modify->ncompute && single_extra == 0 && comm->me == 0; ++k)
+    if (strcmp(modify->compute[k]->style, "pair/local") == 0) {
+      error->warning(FLERR, "pair thornton/yin under pair_style hybrid: compute {} (pair/local) "
+                     "gets the force and energy of each contact, but not the pair's extra "
+                     "values p1..p{} (overlap, contact radius, ...), which LAMMPS's pair hybrid "
+                     "cannot pass on without crashing; for them use pair_style hybrid/overlay "
+                     "or compute thornton/yin/contacts", modify->compute[k]->id, N_SVECTOR);
+      break;
+    }
+  if (!utils::strmatch(force->pair_style, "^hybrid/scaled")) return;
   std::string reader;
   for (int k = 0; k < modify->ncompute && reader.empty(); ++k)
     if (utils::strmatch(modify->compute[k]->style, "^thornton/yin/"))

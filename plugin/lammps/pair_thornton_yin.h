@@ -116,7 +116,8 @@ class PairThorntonYin : public tylmp_compat::PairWithHistory, public CellTallySo
 
   void allocate();
   bool sub_style_of(const char *style) const;    // a sub-style of pair_style STYLE
-  void refuse_scaled_outputs();
+  bool handles(int i, int j) const;               // type pair computed by this pair
+  void check_hybrid_outputs();
   void mix_pair(int, int);
   void check_break_against_skin();
   void check_timestep_against_rayleigh();
