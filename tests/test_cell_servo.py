@@ -538,7 +538,11 @@ def test_two_ranks_equal_one(specimen, tmp_path, mu):
     assert np.array_equal(a["step"], b["step"])
     diff = max_relative_difference(a, b, COMPARED + ["unbalanced", "p_kinetic", "Zm"])
     print("MPI max relative difference", diff)
-    assert diff <= 1e-10, diff
+    # round-off of the summation order, amplified by the packing's chaos over 200 steps: the
+    # amplification depends on the specimen (6.3e-12 at mu = 0.3 on the specimen prepared
+    # before the servo's rate floor of docs/theory.md §6.2, 2.5e-10 on the one prepared with
+    # it, whose first contacts, along the lattice axes, no longer freeze the loaded axis)
+    assert diff <= 1e-9, diff
 
 
 # ---------------------------------------------------------------------------------------------
@@ -1218,5 +1222,5 @@ def test_axes_cap_warning_names_the_held_targets(specimen, tmp_path):
     out = shear_run(specimen, tmp_path, f"fix sh all cell/servo axes x rate 1e-3 y stress {P0} "
                     f"z stress {P0} max_rate 1e-8", 2100)
     line = next((l for l in out.splitlines() if CAP_WARNING in l), out[-3000:])
-    assert "target 100000" in line and "sig2 = " in line and "sig3 = " in line, line
+    assert "sig2 = " in line and "sig3 = " in line and "target 1e+05" in line, line
     assert "prescribed rate 0.001 1/s" in line and "target 0" not in line, line
