@@ -1163,10 +1163,10 @@ ABSURD = [
      "sweep = 1e300 is outside the accepted range (0, 36000] degrees"),
     ("speed", f"circle 0.001 {P0} speed 1e-30",
      "speed = 1e-30 1/s strains the cell by 2e-32 per step (timestep 0.02); the accepted "
-     "range is 5e-12 to 0.5 1/s"),
-    ("rate_small", f"axisym x 1e-30 {P0}", "the accepted range is 5e-12 to 0.5 1/s"),
+     "range is 5e-14 to 0.5 1/s"),
+    ("rate_small", f"axisym x 1e-30 {P0}", "the accepted range is 5e-14 to 0.5 1/s"),
     ("rate_large", f"axes x rate 1e300 y stress {P0} z stress {P0}",
-     "the accepted range is 5e-12 to 0.5 1/s"),
+     "the accepted range is 5e-14 to 0.5 1/s"),
     ("max_rate", f"iso {P0} max_rate 1e300", "max_rate = 1e+300 1/s strains the cell by"),
     ("max_inertial", f"iso {P0} max_inertial 1e300",
      "max_inertial = 1e300 is outside the accepted range (0, 1]"),

@@ -152,7 +152,7 @@ class FixCellServo : public Fix {
   double stress_level();
   void warn_inertial_number();
   void check_until_direction();
-  static constexpr double MIN_STRAIN_PER_STEP = 1e-13;
+  static constexpr double MIN_STRAIN_PER_STEP = 1e-15;
   static constexpr double UNTIL_DIRECTION_FRACTION = 0.01;
 
   void parse_mode(int narg, char **arg, int &iarg);

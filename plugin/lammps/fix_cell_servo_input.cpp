@@ -29,9 +29,10 @@ double FixCellServo::number_in(const char *text, const std::string &what, double
   return v;
 }
 
-// every constant prescribed rate (and path speed, and the cap) strains the cell by rate*dt per
-// step; below MIN_STRAIN_PER_STEP that is lost to the round-off of the cell edges (a double
-// resolves 2.2e-16 of an edge), above tycore::MAX_STRAIN_PER_STEP the cell cannot follow it
+// every constant prescribed rate (and path speed, and a given cap) strains the cell by rate*dt
+// per step; below MIN_STRAIN_PER_STEP the round-off of the cell edges (a double resolves
+// 2.2e-16 of an edge) distorts that by more than 10 % (and loses it at 1e-16), above
+// tycore::MAX_STRAIN_PER_STEP the cell cannot follow it
 void FixCellServo::check_rates_resolvable()
 {
   const double dt = update->dt;
@@ -40,8 +41,8 @@ void FixCellServo::check_rates_resolvable()
     if (rate != 0.0 && (strain < MIN_STRAIN_PER_STEP || strain > tycore::MAX_STRAIN_PER_STEP))
       error->all(FLERR, "fix cell/servo {}: {} = {:.4g} 1/s strains the cell by {:.3g} per step "
                  "(timestep {:.4g}); the accepted range is {:.3g} to {:.3g} 1/s ({:g} to {:g} "
-                 "per step: below, the strain is lost to round-off; above, the cell cannot "
-                 "follow)", id, what, rate, strain, dt, MIN_STRAIN_PER_STEP / dt,
+                 "per step: below, round-off of the cell edges distorts the strain; above, the "
+                 "cell cannot follow)", id, what, rate, strain, dt, MIN_STRAIN_PER_STEP / dt,
                  tycore::MAX_STRAIN_PER_STEP / dt, MIN_STRAIN_PER_STEP,
                  tycore::MAX_STRAIN_PER_STEP);
   };
