@@ -149,7 +149,8 @@ void FixCellServo::refuse_record_aliases() const
     if (lmp->output->dump[i]->filename &&
         tycore::names_file_of(csv_path, lmp->output->dump[i]->filename))
       refuse(fmt::format("the file of dump {}", lmp->output->dump[i]->id));
-  for (const char *restart : {lmp->output->restart1, lmp->output->restart2a, lmp->output->restart2b})
+  const LAMMPS_NS::Output *out = lmp->output;
+  for (const char *restart : {out->restart1, out->restart2a, out->restart2b})
     if (restart && tycore::names_file_of(csv_path, restart))
       refuse("a restart file this run writes ('restart' command)");
   for (int i = 0; i < modify->nfix; ++i) {
