@@ -960,7 +960,8 @@ void PairThorntonYin::check_hybrid_outputs()
                      "gets the force and energy of each contact, but not the pair's extra "
                      "values p1..p{} (overlap, contact radius, ...), which LAMMPS's pair hybrid "
                      "cannot pass on without crashing; for them use pair_style hybrid/overlay "
-                     "or compute thornton/yin/contacts", modify->compute[k]->id, N_SVECTOR);
+                     "or compute thornton/yin/contacts", modify->compute[k]->id,
+                     static_cast<int>(N_SVECTOR));
       break;
     }
   if (!utils::strmatch(force->pair_style, "^hybrid/scaled")) return;
