@@ -2,7 +2,7 @@
 import numpy as np
 import pytest
 
-from lmprun import LOAD_TYLMP, run_deck
+from lmprun import LOAD_TYLMP, reduce_local, run_deck
 
 R = 1.0e-4
 
@@ -270,12 +270,8 @@ def test_overflowing_damping_force_stops_the_run(tmp_path):
 
 HYBRID = dict(pair_style="pair_style hybrid thornton/yin",
               pair_coeff="pair_coeff * * thornton/yin 70e9 0.3 0.3 0.3")
-PAIR_LOCAL_SUM = """compute pl all pair/local force
-compute s all reduce sum c_pl
-thermo_style custom step c_s
-thermo_modify format float %.15g
-thermo 1
-"""
+PAIR_LOCAL_SUM = ("compute pl all pair/local force\n" + reduce_local("s", "c_pl") +
+                  "thermo_style custom step c_s\nthermo_modify format float %.15g\nthermo 1\n")
 
 
 @pytest.mark.parametrize("style", ["hybrid", "hybrid/overlay"])
