@@ -6,6 +6,8 @@ geometry, Mindlin's initial tangential stiffness, and the energy balance of the
 fluctuation-velocity bookkeeping.
 """
 
+import os
+
 import numpy as np
 import pytest
 
@@ -536,7 +538,11 @@ def test_two_ranks_equal_one(specimen, tmp_path, mu):
     assert np.array_equal(a["step"], b["step"])
     diff = max_relative_difference(a, b, COMPARED + ["unbalanced", "p_kinetic", "Zm"])
     print("MPI max relative difference", diff)
-    assert diff <= 1e-10, diff
+    # round-off of the summation order, amplified by the packing's chaos over 200 steps: the
+    # amplification depends on the specimen (6.3e-12 at mu = 0.3 on the specimen prepared
+    # before the servo's rate floor of docs/theory.md §6.2, 2.5e-10 on the one prepared with
+    # it, whose first contacts, along the lattice axes, no longer freeze the loaded axis)
+    assert diff <= 1e-9, diff
 
 
 # ---------------------------------------------------------------------------------------------
@@ -1019,3 +1025,202 @@ def test_named_variables_do_not_overwrite(specimen, tmp_path):
     assert rc != 0
     assert ("fix cell/servo: 'variables yes' defines the variable sh_p (output 10 of fix sh), "
             "which exists already: delete it or give the fix another ID") in out
+
+
+# ---------------------------------------------------------------------------------------------
+# 19. hostile input of issue 31: nothing lost, nothing silent (docs/bad_inputs.md)
+
+RATE = 1e-3     # 1/s: 2e-5 strain per step of the small deck, an exact prescribed programme
+
+
+def first_error(out):
+    return next((line for line in out.splitlines() if "ERROR" in line), out[-2000:])
+
+
+@pytest.mark.parametrize("alias", ["./a.csv", "link.csv", "sub/../a.csv"])
+def test_csv_alias_is_refused(tmp_path, alias):
+    """'continue no' naming the replaced test's record by another name (./, a symbolic link,
+    a .. path) is refused like the name itself: the record of the first test survives (it was
+    overwritten before: the names were compared as strings)."""
+    (tmp_path / "sub").mkdir()
+    os.symlink("a.csv", tmp_path / "link.csv")
+    rc, out = run_deck(small_deck(f"fix c all cell/servo axisym x {RATE} {P0} csv a.csv 1\n"
+                                  f"run 5\nfix c all cell/servo axisym x {RATE} {P0} "
+                                  f"continue no csv {alias} 1"), tmp_path)
+    assert (f"whose record {alias} would overwrite a.csv, the record of the test it replaces"
+            in first_error(out)), out[-2000:]
+    assert list(read_csv(tmp_path / "a.csv")["step"]) == [0, 1, 2, 3, 4, 5]
+
+
+@pytest.mark.parametrize("setup,path,what", [
+    ("log run.log", "./run.log", "the log file of this LAMMPS run"),
+    ("", "./in.test", "the input script LAMMPS is reading"),
+    ("dump d all atom 5 d.*.txt", "d.10.txt", "the file of dump d"),
+    ("restart 5 r.restart", "r.restart.10", "a restart file this run writes")],
+    ids=["log", "input", "dump", "restart"])
+def test_csv_naming_a_file_lammps_writes_is_refused(tmp_path, setup, path, what):
+    rc, out = run_deck(small_deck(f"{setup}\nfix c all cell/servo iso {P0} csv {path} 1"),
+                       tmp_path)
+    assert f"fix cell/servo c: csv {path} is {what}" in first_error(out), out[-2000:]
+    if setup.startswith("log"):    # the log is intact: it holds the fix command, no record
+        log = (tmp_path / "run.log").read_text()
+        assert "fix c all cell/servo" in log and "step,time" not in log
+
+
+def test_restart_with_continue_no_starts_a_new_test(tmp_path):
+    """A fix defined with 'continue no' after read_restart starts a new test: strains, time
+    and record from zero (the state in the restart file used to be taken up regardless)."""
+    fix = f"fix c all cell/servo axisym x {RATE} {P0}"
+    first = small_deck(f"{fix}\nwrite_restart c.restart", run=10)
+    first = first.replace("write_restart c.restart\nrun 10\n", "run 10\nwrite_restart c.restart\n")
+    run_ok(first, tmp_path, name="in.first")
+    resumed = (LOAD_TYLMP + "read_restart c.restart\ncomm_modify vel yes\nneighbor 2e-5 bin\n"
+               "{fix}\nrun 5\n")
+    out = run_ok(resumed.format(fix=f"{fix} continue no csv new.csv 1"), tmp_path,
+                 name="in.new")
+    assert "continue no: the test whose state the restart file holds is not continued" in out
+    new = read_csv(tmp_path / "new.csv")
+    assert new["time"][0] == 0.0 and new["eps1"][0] == 0.0
+    # a fresh test starts from rest: eps1 = RATE dt for each step after the first
+    assert new["eps1"][-1] == pytest.approx(RATE * DT * 4, rel=1e-9)
+    # without 'continue no' the same restart continues the test: 9 steps of RATE dt before
+    run_ok(resumed.format(fix=f"{fix} csv old.csv 1"), tmp_path, name="in.old")
+    old = read_csv(tmp_path / "old.csv")
+    assert old["eps1"][0] == pytest.approx(RATE * DT * 9, rel=1e-9)
+
+
+def test_until_target_behind_the_test_warns(tmp_path):
+    """eps1 grows under axial compression: a target below the start is never reached; the
+    fix says so in the first steps (today silent, with ETA nan)."""
+    out = run_ok(small_deck(f"fix c all cell/servo axisym x {RATE} {P0} until eps1 -0.001",
+                            run=20), tmp_path)
+    assert "until eps1 -0.001: eps1 moves away from the target" in out, out[-2000:]
+    out = run_ok(small_deck(f"fix c all cell/servo axisym x {RATE} {P0} until eps1 0.001",
+                            run=20), tmp_path, name="in.toward")
+    assert "moves away from the target" not in out
+
+
+def test_until_target_already_passed_is_refused(tmp_path):
+    """A redefinition that continues the test with a target it passed already (eps1 went
+    from 0 to 1e-4 and moves on) stops with a named error."""
+    fix = f"fix c all cell/servo axisym x {RATE} {P0}"
+    rc, out = run_deck(small_deck(f"{fix} until eps1 0.0001\nrun 100\n{fix} until eps1 0.00005"),
+                       tmp_path)
+    assert ("until eps1 5e-05: the test this fix continues has passed that target already"
+            in first_error(out)), out[-2000:]
+
+
+def test_named_variables_refuse_an_existing_user_variable(tmp_path):
+    """'variables yes' never replaces a user's variable of the same name (issue 31 item 9:
+    this held already; docs/fix_cell_servo.md)."""
+    rc, out = run_deck(small_deck(f"variable c_q equal 42\nfix c all cell/servo iso {P0} "
+                                  "variables yes"), tmp_path)
+    assert "defines the variable c_q (output 11 of fix c), which exists already" in out
+
+
+def test_extra_vector_columns_are_expanded(tmp_path):
+    """'extra 1 g c_com' (a global vector of 3): columns g[1..3]. The atoms, at rest, follow
+    the cell affinely about its centre: the centre of mass of the 8-sphere lattice (0 and
+    2.8e-4 on each axis of a 5.6e-4 cell) is 2.8e-4 - 1.4e-4 exp(-eps_k)."""
+    run_ok(small_deck("compute com all com\n"
+                      f"fix c all cell/servo axes x rate {RATE} y rate {-RATE} z rate 0 "
+                      "extra 1 g c_com csv a.csv 1", run=20), tmp_path)
+    rows = read_csv(tmp_path / "a.csv")
+    for k in (1, 2, 3):
+        expected = 2.8e-4 - 1.4e-4 * np.exp(-rows[f"eps{k}"])
+        assert np.allclose(rows[f"g[{k}]"], expected, rtol=1e-9, atol=0), k
+    assert rows["eps1"][-1] > 0 > rows["eps2"][-1]
+
+
+EXTRA_REFUSED = [
+    ("per_atom", "compute ke all ke/atom", "extra 1 k c_ke csv a.csv 1",
+     "extra column k: compute ke is per-atom (not global); extra takes global scalars"),
+    ("local", "compute pl all property/local patom1", "extra 1 k c_pl csv a.csv 1",
+     "extra column k: compute pl is local (not global)"),
+    ("string_variable", "variable s string hello", "extra 1 k v_s csv a.csv 1",
+     "extra column k: variable s is not a number each step (it is a string, read as 0)"),
+    ("without_csv", "variable x equal 1", "extra 1 k v_x",
+     "'extra' adds columns to the record, but this fix writes none: add 'csv FILE N'"),
+    ("builtin_name", "variable x equal 1", "extra 1 sliding_fraction v_x csv a.csv 1",
+     "extra column sliding_fraction (v_x) has the name of the fix's built-in output "
+     "sliding_fraction (output 20)"),
+    ("vector_name", "compute com all com\nvariable x equal 1",
+     "extra 2 g c_com g[2] v_x csv a.csv 1",
+     "extra column g[2] (v_x) has the name of extra column g[2] (c_com[2])"),
+]
+
+
+@pytest.mark.parametrize("setup,keywords,message", [c[1:] for c in EXTRA_REFUSED],
+                         ids=[c[0] for c in EXTRA_REFUSED])
+def test_extra_bad_reference_is_refused_naming_the_fix(tmp_path, setup, keywords, message):
+    rc, out = run_deck(small_deck(f"{setup}\nfix c all cell/servo iso {P0} {keywords}"),
+                       tmp_path)
+    assert f"fix cell/servo c: {message}" in first_error(out), out[-2000:]
+
+
+ABSURD = [
+    ("sweep", f"circle 0.001 {P0} speed 1e-4 sweep 1e300",
+     "sweep = 1e300 is outside the accepted range (0, 36000] degrees"),
+    ("speed", f"circle 0.001 {P0} speed 1e-30",
+     "speed = 1e-30 1/s strains the cell by 2e-32 per step (timestep 0.02); the accepted "
+     "range is 5e-14 to 0.5 1/s"),
+    ("rate_small", f"axisym x 1e-30 {P0}", "the accepted range is 5e-14 to 0.5 1/s"),
+    ("rate_large", f"axes x rate 1e300 y stress {P0} z stress {P0}",
+     "the accepted range is 5e-14 to 0.5 1/s"),
+    ("max_rate", f"iso {P0} max_rate 1e300", "max_rate = 1e+300 1/s strains the cell by"),
+    ("max_inertial", f"iso {P0} max_inertial 1e300",
+     "max_inertial = 1e300 is outside the accepted range (0, 1]"),
+    ("prestrain", f"circle 5 {P0} speed 1e-4",
+     "circle pre-strain = 5 is outside the accepted range (0, 1]"),
+    ("vertex", f"polygon 2 0 0 1e300 0 {P0} speed 1e-5",
+     "polygon vertex 2 x = 1e300 is outside the accepted range [-1, 1]"),
+    ("gain", f"iso {P0} gain 1e300", "servo gain 1e+300 is outside (0, 1]"),
+    ("integral_band", f"iso {P0} integral_band 1e300",
+     "integral_band = 1e300 is outside the accepted range [0, 1]"),
+    ("eq_kinetic", f"iso {P0} equilibrium 10 eq_kinetic 1e300",
+     "eq_kinetic = 1e300 is outside the accepted range (0, 1]"),
+]
+
+
+@pytest.mark.parametrize("programme,message", [c[1:] for c in ABSURD], ids=[c[0] for c in ABSURD])
+def test_absurd_magnitude_gets_a_range_error(tmp_path, programme, message):
+    rc, out = run_deck(small_deck(f"fix c all cell/servo {programme}"), tmp_path)
+    assert message in first_error(out), out[-2000:]
+
+
+def test_inertial_number_warning_gives_the_quasi_static_rate(tmp_path):
+    """I = rate d sqrt(rho/p) (docs/theory.md §4.2) of 1e-3 1/s on spheres of 0.2 mm at
+    1e5 Pa is 0.033; the rate at I = 1e-3 is 1e-3 sqrt(p/rho)/d."""
+    out = run_ok(small_deck(f"fix c all cell/servo axisym x {RATE} {P0}"), tmp_path)
+    limit = 1e-3 * np.sqrt(P0 / RHO) / 2e-4
+    line = next(l for l in out.splitlines() if "gives an inertial number" in l)
+    assert f"I = {RATE / limit * 1e-3:.3g}" in line and f"use a rate <= {limit:.4g} 1/s" in line
+    out = run_ok(small_deck(f"fix c all cell/servo axisym x {0.5 * limit} {P0}"), tmp_path,
+                 name="in.slow")
+    assert "gives an inertial number" not in out
+
+
+def test_iso_servo_moves_an_axis_without_contacts(tmp_path):
+    """64 spheres, contacts along x only (the lattice squeezed in x), held at 1e5 Pa: the
+    loaded x axis reaches its target while y and z, which no contact crosses, close at the
+    cap (before, the servo step of x was scaled down behind them by 1e9 and x stalled)."""
+    deck = small_deck(f"fix c all cell/servo iso {P0} csv a.csv 100", run=3000,
+                      box="region box block 0 4 0 4 0 4")
+    deck = deck.replace("pair_style thornton/yin", "change_box all x scale 0.7142 remap\n"
+                        "pair_style thornton/yin")
+    run_ok(deck, tmp_path)
+    rows = read_csv(tmp_path / "a.csv")
+    assert rows["sig1"][0] < 0.2 * P0 and rows["sig2"][0] == 0.0
+    assert abs(rows["sig1"][-1] / P0 - 1.0) < 0.01
+    cap = rows["rate2"][-1]
+    assert cap > 0 and np.allclose(rows["rate2"][1:], cap) and np.allclose(rows["rate3"][1:], cap)
+
+
+def test_axes_cap_warning_names_the_held_targets(specimen, tmp_path):
+    """The cap warning of an axes programme names the held stresses and their targets and
+    the prescribed rate (it said 'target 0': the mean-stress target of the other modes)."""
+    out = shear_run(specimen, tmp_path, f"fix sh all cell/servo axes x rate 1e-3 y stress {P0} "
+                    f"z stress {P0} max_rate 1e-8", 2100)
+    line = next((l for l in out.splitlines() if CAP_WARNING in l), out[-3000:])
+    assert "sig2 = " in line and "sig3 = " in line and "target 1e+05" in line, line
+    assert "prescribed rate 0.001 1/s" in line and "target 0" not in line, line

@@ -297,12 +297,14 @@ def test_tyanalysis_draws_the_recorded_micromechanics(sheared):
                           str(work / "micro.txt"), "--out", str(work / "micro.png")],
                          capture_output=True, text=True, check=True).stdout
     values = dict(kv.split("=") for kv in out.splitlines()[0].split(": ", 1)[1].split())
+    # the shares are printed to 6 significant digits: two of them add up to 1 within 1e-6
+    # (0.9999997 on one specimen, 1.000000 on another)
     assert float(values["q_normal_share"]) + float(values["q_tangential_share"]) == \
-        pytest.approx(1.0, abs=1e-9)
+        pytest.approx(1.0, abs=1e-6)
     assert float(values["q_strong_share"]) + float(values["q_weak_share"]) == \
-        pytest.approx(1.0, abs=1e-9)
+        pytest.approx(1.0, abs=1e-6)
     assert float(values["p_strong_share"]) + float(values["p_weak_share"]) == \
-        pytest.approx(1.0, abs=1e-9)
+        pytest.approx(1.0, abs=1e-6)
     # normal forces carry most of the deviator, tangential ones a positive part (Thornton 2000)
     assert 0.5 < float(values["q_normal_share"]) < 1.0
     assert float(values["phi_d"]) == pytest.approx(end["c_m[11]"], rel=1e-5)    # printed to 6 digits

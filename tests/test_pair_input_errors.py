@@ -2,7 +2,7 @@
 import numpy as np
 import pytest
 
-from lmprun import LOAD_TYLMP, run_deck
+from lmprun import LOAD_TYLMP, reduce_local, run_deck
 
 R = 1.0e-4
 
@@ -263,3 +263,83 @@ def test_overflowing_damping_force_stops_the_run(tmp_path):
     # before that force is evaluated, and LAMMPS stops on the lost atoms
     assert ("the contact force of atoms 1 and 2 is not finite at step" in out
             or "4 Feb 2025" in out and "ERROR: Lost atoms" in out), out[-2000:]
+
+
+# ---------------------------------------------------------------------------------------------
+# hybrid pair styles and units (issue 31 items 12 and 14)
+
+HYBRID = dict(pair_style="pair_style hybrid thornton/yin",
+              pair_coeff="pair_coeff * * thornton/yin 70e9 0.3 0.3 0.3")
+PAIR_LOCAL_SUM = ("compute pl all pair/local force\n" + reduce_local("s", "c_pl") +
+                  "thermo_style custom step c_s\nthermo_modify format float %.15g\nthermo 1\n")
+
+
+@pytest.mark.parametrize("style", ["hybrid", "hybrid/overlay"])
+def test_pair_local_force_under_hybrid_is_the_jkr_force(style, tmp_path):
+    """compute pair/local force with the pair under pair_style hybrid: the JKR load of the two
+    touching spheres (tests/jkr_reference.py), not the segmentation fault of LAMMPS's
+    PairHybrid::copy_svector (an endless loop over the sub-style's extra values)."""
+    import jkr_reference as ref
+    kwargs = dict(HYBRID, pair_style=f"pair_style {style} thornton/yin")
+    rc, out = run_deck(deck(**kwargs).replace("run 0", PAIR_LOCAL_SUM + "run 0"), tmp_path)
+    assert rc == 0 and "ERROR" not in out, out[-2000:]
+    lines = out.splitlines()
+    value = float(lines[[l.split()[:2] for l in lines].index(["Step", "c_s"]) + 1].split()[1])
+    E_star = ref.effective_modulus(70e9, 0.3)
+    assert value == pytest.approx(ref.normal_force(1e-8, R / 2, E_star, 0.3), rel=1e-6)
+
+
+@pytest.mark.parametrize("reader", ["compute c all thornton/yin/contacts",
+                                    "compute m all thornton/yin/micromechanics",
+                                    "fix c all cell/servo iso 1e5"],
+                         ids=["contacts", "micromechanics", "cell_servo"])
+def test_hybrid_scaled_with_contact_outputs_is_refused(reader, tmp_path):
+    """hybrid/scaled 2 applies 2F to the atoms while the contact outputs read F: refused,
+    naming the reader (they reported half the applied force)."""
+    kwargs = dict(HYBRID, pair_style="pair_style hybrid/scaled 2.0 thornton/yin")
+    rc, out = run_deck(deck(**kwargs).replace("run 0", reader + "\nrun 0"), tmp_path)
+    name = reader.split()[1]
+    assert ("pair thornton/yin under pair_style hybrid/scaled: the scale factor multiplies the "
+            "forces on the atoms, but") in out and f" {name} (" in out, out[-2000:]
+    # without a reader the forces are the scaled ones, and nothing is refused
+    rc, out = run_deck(deck(**kwargs), tmp_path, name="in.plain")
+    assert rc == 0 and "ERROR" not in out, out[-2000:]
+
+
+@pytest.mark.parametrize("units,unit", [("si", "J/m^2"), ("cgs", "erg/cm^2")])
+def test_gamma_message_names_the_deck_units(units, unit, tmp_path):
+    """'units cgs': the message gives Gamma in erg/cm^2, the unit the deck uses."""
+    text = deck(pair_coeff="pair_coeff * * 70e9 0.3 0.3 -0.3").replace("units si",
+                                                                      f"units {units}")
+    rc, out = run_deck(text, tmp_path)
+    assert f"interface energy Gamma must be >= 0 {unit} (got -0.3)" in out, out[-2000:]
+
+
+def two_type_deck(pair_style, pair_coeff):
+    """The two touching spheres of deck(), the second of type 2."""
+    text = deck(pair_style=pair_style, pair_coeff=pair_coeff).replace("create_box 1 box",
+                                                                     "create_box 2 box")
+    return text.replace(f"create_atoms 1 single {1e-3 + 2 * R - 1e-8}",
+                        f"create_atoms 2 single {1e-3 + 2 * R - 1e-8}").replace("run 0", "run 5")
+
+
+def test_hybrid_with_another_style_on_other_types_runs(tmp_path):
+    """thornton/yin on types 1 1 only, pair zero on the rest: the pair checks only its own
+    type pairs (it stopped with 'coefficients for types 2 2 are not set and cannot be mixed',
+    though pair_coeff 2 2 zero was given)."""
+    text = two_type_deck("pair_style hybrid thornton/yin zero 1e-4",
+                         "pair_coeff 1 1 thornton/yin 70e9 0.3 0.3 0.3\n"
+                         "pair_coeff 1 2 zero\npair_coeff 2 2 zero")
+    rc, out = run_deck(text, tmp_path)
+    assert rc == 0 and "ERROR" not in out, out[-2000:]
+
+
+def test_second_thornton_yin_in_hybrid_is_refused(tmp_path):
+    """Two thornton/yin sub-styles would share one contact-history store (LAMMPS said 'Modify
+    replace_fix ID NEIGH_HISTORY_THORNTON_YIN_DUMMY could not be found')."""
+    text = two_type_deck("pair_style hybrid thornton/yin thornton/yin",
+                         "pair_coeff 1 1 thornton/yin 1 70e9 0.3 0.3 0.3\n"
+                         "pair_coeff 2 2 thornton/yin 2 70e9 0.3 0.3 0.3\n"
+                         "pair_coeff 1 2 thornton/yin 1 70e9 0.3 0.3 0.3")
+    rc, out = run_deck(text, tmp_path)
+    assert "pair thornton/yin may appear only once in a hybrid pair style" in out, out[-2000:]

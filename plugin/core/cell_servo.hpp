@@ -47,6 +47,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdio>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -57,20 +58,28 @@ enum class AxisControl { STRAIN_RATE, STRESS };
 
 inline const char* axis_name(int axis) { return axis == 0 ? "x" : axis == 1 ? "y" : "z"; }
 
+// a number in a message: 6 significant digits (std::to_string writes 1e300 in 301 digits)
+inline std::string number_text(double value)
+{
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Input checks; messages name the offending quantity so the fix can pass them on
 
 inline void require_positive_stress(const std::string& name, double value)
 {
   if (!(value > 0.0) || !std::isfinite(value))
-    throw std::invalid_argument("target stress " + name + " = " + std::to_string(value)
+    throw std::invalid_argument("target stress " + name + " = " + number_text(value)
                                 + " must be positive (a granular cell carries no tension)");
 }
 
 inline void require_b_in_range(double b)
 {
   if (!(b >= 0.0 && b <= 1.0))
-    throw std::invalid_argument("b = " + std::to_string(b) + " is outside [0, 1]");
+    throw std::invalid_argument("b = " + number_text(b) + " is outside [0, 1]");
 }
 
 inline void require_every_axis_controlled(const std::array<std::optional<AxisControl>, 3>& axes)
@@ -305,14 +314,14 @@ void require_controllable(const MixedControlOf<N>& c)
 inline void require_valid(const ServoSettings& s)
 {
   if (!(s.gain > 0.0 && s.gain <= 1.0))
-    throw std::invalid_argument("servo gain " + std::to_string(s.gain) + " is outside (0, 1]");
+    throw std::invalid_argument("servo gain " + number_text(s.gain) + " is outside (0, 1]");
   if (!(s.integral_gain >= 0.0 && s.integral_gain <= 0.25 * s.gain * s.gain))
-    throw std::invalid_argument("servo integral gain " + std::to_string(s.integral_gain)
+    throw std::invalid_argument("servo integral gain " + number_text(s.integral_gain)
                                 + " must lie in [0, gain^2/4] (larger values overshoot)");
   if (!(s.integral_band >= 0.0))
     throw std::invalid_argument("servo integral band must not be negative");
   if (!(s.max_strain_rate > 0.0))
-    throw std::invalid_argument("servo maximum strain rate " + std::to_string(s.max_strain_rate)
+    throw std::invalid_argument("servo maximum strain rate " + number_text(s.max_strain_rate)
                                 + " must be positive");
 }
 
@@ -338,8 +347,27 @@ ServoCommandOf<N> servo_step(const MixedControlOf<N>& control, const CellMeasure
     memory.last_strain_rate = command.strain_rate;
     return command;
   }
-  const MatrixN<N> C = cell.stiffness + 1e-9 * scale * MatrixN<N>::Identity();
+  const double floor = 1e-9 * scale;
+  const MatrixN<N> C = cell.stiffness + floor * MatrixN<N>::Identity();
   const VectorN<N> prescribed_step = control.prescribed_strain_rate * dt;
+
+  // Rate floor (docs/theory.md §6.2): an actuator that moves no held stress, because no
+  // contact carries load along it (an axis of a loose specimen that no contact crosses),
+  // would be normalised by the stiffness floor alone, and the cap, which scales the servo
+  // part as a whole, would freeze every other axis behind it. Such an actuator moves at the
+  // cap towards its target (the sign of its error times its row's weight on it), and the
+  // loaded actuators are servoed among themselves.
+  const MatrixN<N> raw_response = control.stress_rows * cell.stiffness * control.actuators;
+  VectorN<N> floor_rate = VectorN<N>::Zero();
+  std::array<bool, N> unloaded{};
+  for (int k = 0; k < m; ++k) {
+    unloaded[k] = raw_response.col(k).cwiseAbs().maxCoeff() <= floor;
+    const double pull = control.stress_rows.row(k).dot(control.actuators.col(k)) *
+        (control.stress_targets(k) - control.stress_rows.row(k).dot(cell.stress));
+    if (unloaded[k] && pull != 0.0)
+      floor_rate += (pull > 0.0 ? 1.0 : -1.0) * settings.max_strain_rate *
+                    control.actuators.col(k) / control.actuators.col(k).cwiseAbs().maxCoeff();
+  }
 
   // padded to NxN with identity on unused actuators so one fixed-size solve serves all m
   MatrixN<N> response = MatrixN<N>::Identity();
@@ -350,6 +378,14 @@ ServoCommandOf<N> servo_step(const MixedControlOf<N>& control, const CellMeasure
   for (int k = 0; k < m; ++k)
     command.stress_error = std::max(command.stress_error, std::abs(error(k)));
   feed_forward.head(m) = control.stress_rows.topRows(m) * C * prescribed_step;
+  VectorN<N> held_integral = memory.integral;
+  for (int k = 0; k < m; ++k)
+    if (unloaded[k]) {    // out of the loaded actuators' system, like an unused one
+      response.row(k).setZero();
+      response.col(k).setZero();
+      response(k, k) = 1.0;
+      error(k) = feed_forward(k) = held_integral(k) = 0.0;
+    }
 
   const Eigen::FullPivLU<MatrixN<N>> lu(response);
   if (!lu.isInvertible())
@@ -359,7 +395,7 @@ ServoCommandOf<N> servo_step(const MixedControlOf<N>& control, const CellMeasure
   const double stress_level = std::max(control.stress_targets.head(m).cwiseAbs().maxCoeff(),
                                        std::abs(mean_stress(cell.stress.template head<3>())));
   const bool near_target = error.cwiseAbs().maxCoeff() <= settings.integral_band * stress_level;
-  const VectorN<N> integral = memory.integral + (near_target ? error : VectorN<N>::Zero());
+  const VectorN<N> integral = held_integral + (near_target ? error : VectorN<N>::Zero());
   VectorN<N> u = settings.gain * normalised_error - lu.solve(feed_forward)
                       + settings.integral_gain * lu.solve(integral);
   u.tail(N - m).setZero();
@@ -372,7 +408,8 @@ ServoCommandOf<N> servo_step(const MixedControlOf<N>& control, const CellMeasure
   } else {
     memory.integral = integral;
   }
-  command.strain_rate += servo_rate;
+  if (floor_rate != VectorN<N>::Zero()) command.saturated = true;
+  command.strain_rate += servo_rate + floor_rate;
   memory.last_strain_rate = command.strain_rate;
   return command;
 }

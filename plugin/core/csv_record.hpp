@@ -20,6 +20,9 @@
 #include <string>
 #include <vector>
 
+#include <fnmatch.h>
+#include <sys/stat.h>
+
 namespace tycore {
 
 class CsvRecord {
@@ -137,6 +140,61 @@ class CsvRecord {
   long long last_step_ = -1;
   int dropped_ = 0;
 };
+
+// Which file a path names, so that two names of one record are recognised as one (fix
+// cell/servo refuses to start a record over another it would overwrite): an existing file is
+// its device and inode, whatever its name (./c.csv, c.csv, a symbolic link, d/../c.csv); a
+// file not yet made is the device and inode of its directory (symbolic links and .. resolved)
+// plus its name. Two paths alias when their identities are equal.
+struct FileIdentity {
+  unsigned long long device = 0, inode = 0;
+  std::string name;    // empty for an existing file; the file name in its directory otherwise
+  bool operator==(const FileIdentity& o) const
+  {
+    return device == o.device && inode == o.inode && name == o.name;
+  }
+  bool operator!=(const FileIdentity& o) const { return !(*this == o); }
+};
+
+inline FileIdentity identity_of(const struct stat& st, const std::string& name = "")
+{
+  return {static_cast<unsigned long long>(st.st_dev), static_cast<unsigned long long>(st.st_ino),
+          name};
+}
+
+inline FileIdentity file_identity(const std::string& path)
+{
+  struct stat st;
+  if (::stat(path.c_str(), &st) == 0) return identity_of(st);
+  std::error_code ec;
+  const std::filesystem::path full =
+      std::filesystem::weakly_canonical(std::filesystem::absolute(path, ec), ec);
+  const std::filesystem::path dir = full.parent_path();
+  if (::stat(dir.empty() ? "." : dir.c_str(), &st) == 0)
+    return identity_of(st, full.filename().string());
+  return {0, 0, full.string()};    // no such directory: nothing else can be written there
+}
+
+// the file an open stream writes to or reads from (a log file, the input script)
+inline FileIdentity file_identity(std::FILE* stream)
+{
+  struct stat st;
+  if (stream && ::fstat(fileno(stream), &st) == 0 && S_ISREG(st.st_mode)) return identity_of(st);
+  return {};    // (0, 0, ""): equal to no path's identity
+}
+
+// a path names one of the files of a pattern with '*' (a file per step: restart files,
+// dumps), or, without '*', the pattern's file: the same directory and a matching name
+inline bool names_file_of(const std::string& path, const std::string& pattern)
+{
+  if (pattern.find('*') == std::string::npos) return file_identity(path) == file_identity(pattern);
+  const std::filesystem::path p(path), q(pattern);
+  const auto directory = [](const std::filesystem::path& f) {
+    return f.has_parent_path() ? f.parent_path().string() : std::string(".");
+  };
+  return file_identity(directory(p)) == file_identity(directory(q)) &&
+         ::fnmatch(q.filename().c_str(), p.filename().c_str(), 0) == 0;
+}
 
 }    // namespace tycore
 

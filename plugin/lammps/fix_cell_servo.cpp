@@ -153,6 +153,7 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
   for (double &s : kinetic_stress) s = 0.0;
   for (double &s : stiffness_sums) s = 0.0;
   for (double &o : output) o = NaN;
+  for (double &o : origin) o = NaN;
   for (int i = 0; i < 3; ++i) reference_length[i] = domain->prd[i];
   clock_step = update->ntimestep;
 
@@ -179,10 +180,13 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
       clock_step = c.clock_step;
       boundary_work = c.boundary_work;
       continued = 1;
-      continued_csv = c.csv_path;
-    } else if (!csv_path.empty() && csv_path == c.csv_path) {
-      error->all(FLERR, "fix cell/servo: 'continue no' starts a new test, whose record would "
-                 "overwrite {}, the record of the test it replaces: name another file", csv_path);
+      continued_csv = c.csv_identity;
+      std::copy(c.origin, c.origin + N_OUTPUT, origin);
+    } else if (!csv_path.empty() && tycore::file_identity(csv_path) == c.csv_identity) {
+      // by file identity: ./a.csv, a symbolic link or d/../a.csv name a.csv too
+      error->all(FLERR, "fix cell/servo: 'continue no' starts a new test, whose record {} would "
+                 "overwrite {}, the record of the test it replaces: name another file",
+                 csv_path, c.csv_path);
     }
   }
   if (previous != stash.end()) stash.erase(previous);
@@ -228,6 +232,11 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
 // reads the fix's state by the names of the Output table (OUTPUT_NAMES, the one list) instead
 // of by position. A variable of that name that exists already is an error, not overwritten;
 // the variables go with the fix.
+const char *FixCellServo::output_name(int i)
+{
+  return OUTPUT_NAMES[i];
+}
+
 std::string FixCellServo::output_variable(int i) const
 {
   return fmt::format("{}_{}", id, OUTPUT_NAMES[i]);
@@ -263,6 +272,8 @@ FixCellServo::~FixCellServo()
   c.clock_step = clock_step;
   c.boundary_work = boundary_work;
   c.csv_path = csv_path;
+  if (!csv_path.empty()) c.csv_identity = tycore::file_identity(csv_path);
+  std::copy(origin, origin + N_OUTPUT, c.origin);
   continuations()[continuation_key(lmp, id)] = c;
 
   if (modify->find_compute(pressure_id) >= 0) modify->delete_compute(pressure_id);
@@ -390,9 +401,8 @@ void FixCellServo::parse_mode(int narg, char **arg, int &iarg)
   } else if (name == "circle" || name == "triangle") {
     mode = Mode::PATH;
     need(2);
-    prestrain = finite_number(lmp, arg[iarg++], name + " pre-strain");
-    if (!(prestrain > 0.0))
-      error->all(FLERR, "fix cell/servo {}: pre-strain {} must be positive", name, prestrain);
+    prestrain = number_in(arg[iarg++], name + " pre-strain", 0.0, 1.0, true,
+                          " (a natural strain)");
     target_p = stress_arg("mean stress p");
     path_kind = name;    // built in parse_keywords(), after its options
   } else if (name == "polygon") {
@@ -403,9 +413,11 @@ void FixCellServo::parse_mode(int narg, char **arg, int &iarg)
     need(2 * n + 1);
     polygon_vertices.clear();
     for (int k = 0; k < n; ++k, iarg += 2)
-      polygon_vertices.emplace_back(finite_number(lmp, arg[iarg], fmt::format("polygon vertex {} x", k + 1)),
-                            finite_number(lmp, arg[iarg + 1],
-                                          fmt::format("polygon vertex {} y", k + 1)));
+      polygon_vertices.emplace_back(
+          number_in(arg[iarg], fmt::format("polygon vertex {} x", k + 1), -1.0, 1.0, false,
+                    " (a natural strain)"),
+          number_in(arg[iarg + 1], fmt::format("polygon vertex {} y", k + 1), -1.0, 1.0, false,
+                    " (a natural strain)"));
     target_p = stress_arg("mean stress p");
     path_kind = name;
   } else {
@@ -422,11 +434,10 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
   bool with_prestrain = true;
   double sweep = 360.0;
   std::set<std::string> seen;
-  auto positive_number = [&](const char *text, const std::string &what) {
-    const double v = finite_number(lmp, text, what);
-    if (!(v > 0.0))
-      error->all(FLERR, "fix cell/servo: {} must be positive, got {}", what, v);
-    return v;
+  // the equilibrium tolerances are fractions (of p*, of the mean contact force, of p* V, of
+  // a contact per particle)
+  auto fraction = [&](const char *text, const std::string &what) {
+    return number_in(text, what, 0.0, 1.0, true);
   };
   while (iarg < narg) {
     const std::string key = arg[iarg];
@@ -469,8 +480,7 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
     } else if (key == "sweep") {
       if (path_kind != "circle")
         error->all(FLERR, "fix cell/servo: keyword 'sweep' applies only to the circle path");
-      sweep = finite_number(lmp, value(), "sweep");
-      if (!(sweep > 0.0)) error->all(FLERR, "fix cell/servo circle: sweep must be positive");
+      sweep = number_in(value(), "sweep", 0.0, 36000.0, true, " degrees (100 turns)");
       iarg += 2;
     } else if (key == "close") {
       if (path_kind != "polygon")
@@ -496,18 +506,19 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
       settings.integral_gain = finite_number(lmp, value(), "integral_gain");
       iarg += 2;
     } else if (key == "integral_band") {
-      settings.integral_band = finite_number(lmp, value(), "integral_band");
+      settings.integral_band = number_in(value(), "integral_band", 0.0, 1.0, false,
+                                         " (a fraction of the stress level)");
       iarg += 2;
     } else if (key == "max_rate") {
       settings.max_strain_rate = finite_number(lmp, value(), "max_rate");
       if (!(settings.max_strain_rate > 0.0))
         error->all(FLERR, "fix cell/servo: max_rate must be positive, got {}",
                    settings.max_strain_rate);
+      max_rate_given = true;    // its range needs the timestep: check_rates_resolvable()
       iarg += 2;
     } else if (key == "max_inertial") {
-      inertial_cap = finite_number(lmp, value(), "max_inertial");
-      if (!(inertial_cap > 0.0))
-        error->all(FLERR, "fix cell/servo: max_inertial must be positive, got {}", inertial_cap);
+      inertial_cap = number_in(value(), "max_inertial", 0.0, 1.0, true,
+                               " (above 1 a packing flows like a gas)");
       iarg += 2;
     } else if (key == "csv") {
       csv_path = value(1);
@@ -520,17 +531,11 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
         error->all(FLERR, "fix cell/servo: extra {} needs {} name-value pairs", n, n);
       for (int k = 0; k < n; ++k) {
         const std::string name = arg[iarg + 2 + 2 * k], ref = arg[iarg + 3 + 2 * k];
-        if (name.find_first_of(",\"' ") != std::string::npos || name.empty())
-          error->all(FLERR, "fix cell/servo: extra column name '{}' may not hold commas, quotes "
-                     "or blanks", name);
-        bool taken = name == "step";
-        for (const char *builtin : OUTPUT_NAMES) taken = taken || name == builtin;
-        for (const auto &e : extra_columns) taken = taken || name == e.first;
-        if (taken) error->all(FLERR, "fix cell/servo: extra column name '{}' is taken", name);
+        check_extra_name(name, ref, extra_requests);
         if (!utils::strmatch(ref, "^[cfv]_"))
-          error->all(FLERR, "fix cell/servo: extra column {}: '{}' is not a c_ID, c_ID[i], "
-                     "f_ID[i] or v_name reference", name, ref);
-        extra_columns.emplace_back(name, ref);
+          error->all(FLERR, "fix cell/servo {}: extra column {}: '{}' is not a c_ID, c_ID[i], "
+                     "f_ID, f_ID[i] or v_name reference", id, name, ref);
+        extra_requests.emplace_back(name, ref);
       }
       iarg += 2 + 2 * n;
     } else if (key == "until") {
@@ -559,16 +564,16 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
       equilibrium_every = positive_integer(lmp, value(), "equilibrium interval N");
       iarg += 2;
     } else if (key == "eq_stress") {
-      criteria.stress_tolerance = positive_number(value(), key);
+      criteria.stress_tolerance = fraction(value(), key);
       iarg += 2;
     } else if (key == "eq_unbalanced") {
-      criteria.max_unbalanced_force_ratio = positive_number(value(), key);
+      criteria.max_unbalanced_force_ratio = fraction(value(), key);
       iarg += 2;
     } else if (key == "eq_kinetic") {
-      criteria.max_kinetic_energy_ratio = positive_number(value(), key);
+      criteria.max_kinetic_energy_ratio = fraction(value(), key);
       iarg += 2;
     } else if (key == "eq_coordination") {
-      criteria.coordination_tolerance = positive_number(value(), key);
+      criteria.coordination_tolerance = fraction(value(), key);
       iarg += 2;
     } else if (key == "eq_window") {
       criteria.window = positive_integer(lmp, value(), "eq_window");
@@ -595,6 +600,9 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
   if (mode != Mode::PATH && path_speed > 0.0)
     error->all(FLERR, "fix cell/servo: keyword 'speed' applies only to circle, triangle and "
                "polygon paths");
+  if (!extra_requests.empty() && csv_path.empty())
+    error->all(FLERR, "fix cell/servo {}: 'extra' adds columns to the record, but this fix "
+               "writes none: add 'csv FILE N'", id);
   if (equilibrium_every > 0 && mode != Mode::ISO)
     error->all(FLERR, "fix cell/servo: the equilibrium check applies to the iso mode only");
 }
@@ -708,6 +716,7 @@ void FixCellServo::init()
   mean_density = total[2] / total[0];
   solid_volume = total[3];
 
+  resolve_extra_columns();
   saturated_steps = 0;
   saturation_warned = false;
 }
@@ -723,10 +732,7 @@ void FixCellServo::choose_rate_cap()
     if (mode == Mode::AXES) {
       // axes mode holds no mean stress (target_p = 0): take the level of the stress-held
       // axes, not 1 Pa, whose inertial-number rate would all but freeze the servo
-      double level = 0.0;
-      for (auto &a : axis_input)
-        if (a.control == tycore::AxisControl::STRESS)
-          level = std::max(level, a.variable.empty() ? a.value : evaluate(a));
+      const double level = stress_level();
       if (level > 0.0)
         settings.max_strain_rate =
             tycore::quasi_static_strain_rate(inertial_cap, level, mean_diameter, mean_density);
@@ -743,6 +749,20 @@ void FixCellServo::choose_rate_cap()
     error->warning(FLERR, "fix cell/servo: max_rate {:.3g} is below the prescribed strain rate "
                    "{:.3g}; the servo cannot keep up and the stress will drift (raise max_rate)",
                    settings.max_strain_rate, prescribed_rate());
+}
+
+// the held stresses and their targets, for messages (variables named, not evaluated)
+std::string FixCellServo::held_targets() const
+{
+  if (mode != Mode::AXES) return fmt::format("p = {:.4g}, target {:.4g}", output[P], target_p);
+  std::string text;
+  for (int k = 0; k < 3; ++k)
+    if (axis_input[k].control == tycore::AxisControl::STRESS)
+      text += fmt::format("{}sig{} = {:.4g}, target {}", text.empty() ? "" : "; ", k + 1,
+                          stress[k], axis_input[k].variable.empty()
+                              ? fmt::format("{:.4g}", axis_input[k].value)
+                              : "v_" + axis_input[k].variable);
+  return text;
 }
 
 // largest prescribed principal strain rate (or path speed) of the programme [1/s]
@@ -779,7 +799,11 @@ void FixCellServo::setup(int)
   compute_outputs();
   compute_particle_outputs();
   choose_rate_cap();
+  check_rates_resolvable();
+  warn_inertial_number();
   progress_at_setup = output[PROGRESS];
+  until_run_start = until_output >= 0 ? output[until_output] : NaN;
+  until_direction_checked = false;
   if (mode == Mode::PATH && path_speed > tycore::max_followable_speed(path, update->dt))
     error->all(FLERR, "fix cell/servo: at speed {:.4g} the shortest leg of the Pi-plane path "
                "(length {:.4g}) takes {:.3g} steps, and the cell cannot follow a leg in fewer "
@@ -811,8 +835,9 @@ std::string FixCellServo::csv_header() const
 void FixCellServo::open_csv()
 {
   if (csv_path.empty() || comm->me != 0 || csv.is_open()) return;
+  refuse_record_aliases();
   try {
-    if (restored || (continued && csv_path == continued_csv))
+    if (restored || (continued && tycore::file_identity(csv_path) == continued_csv))
       csv.resume(csv_path, csv_header(), update->ntimestep);
     else
       csv.start(csv_path, csv_header());
@@ -878,6 +903,7 @@ void FixCellServo::end_of_step()
   advance_clock();
   measure();
   compute_outputs();
+  check_until_direction();
   if (csv_every > 0 && update->ntimestep % csv_every == 0) {
     compute_particle_outputs();
     write_csv_row();
@@ -942,10 +968,10 @@ void FixCellServo::end_of_step()
     if (comm->me == 0)
       error->warning(FLERR, "fix cell/servo: the servo has been at its strain-rate cap "
                      "max_rate = {:.3g} for {} steps and its stress error grew from {:.4g} to "
-                     "{:.4g} Pa (p = {:.4g}, target {:.4g}); raise max_rate or lower the "
+                     "{:.4g} ({}; prescribed rate {:.4g} 1/s); raise max_rate or lower the "
                      "prescribed rate (said once per run)", settings.max_strain_rate,
-                     saturated_steps, saturated_error, command.stress_error, output[P],
-                     target_p);
+                     saturated_steps, saturated_error, command.stress_error, held_targets(),
+                     prescribed_rate());
   }
 
   const double rate[3] = {command.strain_rate(0), command.strain_rate(1), command.strain_rate(2)};
@@ -1059,6 +1085,8 @@ void FixCellServo::compute_outputs()
   output[VOLUME] = volume;
   output[TIME] = elapsed_time;
   output_step = update->ntimestep;
+  // the state the test began in (a test restored from a restart file does not know it)
+  if (std::isnan(origin[TIME]) && !restored) std::copy(output, output + N_OUTPUT, origin);
 }
 
 /* ----------------------------------------------------------------------
@@ -1168,6 +1196,14 @@ void FixCellServo::write_restart(FILE *fp)
 
 void FixCellServo::restart(char *buf)
 {
+  // 'continue no' asks for a new test: the state in the restart file is not taken up
+  if (!continue_previous) {
+    if (comm->me == 0)
+      utils::logmesg(lmp, "fix cell/servo {}: continue no: the test whose state the restart "
+                     "file holds is not continued; a new test starts (strains, time and "
+                     "boundary work from zero)\n", id);
+    return;
+  }
   const double *list = reinterpret_cast<double *>(buf);
   if (list[0] == OLD_RESTART_TAG)
     error->all(FLERR, "fix cell/servo: the restart file holds a record of an earlier build of "

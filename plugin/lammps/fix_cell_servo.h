@@ -53,7 +53,10 @@ class FixCellServo : public Fix {
     double boundary_work;
     double last_strain_rate[3];
     std::string csv_path;
+    tycore::FileIdentity csv_identity;    // which file that record is (made by then)
+    double origin[N_OUTPUT];              // the outputs when the test began
   };
+  static const char *output_name(int i);    // name of output i (0-based)
 
  protected:
   enum class Mode { ISO, AXES, AXISYM, CONSTANT_B, DEVIATORIC, PATH };
@@ -83,6 +86,7 @@ class FixCellServo : public Fix {
   double prestrain;                // circle, triangle
   tycore::PlaneStrain plane_strain = tycore::PlaneStrain::TOTAL;
   tycore::ServoSettings settings;
+  bool max_rate_given = false;
   double inertial_cap;             // default cap: strain rate at this inertial number
 
   // equilibrium check (preparation stages)
@@ -100,7 +104,8 @@ class FixCellServo : public Fix {
   int restored;                    // 1 if the state came from a restart file
   int continued;                   // 1 if it came from the fix this one redefines
   int continue_previous;           // keyword continue yes|no
-  std::string continued_csv;       // the record that fix wrote
+  tycore::FileIdentity continued_csv;    // the record that fix wrote
+  double origin[N_OUTPUT];         // the outputs when the test began (NaN: not known)
 
   // measurements of the last step
   double stress[3], kinetic_stress[3], stiffness_sums[6];
@@ -123,7 +128,13 @@ class FixCellServo : public Fix {
   int csv_every;
   tycore::CsvRecord csv;
   std::string csv_header() const;
-  std::vector<std::pair<std::string, std::string>> extra_columns;   // name, reference
+  std::vector<std::pair<std::string, std::string>> extra_requests;  // name, reference as given
+  std::vector<std::pair<std::string, std::string>> extra_columns;   // resolved (init)
+  // the checks of the record: fix_cell_servo_record.cpp
+  void check_extra_name(const std::string &name, const std::string &ref,
+                        const std::vector<std::pair<std::string, std::string>> &taken) const;
+  void resolve_extra_columns();
+  void refuse_record_aliases() const;
 
   // progress / ETA; 'until NAME VALUE': the test ends when output NAME reaches VALUE
   double wall_start;
@@ -133,6 +144,17 @@ class FixCellServo : public Fix {
   double until_value = 0.0;
   double until_start = std::numeric_limits<double>::quiet_NaN();   // NAME when the test began
   int until_met = 0;
+  bool until_direction_checked = false;
+  double until_run_start = std::numeric_limits<double>::quiet_NaN();   // NAME at this run's setup
+  // checks of the programme (fix_cell_servo_input.cpp)
+  double number_in(const char *text, const std::string &what, double lo, double hi,
+                   bool open_low, const char *unit = "");
+  void check_rates_resolvable();
+  double stress_level();
+  void warn_inertial_number();
+  void check_until_direction();
+  static constexpr double MIN_STRAIN_PER_STEP = 1e-15;
+  static constexpr double UNTIL_DIRECTION_FRACTION = 0.01;
 
   void parse_mode(int narg, char **arg, int &iarg);
   void parse_keywords(int narg, char **arg, int iarg);
@@ -154,6 +176,7 @@ class FixCellServo : public Fix {
   double default_max_rate() const;
   void choose_rate_cap();
   double prescribed_rate() const;
+  std::string held_targets() const;
   bigint saturated_steps;
   double saturated_error;         // the stress error when the servo reached its cap
   bool saturation_warned;         // the cap warning has been given in this run

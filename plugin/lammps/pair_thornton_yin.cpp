@@ -18,6 +18,7 @@
 #include "compute.h"
 #include "domain.h"
 #include "error.h"
+#include "fix.h"
 #include "fix_dummy.h"
 #include "fix_neigh_history.h"
 #include "force.h"
@@ -43,6 +44,17 @@ constexpr int HISTORY_SIZE = tycore::history_size;
 constexpr double BIG = 1.0e20;
 const char *const FIX_HISTORY_ID = "NEIGH_HISTORY_THORNTON_YIN";
 const char *const FIX_DUMMY_ID = "NEIGH_HISTORY_THORNTON_YIN_DUMMY";
+
+// the unit of an interface energy (energy per area) in the units the deck gave
+std::string surface_energy_unit(const char *unit_style)
+{
+  const std::string u = unit_style;
+  if (u == "si") return "J/m^2";
+  if (u == "cgs") return "erg/cm^2";
+  if (u == "micro") return "picogram/microsecond^2 ('units micro')";
+  if (u == "nano") return "attogram/nanosecond^2 ('units nano')";
+  return "energy/area of 'units " + u + "'";
+}
 
 inline tycore::ContactHistory load_history(const double *slot)
 {
@@ -70,8 +82,8 @@ PairThorntonYin::PairThorntonYin(LAMMPS *lmp) : PairWithHistory(lmp)
   nextra = N_PVECTOR;
   pvector = new double[nextra];
   for (int k = 0; k < nextra; ++k) pvector[k] = 0.0;
-  single_extra = N_SVECTOR;
-  svector = new double[single_extra];
+  svector = new double[N_SVECTOR];
+  single_extra = sub_style_of("hybrid") ? 0 : N_SVECTOR;
 
   youngs = poisson = nullptr;
   material_set = nullptr;
@@ -95,6 +107,12 @@ PairThorntonYin::PairThorntonYin(LAMMPS *lmp) : PairWithHistory(lmp)
   atom_contacts = nullptr;
   nmax_count = 0;
   comm_reverse = 1;
+
+  // one instance only: its contact history has one store, named by fixed IDs (restart files)
+  if (modify->find_fix(FIX_DUMMY_ID) >= 0 || modify->find_fix(FIX_HISTORY_ID) >= 0)
+    error->all(FLERR, "pair thornton/yin may appear only once in a hybrid pair style (its "
+               "contact history has one store): give all its type pairs to one thornton/yin "
+               "('pair_coeff I J thornton/yin E nu mu Gamma'; the materials may differ by type)");
 
   // placeholder keeps the history fix at the position of the pair_style command
   fix_history = nullptr;
@@ -224,8 +242,8 @@ void PairThorntonYin::coeff(int narg, char **arg)
     error->all(FLERR, "pair_coeff thornton/yin: friction coefficient mu must be >= 0 (got {})",
                mu);
   if (!(Gamma >= 0.0))
-    error->all(FLERR, "pair_coeff thornton/yin: interface energy Gamma must be >= 0 J/m^2 "
-               "(got {})", Gamma);
+    error->all(FLERR, "pair_coeff thornton/yin: interface energy Gamma must be >= 0 {} "
+               "(got {})", surface_energy_unit(update->unit_style), Gamma);
 
   double beta_n = 0.0, beta_t = 0.0;
   for (int iarg = 6; iarg < narg;) {
@@ -309,6 +327,8 @@ void PairThorntonYin::init_style()
     error->all(FLERR, "pair thornton/yin needs a mechanically consistent unit system "
                "(units si, cgs, micro or nano), got 'units {}'", units);
 
+  check_hybrid_outputs();
+
   tylmp_compat::request_history_list(neighbor, this, instance_me);
   // one batch per type pair, made when its first contact comes (eval)
   batches.clear();
@@ -338,6 +358,7 @@ void PairThorntonYin::init_style()
   // the checks below see the mixed coefficients of unlike types (init_one mixes them later)
   for (int i = 1; i <= ntypes; ++i)
     for (int j = i; j <= ntypes; ++j) {
+      if (!handles(i, j)) continue;
       if (!setflag[i][j]) mix_pair(i, j);
       const double rad_i = largest_radius(i), rad_j = largest_radius(j);
       if (rad_i > 0.0 && rad_j > 0.0) check_law_domain(i, j, rad_i, rad_j, true);
@@ -357,7 +378,7 @@ void PairThorntonYin::check_break_against_skin()
   const int ntypes = atom->ntypes;
   for (int i = 1; i <= ntypes; ++i) {
     for (int j = i; j <= ntypes; ++j) {
-      if (maxrad_type[i] <= 0.0 || maxrad_type[j] <= 0.0) continue;
+      if (maxrad_type[i] <= 0.0 || maxrad_type[j] <= 0.0 || !handles(i, j)) continue;
       const double R = tycore::effective_radius(maxrad_type[i], maxrad_type[j]);
       const double gap = -tycore::jkr::break_overlap(R, E_star[i][j], surface_energy[i][j]);
       if (gap > 0.0 && neighbor->skin <= gap)
@@ -441,8 +462,8 @@ double PairThorntonYin::init_one(int i, int j)
                "and >= 0 (got {}; set by pair_coeff or fix adapt)", i, j, friction[i][j]);
   if (!(std::isfinite(surface_energy[i][j]) && surface_energy[i][j] >= 0.0))
     error->all(FLERR, "pair thornton/yin: interface energy Gamma of types {} {} must be finite "
-               "and >= 0 J/m^2 (got {}; set by pair_coeff or fix adapt)", i, j,
-               surface_energy[i][j]);
+               "and >= 0 {} (got {}; set by pair_coeff or fix adapt)", i, j,
+               surface_energy_unit(update->unit_style), surface_energy[i][j]);
   E_star[j][i] = E_star[i][j];
   G_star[j][i] = G_star[i][j];
   friction[j][i] = friction[i][j];
@@ -861,6 +882,66 @@ void PairThorntonYin::record_contact(const Batch &bt, int l, double Fn, const do
   rec.peeling = b.peeling[l];
   rec.mask = atom->mask[i] & atom->mask[j];
   records.push_back(rec);
+}
+
+/* ----------------------------------------------------------------------
+   pair thornton/yin as a sub-style of pair_style STYLE (exactly): while LAMMPS creates the
+   sub-styles of a hybrid (pair_style or read_restart), force->pair is the hybrid already.
+   Under plain 'hybrid' the pair offers no extra single() values (single_extra = 0): LAMMPS's
+   PairHybrid::copy_svector copies them in a loop that never ends (its condition is the
+   sub-style's count, not the index; 29 Sep 2021 and 4 Feb 2025), so compute pair/local crashed
+   on the first contact. Force and energy of single() stay available.
+------------------------------------------------------------------------- */
+
+// the type pairs this pair computes: all of them alone; under a hybrid style those given to
+// it by pair_coeff, and the unlike pairs hybrid lets it mix (I I and J J both its own)
+bool PairThorntonYin::handles(int i, int j) const
+{
+  return force->pair == this || setflag[i][j] || (material_set[i] && material_set[j]);
+}
+
+bool PairThorntonYin::sub_style_of(const char *style) const
+{
+  return force->pair && force->pair != this && force->pair_style &&
+         strcmp(force->pair_style, style) == 0;
+}
+
+/* ----------------------------------------------------------------------
+   outputs under a hybrid pair style. pair_style hybrid/scaled s multiplies the forces on the
+   atoms by s, but not the contact records, tallies and stiffness that the contact computes
+   and fix cell/servo read from this pair: they would report 1/s of the applied force, so the
+   combination is refused while one of them reads the pair. Under plain hybrid compute
+   pair/local gets force and energy only (see sub_style_of): said before LAMMPS's own error
+   for a requested p1..pN ("Pair style does not have extra field").
+------------------------------------------------------------------------- */
+
+void PairThorntonYin::check_hybrid_outputs()
+{
+  if (force->pair == this) return;
+  for (int k = 0; k < modify->ncompute && single_extra == 0 && comm->me == 0; ++k)
+    if (strcmp(modify->compute[k]->style, "pair/local") == 0) {
+      error->warning(FLERR, "pair thornton/yin under pair_style hybrid: compute {} (pair/local) "
+                     "gets the force and energy of each contact, but not the pair's extra "
+                     "values p1..p{} (overlap, contact radius, ...), which LAMMPS's pair hybrid "
+                     "cannot pass on without crashing; for them use pair_style hybrid/overlay "
+                     "or compute thornton/yin/contacts", modify->compute[k]->id,
+                     static_cast<int>(N_SVECTOR));
+      break;
+    }
+  if (!utils::strmatch(force->pair_style, "^hybrid/scaled")) return;
+  std::string reader;
+  for (int k = 0; k < modify->ncompute && reader.empty(); ++k)
+    if (utils::strmatch(modify->compute[k]->style, "^thornton/yin/"))
+      reader = fmt::format("compute {} ({})", modify->compute[k]->id, modify->compute[k]->style);
+  for (int k = 0; k < modify->nfix && reader.empty(); ++k)
+    if (strcmp(modify->fix[k]->style, "cell/servo") == 0)
+      reader = fmt::format("fix {} (cell/servo)", modify->fix[k]->id);
+  if (!reader.empty())
+    error->all(FLERR, "pair thornton/yin under pair_style {}: the scale factor multiplies the "
+               "forces on the atoms, but {} reads the unscaled contact forces of the pair and "
+               "would report them, not the applied ones; scale the material instead (E and "
+               "Gamma in pair_coeff), or use pair_style hybrid or hybrid/overlay",
+               force->pair_style, reader);
 }
 
 /* ----------------------------------------------------------------------

@@ -115,6 +115,9 @@ class PairThorntonYin : public tylmp_compat::PairWithHistory, public CellTallySo
   int nmax_count;
 
   void allocate();
+  bool sub_style_of(const char *style) const;    // a sub-style of pair_style STYLE
+  bool handles(int i, int j) const;               // type pair computed by this pair
+  void check_hybrid_outputs();
   void mix_pair(int, int);
   void check_break_against_skin();
   void check_timestep_against_rayleigh();

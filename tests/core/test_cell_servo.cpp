@@ -325,3 +325,31 @@ TEST(CellServo, ProgressTowardsTheTarget)
   EXPECT_FALSE(tycore::reached(0.0, 0.2999, 0.3));
   EXPECT_DOUBLE_EQ(tycore::progress_towards(0.3, 0.3, 0.3), 1.0);
 }
+
+// rate floor: an axis that no contact crosses (its stiffness column is zero) moves at the cap
+// towards its target, while the loaded axis is servoed by its own stiffness: the proportional
+// step g (p* - sigma_x)/(K_xx dt), not a step scaled down behind the empty axes
+TEST(CellServo, AxisWithoutContactsMovesAtTheCapAndTheOthersAreServoed)
+{
+  const double K = 2e10, cap = 1e-2;
+  CellMeasurement cell;
+  cell.stiffness = Eigen::Matrix3d::Zero();
+  cell.stiffness(0, 0) = K;                        // contacts along x only
+  cell.stress = {0.5 * p_target, 0.0, 0.0};
+  cell.strain = Eigen::Vector3d::Zero();
+  ServoSettings s = settings_with_cap(cap);
+  s.integral_gain = 0.0;
+  ServoMemory memory;
+  const ServoCommand c = servo_step(isotropic_compression_control(p_target), cell, s, dt, memory);
+  const double proportional = s.gain * 0.5 * p_target / (K * dt);    // below the cap
+  ASSERT_LT(proportional, cap);
+  EXPECT_NEAR(c.strain_rate(0), proportional, 1e-6 * proportional);
+  EXPECT_DOUBLE_EQ(c.strain_rate(1), cap);
+  EXPECT_DOUBLE_EQ(c.strain_rate(2), cap);
+  // an overloaded empty axis cannot be (its stress is 0 < p*), but a target below the stress
+  // of a loaded axis extends it: the signs follow the errors
+  cell.stress(0) = 2.0 * p_target;
+  const ServoCommand d = servo_step(isotropic_compression_control(p_target), cell, s, dt, memory);
+  EXPECT_NEAR(d.strain_rate(0), -s.gain * p_target / (K * dt), 1e-6 * s.gain * p_target / (K * dt));
+  EXPECT_DOUBLE_EQ(d.strain_rate(1), cap);
+}

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <sys/stat.h>
 #include <unistd.h>
 
 using tycore::CsvRecord;
@@ -112,4 +113,46 @@ TEST(CsvRecord, FailedWriteThrows)
               std::string::npos) << e.what();
   }
   EXPECT_THROW(r.start("/nonexistent-dir/x.csv", "step"), std::runtime_error);
+}
+
+// fix cell/servo's alias check: every name of one file has one identity, made or not yet made
+TEST(FileIdentity, AliasesOfOneFileAreEqual)
+{
+  const std::string dir = ::testing::TempDir() + "alias" + std::to_string(::getpid());
+  ASSERT_EQ(::mkdir(dir.c_str(), 0755), 0);
+  ASSERT_EQ(::mkdir((dir + "/sub").c_str(), 0755), 0);
+  const std::string file = dir + "/c.csv";
+  // not yet made: the directory's identity plus the name
+  EXPECT_EQ(tycore::file_identity(file), tycore::file_identity(dir + "/./c.csv"));
+  EXPECT_EQ(tycore::file_identity(file), tycore::file_identity(dir + "/sub/../c.csv"));
+  EXPECT_NE(tycore::file_identity(file), tycore::file_identity(dir + "/d.csv"));
+  EXPECT_NE(tycore::file_identity(file), tycore::file_identity(dir + "/sub/c.csv"));
+  spit(file, "step\n");
+  ASSERT_EQ(::symlink(file.c_str(), (dir + "/link.csv").c_str()), 0);
+  EXPECT_EQ(tycore::file_identity(file), tycore::file_identity(dir + "/link.csv"));
+  EXPECT_EQ(tycore::file_identity(file), tycore::file_identity(dir + "/sub/../c.csv"));
+  EXPECT_NE(tycore::file_identity(file), tycore::file_identity(dir + "/sub/c.csv"));
+  // an open stream (a log file) and a path naming its file
+  std::FILE* log = std::fopen(file.c_str(), "a");
+  ASSERT_NE(log, nullptr);
+  EXPECT_EQ(tycore::file_identity(log), tycore::file_identity(dir + "/./c.csv"));
+  std::fclose(log);
+  // a stream that is no regular file (a terminal, a pipe) names no path
+  EXPECT_NE(tycore::file_identity(static_cast<std::FILE*>(nullptr)),
+            tycore::file_identity(dir + "/d.csv"));
+  std::remove((dir + "/link.csv").c_str());
+  std::remove(file.c_str());
+  ::rmdir((dir + "/sub").c_str());
+  ::rmdir(dir.c_str());
+}
+
+// a restart or dump file per step ('*' in its name) is one of the pattern's files
+TEST(FileIdentity, PathsOfAPatternPerStep)
+{
+  EXPECT_TRUE(tycore::names_file_of("r.restart.1000", "r.restart.*"));
+  EXPECT_TRUE(tycore::names_file_of("./r.restart.1000", "r.restart.*"));
+  EXPECT_TRUE(tycore::names_file_of("dump.5.txt", "./dump.*.txt"));
+  EXPECT_FALSE(tycore::names_file_of("r.csv", "r.restart.*"));
+  EXPECT_FALSE(tycore::names_file_of("sub/r.restart.10", "r.restart.*"));
+  EXPECT_TRUE(tycore::names_file_of("./a.csv", "a.csv"));
 }
