@@ -3,33 +3,18 @@
 fix cell/servo and compute thornton/yin/micromechanics the periodic-cell tests and their
 micromechanics (Thornton 2000). LAMMPS prints each registered entry once, as a one-line
 notice on the screen and in full BibTeX in the log file."""
-import os
 import subprocess
 
-from lmprun import LOAD_TYLMP
+from test_pair_input_errors import one_sphere_cell
 
 THORNTON_YIN_1991 = "doi:10.1016/0032-5910(91)80178-L"
 THORNTON_2000 = "doi:10.1680/geot.2000.50.1.43"
 
 
 def run(tmp_path, styles):
-    (tmp_path / "in.cite").write_text(f"""
-units si
-atom_style sphere
-boundary p p p
-comm_modify vel yes
-region box block 0 1e-2 0 1e-2 0 1e-2
-create_box 1 box
-create_atoms 1 single 2e-3 7e-3 4e-3
-set atom 1 diameter 1e-3 density 2e15
-{LOAD_TYLMP}
-pair_style thornton/yin
-pair_coeff * * 70e9 0.3 0.3 0.0
-{styles}
-fix integrate all nve/sphere
-timestep 1e-3
-run 2
-""")
+    """A sphere alone in a periodic box under pair thornton/yin and `styles`; LAMMPS writes its
+    citation notice on the screen and the BibTeX into the log file."""
+    (tmp_path / "in.cite").write_text(one_sphere_cell(styles))
     out = subprocess.run(["lmp", "-in", "in.cite", "-log", "log.cite.lammps"], cwd=tmp_path,
                          capture_output=True, text=True, timeout=120)
     assert out.returncode == 0, out.stdout[-2000:] + out.stderr

@@ -10,7 +10,7 @@ kept here as a strict xfail that will fail once the rule is changed."""
 import numpy as np
 import pytest
 
-from lmprun import LOAD_TYLMP, reduce_local, run_ok
+from lmprun import LOAD_TYLMP, reduce_local, run_ok, two_spheres_box
 
 R, E, NU, MU = 1e-4, 70e9, 0.3, 0.3
 RATIO = 2 * (1 - NU) / (2 - NU)          # 4G*/E* of like spheres (docs/theory.md §0)
@@ -30,19 +30,7 @@ fix pull two move linear {VN} {-k * VN} 0
 run {unload_steps}
 print "LEG $(c_P:%.16g) $(sqrt(c_T[1]^2+c_T[2]^2+c_T[3]^2):%.16g) $(c_sl)"
 """
-    return f"""units si
-atom_style sphere
-atom_modify map array
-boundary p p p
-comm_modify vel yes
-region box block 0 1e-3 0 1e-3 0 1e-3
-create_box 1 box
-create_atoms 1 single 4e-4 5e-4 5e-4
-create_atoms 1 single {4e-4 + 2 * R} 5e-4 5e-4
-set atom * diameter {2 * R} density 2650
-group one id 1
-group two id 2
-{LOAD_TYLMP}pair_style thornton/yin
+    return two_spheres_box(2 * R, 2 * R, 2650) + f"""{LOAD_TYLMP}pair_style thornton/yin
 pair_coeff * * {E} {NU} {MU} 0.0
 neighbor 1e-5 bin
 neigh_modify every 1 delay 0 check yes
