@@ -307,11 +307,16 @@ def test_axisym_deck_holds_p_with_lammps_own_laws(tmp_path_factory, specimens, l
     assert 0.6 < q_over_p[-1] < 1.2            # a dense specimen resists at about its friction
 
 
-def test_an_unknown_law_is_refused(tmp_path):
-    proc = subprocess.run(_lmp_cmd(f"{REPO}/inputs/axisym.in", {"law": "hooke"}), cwd=str(tmp_path),
+@pytest.mark.parametrize("variables, message", [
+    ({"law": "hooke"}, "-var law hooke: unknown value"),
+    ({"law": "gran_hertz_history"}, "has no adhesion, but the material's Gamma is 0.6"),
+    ({"law": "granular", "damping": 0.1}, "-var law granular shears without contact damping"),
+])
+def test_a_law_the_deck_cannot_run_is_refused(tmp_path, variables, message):
+    proc = subprocess.run(_lmp_cmd(f"{REPO}/inputs/axisym.in", variables), cwd=str(tmp_path),
                           capture_output=True, text=True, timeout=TIMEOUT, env=_env())
     out = proc.stdout + proc.stderr
-    assert proc.returncode != 0 and "-var law hooke: unknown value" in out
+    assert proc.returncode != 0 and "ERROR: " in out and message in out
 
 
 def test_axisym_figure(axisym_dense, axisym_loose, tmp_path):
@@ -967,6 +972,26 @@ def test_bad_material_is_an_error(tmp_path, text, message):
     rc, out = _run("inputs/axisym.in", tmp_path, {"material": "steel.in"})
     assert rc != 0 and "ERROR: " + message in out
     assert not (tmp_path / "tylmp_specimens").exists()
+
+
+def test_restitution_sets_the_contacts_damping_ratio(tmp_path):
+    """-var restitution E: the contacts get the damping ratio whose head-on Hertz impact
+    rebounds with E (tylmp.decks.damping_ratio_for_restitution; the impact itself is checked
+    against LAMMPS in test_pair_impacts.py), printed with the material and given to pair_coeff;
+    with an explicit -var damping as well it is an error naming both."""
+    from tylmp.decks import damping_ratio_for_restitution
+    os.symlink(os.path.join(REPO, "inputs"), tmp_path / "inputs")
+    rc, out = _run_echo("inputs/axisym.in", tmp_path, dict(SHORT, **QUICK_PREP, nspheres=100,
+                                                           restitution=0.5))
+    _check(rc, out, "axisym.in -var restitution 0.5")
+    beta = damping_ratio_for_restitution(0.5)
+    assert f"damping {beta!r} (restitution 0.5)" in out
+    assert re.search(rf"pair_coeff +\* \* 70e9 0\.3 0\.3 0\.6 damping {re.escape(repr(beta))} "
+                     rf"{re.escape(repr(beta))}", out)
+    rc, out = _run("inputs/axisym.in", tmp_path, {"restitution": 0.5, "damping": 0.1})
+    assert rc != 0 and "-var restitution 0.5 and -var damping 0.1 both set" in out
+    rc, out = _run("inputs/axisym.in", tmp_path, {"restitution": 1.5})
+    assert rc != 0 and "-var restitution 1.5: must be at most 1" in out
 
 
 def test_preparation_reports_progress_and_what_to_change(tmp_path):

@@ -193,3 +193,19 @@ def test_damped_hertz_impact_restitution_matches_an_independent_integration(tmp_
     assert data["d"][-1] < 0                                           # separated again
     e_lammps = (data["vx2"][-1] - data["vx1"][-1]) / v0
     assert e_lammps == pytest.approx(e_ode, rel=1e-3)
+
+
+@pytest.mark.parametrize("restitution", [0.9, 0.5, 0.2])
+def test_damping_ratio_for_a_restitution_rebounds_with_it(tmp_path, restitution):
+    # the decks' -var restitution (tylmp.decks.damping_ratio_for_restitution, a dimensionless
+    # equation of motion inverted) against LAMMPS integrating the impact of Chung & Ooi test 1
+    from tylmp.decks import damping_ratio_for_restitution
+    beta = damping_ratio_for_restitution(restitution)
+    Em, nu, rho, Rc = 48e9, 0.20, 2800.0, 0.010
+    dt = 40.34e-6 / 4000
+    run_ok(impact_deck(Rc, Rc, Em, nu, Em, nu, rho, rho, 0.35, 0.0, (10, 0, 0), (-10, 0, 0), dt,
+                       nsteps=int(2.0 * 40.34e-6 / dt), gap=1e-7, damping=f"damping {beta!r} 0"),
+           tmp_path)
+    data = read_table(tmp_path / "out.txt")
+    assert data["d"][-1] < 0
+    assert (data["vx2"][-1] - data["vx1"][-1]) / 20.0 == pytest.approx(restitution, rel=1e-3)

@@ -154,7 +154,7 @@ class FixCellServo : public Fix {
   void warn_inertial_number();
   void check_until_direction();
   static constexpr double MIN_STRAIN_PER_STEP = 1e-15;
-  static constexpr double UNTIL_DIRECTION_FRACTION = 0.01;
+  static constexpr double UNTIL_DIRECTION_FRACTION = 0.1;    // (the servo's first steps move a strain by ~1e-5 either way)
 
   void parse_mode(int narg, char **arg, int &iarg);
   void parse_keywords(int narg, char **arg, int iarg);

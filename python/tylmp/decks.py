@@ -26,6 +26,7 @@ import re
 from . import specimen as _specimen
 
 __all__ = ["CHOICES", "NUMBERS", "MATERIAL", "check_number", "begin", "material",
+           "restitution_of_damping_ratio", "damping_ratio_for_restitution",
            "specimen_cache", "specimen_commit", "prep_track", "prep_status", "prep_report",
            "check_cached", "fragments_dir", "prep_key"]
 
@@ -56,6 +57,8 @@ NUMBERS = {
     "mu": (False, 0.0, "the interparticle friction coefficient"),
     "prep_mu": (False, 0.0, "the friction coefficient of a loose preparation"),
     "damping": (False, 0.0, "the viscous damping ratio of the contacts"),
+    "restitution": (False, 0.0, "the coefficient of restitution of a head-on impact (at most 1)",
+                    True),
     "dt": (False, 0.0, "the timestep, s", True),
     "dt_fraction": (False, 0.0, "the timestep as a fraction of the Rayleigh time", True),
     "seed": (True, 0, "the specimen generator's seed"),
@@ -242,12 +245,70 @@ def material(ptr):
     if missing:
         _fail(L, f"material {source}: {', '.join(missing)} not defined; a material file "
                  "defines E, nu, rho, mu, gamma and damping (inputs/materials/glass.in)")
+    restitution = _values(L, _defined(L, ["restitution"])).get("restitution")
+    if restitution is not None:
+        _check_options(L, ["restitution"])
+        e = float(restitution)
+        if e > 1.0:
+            _fail(L, f"-var restitution {restitution}: must be at most 1 (1: elastic contacts)")
+        if "damping" in _command_line_vars() and float(values["damping"]) != 0.0:
+            _fail(L, f"-var restitution {restitution} and -var damping {values['damping']} "
+                     "both set the contacts' damping: give one of them")
+        values["damping"] = repr(damping_ratio_for_restitution(e))
+        L.command("variable damping delete")    # the material file's index variable
+        L.command(f'variable damping string "{values["damping"]}"')
+    law = _values(L, _defined(L, ["law"])).get("law", CHOICES["law"][0])
+    if law != "thornton_yin" and float(values["damping"]) != 0.0:
+        _fail(L, f"-var law {law} shears without contact damping (common/pair.in), but the "
+                 f"material's damping is {values['damping']}: give -var damping 0")
+    if law == "gran_hertz_history" and float(values["gamma"]) != 0.0:
+        _fail(L, f"-var law gran_hertz_history has no adhesion, but the material's Gamma is "
+                 f"{values['gamma']}: give -var gamma 0")
     d_min = float(_specimen.diameters(int(values["nspheres"]), values["distribution"]).min())
     L.command(f'variable d_min string "{d_min!r}"')
+    damping = f"damping {values['damping']}" + (
+        f" (restitution {restitution})" if restitution is not None else "")
     _print(L, f"material {source}: E = {values['E']} Pa, nu = {values['nu']}, "
               f"rho = {values['rho']} kg/m3, mu = {values['mu']}, Gamma = {values['gamma']} J/m2, "
-              f"damping {values['damping']}; size distribution {values['distribution']}, "
+              f"{damping}; size distribution {values['distribution']}, "
               f"{values['nspheres']} spheres, smallest diameter {d_min!r} m")
+
+
+def restitution_of_damping_ratio(beta):
+    """Coefficient of restitution of a head-on Hertz impact under the viscous damping of pair
+    thornton/yin with ratio beta (docs/theory.md §3.5): the dimensionless equation of motion
+    x'' = -x^(3/2) - 2 beta sqrt(3/2) x^(1/4) x' from x = 0, x' = 1 until x returns to 0;
+    e = -x' there, the same at every speed, mass and stiffness."""
+    from scipy.integrate import solve_ivp
+    if beta == 0.0:
+        return 1.0
+
+    def motion(_, y):
+        x = max(y[0], 0.0)
+        return [y[1], -x ** 1.5 - 2.0 * beta * math.sqrt(1.5) * x ** 0.25 * y[1]]
+
+    def separated(_, y):
+        return y[0]
+    separated.terminal, separated.direction = True, -1
+    sol = solve_ivp(motion, (0.0, 100.0), [0.0, 1.0], events=separated, rtol=1e-11,
+                    atol=1e-14, first_step=1e-6)
+    if not sol.t_events[0].size:         # overdamped: the spheres do not separate
+        return 0.0
+    return -float(sol.y_events[0][0][1])
+
+
+def damping_ratio_for_restitution(e):
+    """The damping ratio beta of pair thornton/yin whose head-on Hertz impact rebounds with
+    restitution e, 0 < e <= 1 (restitution_of_damping_ratio inverted; docs/theory.md §3.5)."""
+    from scipy.optimize import brentq
+    if not 0.0 < e <= 1.0:
+        raise ValueError(f"restitution {e} must lie in (0, 1]")
+    if e == 1.0:
+        return 0.0
+    high = 0.1
+    while restitution_of_damping_ratio(high) > e:
+        high *= 2.0
+    return brentq(lambda b: restitution_of_damping_ratio(b) - e, 0.0, high, xtol=1e-12)
 
 
 # ---- the specimen cache --------------------------------------------------------------------------
