@@ -820,8 +820,8 @@ def test_shear_gamma_reaches_the_pair(tmp_path_factory, specimens, deck, variabl
     work = _workdir(tmp_path_factory, f"gamma_{deck}", specimens)
     rc, out = _run_echo(f"inputs/{deck}.in", work, dict(variables, gamma=0.25))
     _check(rc, out, f"{deck}.in -var gamma 0.25")
-    assert "pair_coeff      * * 70e9 0.3 0.3 0.25 damping 0 0\n" in out
-    assert "pair_coeff      * * 70e9 0.3 0.3 0.6 damping 0 0\n" not in out
+    assert "pair_coeff * * 70e9 0.3 0.3 0.25 damping 0 0\n" in out
+    assert "pair_coeff * * 70e9 0.3 0.3 0.6 damping 0 0\n" not in out
 
 
 def test_prep_gamma_reaches_the_preparation(tmp_path):
@@ -830,7 +830,7 @@ def test_prep_gamma_reaches_the_preparation(tmp_path):
     os.symlink(os.path.join(REPO, "inputs"), tmp_path / "inputs")
     rc, out = _run_echo("inputs/axisym.in", tmp_path, dict(SHORT, **QUICK_PREP, prep_gamma=0.3))
     _check(rc, out, "axisym.in -var prep_gamma 0.3")
-    assert "pair_coeff      * * 70e9 0.3 0 0.3 damping 0 0\n" in out        # mu_prep = 0
+    assert "pair_coeff * * 70e9 0.3 0 0.3 damping 0 0\n" in out        # mu_prep = 0
     (path,) = (tmp_path / "tylmp_specimens").glob("dense_quick_*.restart")
     assert _record(path)["settings"]["prep_gamma"] == "0.3"
 
@@ -917,8 +917,8 @@ def test_material_file_reaches_the_pairs_the_data_and_the_timestep(tmp_path):
         SHORT, **QUICK_PREP, material="steel.in", distribution="uniform:0.1e-3:0.2e-3",
         nspheres=n))
     _check(rc, out, "axisym.in -var material steel.in")
-    assert "pair_coeff      * * 200e9 0.29 0 0 damping 0.05 0.05\n" in out
-    assert "pair_coeff      * * 200e9 0.29 0.4 0 damping 0.05 0.05\n" in out
+    assert "pair_coeff * * 200e9 0.29 0 0 damping 0.05 0.05\n" in out
+    assert "pair_coeff * * 200e9 0.29 0.4 0 damping 0.05 0.05\n" in out
     d_min = 0.1e-3 + 0.1e-3 * 0.5 / n
     steps = _timesteps(out)
     assert len(steps) == 3          # printed by specimen.in, the preparation and the shear
