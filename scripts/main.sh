@@ -8,5 +8,9 @@ repo="$(cd "$(dirname "$0")/.." && pwd)"
 bash "$repo/scripts/setup.sh"
 cd "$repo"
 lmp -in inputs/axisym.in -log axisym.log "$@"
-/usr/bin/python3 -m tyanalysis axisym axisym.csv --paper --out axisym.png
+# the plotting command the deck printed last (it names N and the specimen), with the paper's values
+plot="$(sed -n 's/^plot: tyanalysis //p' axisym.log | tail -n 1)"
+[ -n "$plot" ] || { echo "main: the deck printed no plotting command (axisym.log)" >&2; exit 1; }
+# shellcheck disable=SC2086  # the printed command's words
+/usr/bin/python3 -m tyanalysis $plot --paper
 echo "main: wrote $repo/axisym.csv and $repo/axisym.png"

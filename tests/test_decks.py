@@ -243,7 +243,7 @@ def test_axisym_prints_its_plot_command(axisym_dense):
     """The deck ends with the plotting command; typed as printed (tyanalysis on PATH) it
     draws the figure."""
     line = [x for x in OUTPUT["axisym"].splitlines() if x.startswith("plot: ")][-1]
-    assert line == "plot: tyanalysis axisym axisym.csv --out axisym.png"
+    assert line == "plot: tyanalysis axisym axisym.csv --n 500 --specimen dense --out axisym.png"
     build = os.environ.get("TYLMP_BUILD_DIR", os.path.join(REPO, "build"))
     env = dict(_env(), PATH=os.pathsep.join([os.path.join(build, "bin"), os.environ["PATH"]]))
     proc = subprocess.run(line[len("plot: "):].split(), cwd=str(axisym_dense), env=env,
