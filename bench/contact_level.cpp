@@ -5,7 +5,7 @@
 // the run but distorts the ns/call figures less than wall time would):
 //   cmake -S . -B build -DTYLMP_BENCH=ON && cmake --build build --target bench_contact_level
 //   ./build/bench_contact_level                   # writes bench/results/contact_level.{csv,json}
-//   ./build/bench_contact_level --repeats 9 --phases 32 --out /tmp/cl --no-write
+//   ./build/bench_contact_level --repeats 9 --phases 32 --out cl --no-write
 //
 // Part 1 - the JKR inversion delta -> a (docs/theory.md §1.4), glass pair E = 70 GPa, nu = 0.3
 // (E* = E/(2(1-nu^2))), R* = 0.065 mm (two 0.26 mm spheres), Gamma = 0.6 J/m^2, variants
