@@ -363,3 +363,12 @@ def test_axisymmetric_deck_holds_the_lateral_stress_and_reads_as_a_cell_record(t
     # the same packing as LAMMPS reads it (Z = 5.336 at step 0, tests/test_cell_servo_any_pair.py)
     assert rec["Z"][0] == pytest.approx(5.336, rel=0.01)
     assert np.all(np.isnan(rec["sliding_fraction"]))
+    # the command line writes the same record, which reads as a fix cell/servo one
+    from tyanalysis import cli
+    from tyanalysis.io import read_servo_csv
+    out = str(tmp_path / "axisym_liggghts.csv")
+    assert cli.main(["liggghts-record", str(tmp_path / "axisym_liggghts_raw.csv"),
+                     "--out", out]) in (0, None)
+    written = read_servo_csv(out)
+    for name in ("eps1", "sig2", "void_ratio", "Z"):
+        assert np.array_equal(written[name], rec[name]), name

@@ -83,7 +83,8 @@ def cmd_axisym(a):
 
 def cmd_liggghts_record(a):
     from . import liggghts
-    _wrote(liggghts.write_servo_csv(liggghts.servo_record(a.raw), a.out))
+    record = liggghts.servo_record(a.raw)
+    _wrote(io.write_servo_csv(a.out, {k: record[k] for k in io.SERVO_COLUMNS}))
 
 
 def cmd_cyclic(a):

@@ -153,16 +153,13 @@ def _is_number(s):
 
 
 def write_servo_csv(path, columns, partial_tail=None):
-    """Write columns in the `fix cell/servo` layout (used by tests and demos); `partial_tail`
-    appends an unterminated fragment, as a crashed writer would leave."""
+    """Write columns in the `fix cell/servo` layout, atomically (write_text); `partial_tail`
+    appends an unterminated fragment, as a crashed writer would leave (tests). Returns path."""
     names = list(columns)
     n = len(next(iter(columns.values())))
-    with open(path, "w", encoding="utf-8") as fh:
-        fh.write(",".join(names) + "\n")
-        for i in range(n):
-            fh.write(",".join(_fmt(columns[c][i]) for c in names) + "\n")
-        if partial_tail:
-            fh.write(partial_tail)
+    lines = [",".join(names)] + [",".join(_fmt(columns[c][i]) for c in names) for i in range(n)]
+    write_text(path, "\n".join(lines) + "\n" + (partial_tail or ""))
+    return path
 
 
 def _fmt(v):

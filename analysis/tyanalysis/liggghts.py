@@ -14,7 +14,7 @@ import math
 import numpy as np
 
 from . import invariants as inv
-from .io import SERVO_COLUMNS, Table, read_print_table, write_text
+from .io import SERVO_COLUMNS, Table, read_print_table
 
 RAW_COLUMNS = ("step", "time", "lx", "ly", "lz", "sigx", "sigy", "sigz", "contact_ends",
                "n_none", "n_one", "atoms", "solid_volume", "lx0", "ly0", "lz0")
@@ -49,12 +49,3 @@ def servo_record(path):
         "pi_x": sx, "pi_y": sy, "pi_ex": ex, "pi_ey": ey,
     }
     return Table({k: columns[k] for k in SERVO_COLUMNS}, path)
-
-
-def write_servo_csv(table, out):
-    """Write a Table of io.SERVO_COLUMNS as a fix cell/servo CSV record, atomically."""
-    lines = [",".join(SERVO_COLUMNS)]
-    for row in zip(*(table[k] for k in SERVO_COLUMNS)):
-        lines.append(",".join(repr(float(v)) for v in row))
-    write_text(out, "\n".join(lines) + "\n")
-    return out

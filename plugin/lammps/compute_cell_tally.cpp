@@ -20,7 +20,6 @@
 #include "memory.h"
 #include "neigh_list.h"
 #include "pair.h"
-#include "update.h"
 
 #include <cmath>
 #include <limits>
@@ -79,7 +78,6 @@ void ComputeCellTally::refresh_cell_tallies()
   if (!list)
     error->all(FLERR, "fix cell/servo: pair_style {} has no neighbor list to find its contacts "
                "in", force->pair_style);
-  invoked_vector = update->ntimestep;
   for (double &t : tallies.sum) t = 0.0;
   // which contacts slide is the pair's own state, which other styles do not expose
   tallies.sum[CellTallies::SLIDING] = std::numeric_limits<double>::quiet_NaN();
