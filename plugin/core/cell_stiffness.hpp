@@ -17,16 +17,23 @@
 
 namespace tycore {
 
-// per-rank sums of V*C over contacts, upper triangle of the 6x6 row by row; summed across ranks
-// element by element (MPI_SUM over `size` doubles), like the fix's stiffness_sums[6]
+// per-rank sums of V*C over contacts, summed across ranks element by element (MPI_SUM over
+// `size` doubles). The layout (CellTallies::STIFFNESS of plugin/lammps/cell_tally.h): first the
+// principal block in LAMMPS virial order (xx, yy, zz, xy, xz, yz of the 3x3 C_ij of
+// cell_servo.hpp's affine_stiffness, whose 6 sums an orthogonal cell needs), then the 15
+// entries (I, J) with J >= 3, I <= J, row by row: the couplings of the normal components to the
+// shears (9) and the shear block (6), which only a cell with shear components needs
 struct AffineStiffnessSums {
   static constexpr int size = 21;
+  static constexpr int principal_size = 6;
   std::array<double, size> sum{};
 
   static constexpr int index(int I, int J)
   {
     if (I > J) return index(J, I);
-    return I * 6 - I * (I - 1) / 2 + (J - I);
+    if (J < 3) return I == J ? I : I + J + 2;       // (0,1) -> 3, (0,2) -> 4, (1,2) -> 5
+    if (I < 3) return 6 + 3 * I + (J - 3);          // (0..2, 3..5) -> 6..14
+    return 15 + (I - 3) * 3 - (I - 3) * (I - 4) / 2 + (J - I);   // (3,3) 15 ... (5,5) 20
   }
 
   // one contact, branch = x2 - x1 (image-shifted), counted once

@@ -14,12 +14,14 @@ namespace LAMMPS_NS {
 // per-rank sums over the contacts of the last force evaluation (each contact once)
 struct CellTallies {
   enum {
-    STIFFNESS = 0,    // 6 entries xx yy zz xy xz yz: sum l^2 [k_N n_a^2 n_b^2 +
-                      // k_T (d_ab n_a^2 - n_a^2 n_b^2)], the affine stiffness (docs/theory.md §6.1)
-    CONTACTS = 6,     // number of contacts (touching pairs, tensile ones included)
-    SLIDING = 7,      // number of contacts at the sliding limit
-    FORCE = 8,        // sum of contact force magnitudes
-    SIZE = 9
+    STIFFNESS = 0,    // 21 entries: V C of the affine stiffness (docs/theory.md §6.1, §11.1) in
+                      // the layout of tycore::AffineStiffnessSums (plugin/core/cell_stiffness.hpp):
+                      // the principal block xx yy zz xy xz yz first (entries 0-5), then the 15
+                      // entries with a shear component (6-20), made only when asked for
+    CONTACTS = 21,    // number of contacts (touching pairs, tensile ones included)
+    SLIDING = 22,     // number of contacts at the sliding limit
+    FORCE = 23,       // sum of contact force magnitudes
+    SIZE = 24
   };
   double sum[SIZE];
 };
@@ -27,8 +29,9 @@ struct CellTallies {
 // what the servo asks of the pair
 class CellTallySource {
  public:
-  // make the tallies from the next force evaluation on (off again at the pair's init)
-  virtual void request_cell_tallies() = 0;
+  // make the tallies from the next force evaluation on (off again at the pair's init); the
+  // 15 stiffness entries with a shear component only if with_shear (else they stay zero)
+  virtual void request_cell_tallies(bool with_shear) = 0;
   virtual const CellTallies &cell_tallies() const = 0;
   // a source that does not make the tallies during the force evaluation (the route for other
   // pair styles, compute_cell_tally.h) makes them here, from that evaluation's contacts

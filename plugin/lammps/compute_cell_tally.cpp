@@ -41,7 +41,7 @@ void ComputeCellTally::init() {}
 
 // fix cell/servo asks for the tallies in its init(), after the computes' init(): the pair is
 // checked here, each run, and the warning given once
-void ComputeCellTally::request_cell_tallies()
+void ComputeCellTally::request_cell_tallies(bool /*with_shear*/)
 {
   Pair *pair = force->pair;
   if (!pair)

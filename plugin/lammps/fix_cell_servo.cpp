@@ -684,7 +684,7 @@ void FixCellServo::init()
     if (itally < 0) error->all(FLERR, "fix cell/servo: its contact tally compute was deleted");
     pair = dynamic_cast<CellTallySource *>(modify->compute[itally]);
   }
-  pair->request_cell_tallies();    // from the setup force computation on
+  pair->request_cell_tallies(false);    // from the setup force computation on
 
   const int icompute = modify->find_compute(pressure_id);
   if (icompute < 0) error->all(FLERR, "fix cell/servo: its stress compute was deleted");

@@ -40,7 +40,7 @@ class PairThorntonYin : public tylmp_compat::PairWithHistory, public CellTallySo
   void unpack_reverse_comm(int, int *, double *) override;
 
   // the sums for fix cell/servo (cell_tally.h)
-  void request_cell_tallies() override { tally_cell = 1; }
+  void request_cell_tallies(bool with_shear) override { tally_cell = with_shear ? 2 : 1; }
   const CellTallies &cell_tallies() const override { return tallies; }
   const double *contact_count() const override { return atom_contacts; }
 
