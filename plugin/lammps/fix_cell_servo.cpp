@@ -127,6 +127,7 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
                "needs a triclinic box: make the box triclinic first ('change_box all "
                "triclinic', or a triclinic region/data file)");
   require_controllable();
+  choose_shear_gains();
 
   // a redefinition (same ID: Modify has just deleted the fix in this slot) continues the test
   // of the fix it replaces, unless 'continue no'
@@ -320,9 +321,11 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
       iarg += 2;
     } else if (key == "gain") {
       settings.gain = finite_number(value(), "gain");
+      gains_given = true;
       iarg += 2;
     } else if (key == "integral_gain") {
       settings.integral_gain = finite_number(value(), "integral_gain");
+      gains_given = true;
       iarg += 2;
     } else if (key == "integral_band") {
       settings.integral_band = number_in(value(), "integral_band", 0.0, 1.0, false,

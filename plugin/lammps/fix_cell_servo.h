@@ -122,6 +122,10 @@ class FixCellServo : public Fix {
   tycore::PlaneStrain plane_strain = tycore::PlaneStrain::TOTAL;
   tycore::ServoSettings settings;
   bool max_rate_given = false;
+  bool gains_given = false;        // gain or integral_gain given
+  bool holds_shear_stress() const; // a shear component is stress controlled
+  void choose_shear_gains();
+  static constexpr double SHEAR_GAIN = 0.02, SHEAR_INTEGRAL_GAIN = 3e-5, MAX_SHEAR_GAIN = 0.05;
   double inertial_cap;             // default cap: strain rate at this inertial number
 
   // equilibrium check (preparation stages)

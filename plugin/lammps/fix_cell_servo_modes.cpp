@@ -7,6 +7,7 @@
 
 #include "fix_cell_servo.h"
 
+#include "comm.h"
 #include "domain.h"
 #include "error.h"
 #include "input.h"
@@ -320,6 +321,35 @@ bool FixCellServo::needs_triclinic() const
         || axis_input[k].value != 0.0)
       return true;
   return false;
+}
+
+bool FixCellServo::holds_shear_stress() const
+{
+  if (mode == Mode::ROTATION) return true;
+  if (mode != Mode::AXES) return false;
+  for (int k = 3; k < 6; ++k)
+    if (axis_input[k].control == tycore::AxisControl::STRESS) return true;
+  return false;
+}
+
+// A held shear stress answers an affine step of the cell with the affine stiffness at once,
+// then relaxes to about a quarter of it over tens of steps as the grains rearrange (measured
+// on the 500-sphere dense glass specimen: 0.28), and the specimen's undamped shear modes ring
+// meanwhile: at the default gain 0.25 the servo on a shear stress overshoots and rings at its
+// cap. Programmes that hold a shear stress default to SHEAR_GAIN, and a larger gain given is
+// warned about (docs/fix_cell_servo.md, "The six-component cell").
+void FixCellServo::choose_shear_gains()
+{
+  if (!holds_shear_stress()) return;
+  if (!gains_given) {
+    settings.gain = SHEAR_GAIN;
+    settings.integral_gain = SHEAR_INTEGRAL_GAIN;
+  } else if (settings.gain > MAX_SHEAR_GAIN && comm->me == 0) {
+    error->warning(FLERR, "fix cell/servo {}: gain {:g} on a held shear stress overshoots and "
+                   "rings (the packing's shear response relaxes to a fraction of the affine "
+                   "estimate over tens of steps): use gain <= {:g} (default {:g} when a shear "
+                   "stress is held)", id, settings.gain, MAX_SHEAR_GAIN, SHEAR_GAIN);
+  }
 }
 
 // controllability depends on which components hold a stress, not on the values; equal-style
