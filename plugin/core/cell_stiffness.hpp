@@ -9,10 +9,12 @@
 
 #include "cell_kinematics.hpp"
 #include "cell_servo.hpp"
+#include "affine_shear_entries.hpp"
 
 #include <Eigen/Core>
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 
 namespace tycore {
@@ -27,6 +29,7 @@ struct AffineStiffnessSums {
   static constexpr int size = 21;
   static constexpr int principal_size = 6;
   static constexpr int shear_size = size - principal_size;
+  static_assert(shear_size == affine_shear_size, "the 15 entries of affine_shear_entries");
   std::array<double, size> sum{};
 
   static constexpr int index(int I, int J)
@@ -84,17 +87,9 @@ struct AffineStiffnessSums {
                             double tangential_stiffness, double entries[shear_size])
   {
     const double l2 = branch.squaredNorm();
-    const Eigen::Vector3d& b = branch;
-    for (int I = 0; I < 6; ++I)
-      for (int J = std::max(I, 3); J < 6; ++J) {
-        const int i = voigt_pairs[I][0], j = voigt_pairs[I][1];
-        const int k = voigt_pairs[J][0], l = voigt_pairs[J][1];
-        const double nnnn = b(i) * b(j) * b(k) * b(l) / l2;   // l^2 n_i n_j n_k n_l
-        const double delta_nn = 0.25 * ((i == k) * b(j) * b(l) + (j == k) * b(i) * b(l)
-                                        + (i == l) * b(j) * b(k) + (j == l) * b(i) * b(k));
-        entries[index(I, J) - principal_size] =
-            normal_stiffness * nnnn + tangential_stiffness * (delta_nn - nnnn);
-      }
+    const Eigen::Vector3d n = branch / std::sqrt(l2);
+    affine_shear_entries(n(0), n(1), n(2), l2, normal_stiffness, tangential_stiffness,
+                         [entries](int k, double value) { entries[k] = value; });
   }
 };
 

@@ -81,8 +81,8 @@ struct ContactBatch {
   // k_T (d_ab n_a^2 - n_a^2 n_b^2)], ab = xx yy zz xy xz yz (docs/theory.md §6.1), and |F|
   alignas(64) double affine_stiffness[6][batch_lanes];
   alignas(64) double force_magnitude[batch_lanes];
-  // with BatchParameters::tally: the k_N and k_T of that tally, for the entries with a shear
-  // component (tycore::AffineStiffnessSums::shear_entries, cell_stiffness.hpp)
+  // with BatchParameters::tally: the k_N and k_T of that tally (zero for a broken lane), for
+  // the entries with a shear component (tycore::affine_shear_entries)
   alignas(64) double normal_stiffness[batch_lanes];
   alignas(64) double tangential_stiffness[batch_lanes];
   alignas(64) double energy[batch_lanes];          // with BatchParameters::energy: stored

@@ -768,6 +768,11 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
   }
   for (auto &bt : batches)
     if (bt && bt->n) run_batch<ADHESIVE, DAMPED>(*bt, step, sums);
+  if (tally_cell == 2)
+    for (int k = 0; k < tycore::affine_shear_size; ++k)
+      for (int l = 0; l < tycore::batch_lanes; ++l)
+        tallies.sum[CellTallies::STIFFNESS + tycore::AffineStiffnessSums::principal_size + k] +=
+            shear_lanes[k][l];
   if (tally_cell && newton_pair) tylmp_compat::reverse_comm(comm, this);
 
   pvector[DISSIPATION_FRICTION] += sums.friction;
@@ -846,14 +851,6 @@ void PairThorntonYin::run_batch(Batch &bt, bool step, Sums &sums)
     if (tally_cell) {    // the servo's sums (docs/theory.md §6.1, §11.1), each contact once
       for (int k = 0; k < 6; ++k)
         tallies.sum[CellTallies::STIFFNESS + k] += share * b.affine_stiffness[k][l];
-      if (tally_cell == 2) {    // a cell with shears: the 15 entries with a shear component
-        using Stiffness = tycore::AffineStiffnessSums;
-        double shear[Stiffness::shear_size];
-        Stiffness::shear_entries(Eigen::Vector3d(bt.del[0][l], bt.del[1][l], bt.del[2][l]),
-                                 b.normal_stiffness[l], b.tangential_stiffness[l], shear);
-        for (int k = 0; k < Stiffness::shear_size; ++k)
-          tallies.sum[CellTallies::STIFFNESS + Stiffness::principal_size + k] += share * shear[k];
-      }
       tallies.sum[CellTallies::CONTACTS] += share;
       tallies.sum[CellTallies::SLIDING] += share * b.slides[l];
       tallies.sum[CellTallies::FORCE] += share * b.force_magnitude[l];
@@ -861,6 +858,15 @@ void PairThorntonYin::run_batch(Batch &bt, bool step, Sums &sums)
       if (j_owned) atom_contacts[j] += 1.0;
     }
   }
+  // a cell with shears: the 15 entries with a shear component (docs/theory.md §11.1), summed
+  // lane by lane (a broken lane has k_N = k_T = 0) and over the lanes in end_tallies
+  if (tally_cell == 2)
+    for (int l = 0; l < n; ++l) {
+      const double share = bt.share[l];
+      tycore::affine_shear_entries(b.n[0][l], b.n[1][l], b.n[2][l], b.rsq[l],
+                                   b.normal_stiffness[l], b.tangential_stiffness[l],
+                                   [&](int k, double value) { shear_lanes[k][l] += share * value; });
+    }
 }
 
 /* ----------------------------------------------------------------------
@@ -871,6 +877,8 @@ void PairThorntonYin::begin_tallies()
 {
   if (tally_cell) {
     for (double &t : tallies.sum) t = 0.0;
+    for (auto &lanes : shear_lanes)
+      for (double &t : lanes) t = 0.0;
     if (atom->nmax > nmax_count) {
       memory->destroy(atom_contacts);
       nmax_count = atom->nmax;

@@ -11,6 +11,7 @@
 #include "cell_tally.h"
 #include "lammps_compat.h"
 
+#include "affine_shear_entries.hpp"
 #include "contact_batch.hpp"
 
 #include <memory>
@@ -111,6 +112,9 @@ class PairThorntonYin : public tylmp_compat::PairWithHistory, public CellTallySo
 
   int tally_cell;
   CellTallies tallies;
+  // a cell with shears: the 15 stiffness entries with a shear component, per batch lane
+  // (summed over the lanes into tallies after the force evaluation)
+  alignas(64) double shear_lanes[tycore::affine_shear_size][tycore::batch_lanes];
   double *atom_contacts;    // per atom (local after reverse communication)
   int nmax_count;
 
