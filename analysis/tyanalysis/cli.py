@@ -31,7 +31,7 @@ def _kv(label, pairs):
 def _labels(files, labels):
     if labels and len(labels) != len(files):
         raise SystemExit(f"error: {len(labels)} labels for {len(files)} files")
-    return labels or [os.path.splitext(os.path.basename(f))[0] for f in files]
+    return labels or [io.stem(f) for f in files]
 
 
 def _read_all(files):
@@ -57,7 +57,7 @@ def _by_parameter(files):
     """Files named by a parameter (friction_mu0.3.csv, radial_b0.5.csv): their legend labels
     ('μ = 0.3', 'b = 0.5') and the files in increasing parameter; else (None, files)."""
     for symbol, pattern in (("μ", r"mu[_=-]?([0-9]+(?:\.[0-9]+)?)"), ("b", r"_b([0-9]+(?:\.[0-9]+)?)")):
-        found = [re.search(pattern, os.path.basename(os.path.splitext(f)[0])) for f in files]
+        found = [re.search(pattern, io.stem(f)) for f in files]
         if all(found):
             values = [float(m.group(1)) for m in found]
             order = sorted(range(len(files)), key=values.__getitem__)
@@ -271,7 +271,7 @@ def cmd_prestrain(a):
 def cmd_coordination(a):
     """Z and the rattler-free Z_m of the spheres in LAMMPS data files (docs/fidelity.md)."""
     for f in a.files:
-        if f.endswith(".csv"):            # a fix cell/servo record: its last row's Z and Zm
+        if f.endswith((".csv", ".csv.xz", ".csv.gz")):   # a fix cell/servo record: last row
             t = io.read_servo_csv(f)
             z, zm = float(t["Z"][-1]), float(t["Zm"][-1])
             sols = metrics.rattlers_from_z(a.n, z, zm)
@@ -421,9 +421,7 @@ def build_parser():
         p.set_defaults(func=func)
         return p
 
-    p = files_cmd("axisym", cmd_axisym, "Figs 1-2: deviator stress, void ratio and volumetric strain vs ε1 − ε3")
-    p.add_argument("--void-ratio", action="store_true",
-                   help="accepted for old commands: the void ratio (Fig. 2) and εv panels are both drawn")
+    files_cmd("axisym", cmd_axisym, "Figs 1-2: deviator stress, void ratio and volumetric strain vs ε1 − ε3")
     files_cmd("cyclic", cmd_cyclic, "cyclic axisymmetric test: q and εv against ε1 − ε3")
     files_cmd("pq", cmd_pq, "q = √(3J2) against p with the critical-state line q = M p (M: "
               "mean q/p of the last 10 %% of the rows)")

@@ -129,7 +129,8 @@ def responses(directory, factor):
             if name not in PROGRAMMES["fidelity"]:
                 return None
             path = os.path.join(directory, record_name(name, PROGRAMMES["fidelity"]))
-        return io.read_servo_csv(path) if os.path.exists(path) else None
+        path = io.find_record(path)              # NAME.csv, or compressed NAME.csv.xz
+        return io.read_servo_csv(path) if path else None
 
     for role in ("dense", "loose"):
         t = read(f"axisym_{role}")

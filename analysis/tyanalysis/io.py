@@ -1,11 +1,14 @@
 """Readers for the files written by `fix cell/servo` (CSV) and by `fix print` (two-sphere tables),
-and the atomic writer of JSON summaries.
+and the atomic writer of JSON summaries. A file named *.xz or *.gz is read decompressed (the
+committed records of docs/validation/ are NAME.csv.xz).
 
 Both files are append-only and may be read while a run is going or after a crash, so a final
 line without its newline (a partially written row) is dropped, as is a final row with the wrong
 number of fields or an unparsable number. A damaged row anywhere else is an error.
 """
+import gzip
 import json
+import lzma
 import math
 import os
 
@@ -30,7 +33,7 @@ class Table:
 
     @property
     def name(self):
-        return os.path.splitext(os.path.basename(self.path))[0] or "data"
+        return stem(self.path) or "data"
 
     def __getitem__(self, key):
         try:
@@ -52,6 +55,30 @@ class Table:
         if missing:
             raise ValueError(f"{self.path}: missing column(s) {', '.join(missing)}")
         return self
+
+
+_OPENERS = {".xz": lzma.open, ".gz": gzip.open}
+
+
+def stem(path):
+    """File name without its directory, compression suffix and extension (a.csv.xz -> a)."""
+    base = os.path.basename(str(path))
+    root, ext = os.path.splitext(base)
+    return os.path.splitext(root)[0] if ext in _OPENERS else root
+
+
+def find_record(path):
+    """path if it exists, else path.xz or path.gz if one does (a compressed record), else None."""
+    for p in (path, f"{path}.xz", f"{path}.gz"):
+        if os.path.exists(p):
+            return p
+    return None
+
+
+def _read_text(path):
+    opener = _OPENERS.get(os.path.splitext(str(path))[1], open)
+    with opener(path, "rt", encoding="utf-8", errors="replace") as fh:
+        return fh.read()
 
 
 def _parse_row(fields, ncol):
@@ -84,8 +111,7 @@ def _read_rows(path, header_names, lines, split, complete_last):
 def read_servo_csv(path, require=SERVO_COLUMNS):
     """Read a `fix cell/servo` CSV: first line is the header (a leading '#' is tolerated),
     comma-separated numeric columns. Repeated header lines (restarts) are skipped."""
-    with open(path, "r", encoding="utf-8", errors="replace") as fh:
-        text = fh.read()
+    text = _read_text(path)
     if not text.strip():
         raise ValueError(f"{path}: empty file")
     complete_last = text.endswith("\n")
@@ -112,8 +138,7 @@ def read_servo_csv(path, require=SERVO_COLUMNS):
 def read_print_table(path):
     """Read a `fix print` table: '#'-prefixed header line naming the columns, whitespace-
     separated numbers (a comma-separated file with a plain header line is accepted as well)."""
-    with open(path, "r", encoding="utf-8", errors="replace") as fh:
-        text = fh.read()
+    text = _read_text(path)
     complete_last = text.endswith("\n")
     raw = text.split("\n")
     if complete_last:

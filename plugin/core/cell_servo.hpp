@@ -82,14 +82,6 @@ inline void require_b_in_range(double b)
     throw std::invalid_argument("b = " + number_text(b) + " is outside [0, 1]");
 }
 
-inline void require_every_axis_controlled(const std::array<std::optional<AxisControl>, 3>& axes)
-{
-  for (int i = 0; i < 3; ++i)
-    if (!axes[i])
-      throw std::invalid_argument(std::string("axis ") + axis_name(i)
-                                  + " has no control: give it a strain rate or a target stress");
-}
-
 // ---------------------------------------------------------------------------------------------
 // Stiffness estimate (docs/theory.md §6.1): affine stiffness C_ij = d sigma_i / d eps_j of a
 // homogeneous principal strain, C_ij = (1/V) sum_c l^2 [k_N n_i^2 n_j^2

@@ -225,7 +225,7 @@ inline void touch_or_break(ContactBatch& b, int n, const PairConstants& k)
       const double delta_break = Adhesive ? jkr::break_overlap(R, c.E_star, c.Gamma) : 0.0;
       if (delta < delta_break) {
         const ContactHistory h = stored_history(b, i);
-        double stored = tangential_energy(c, R, h.P_prev, h);
+        double stored = tangential_energy(h);
         if (Adhesive) {
           const double a_break = jkr::contact_radius(delta_break, R, c.E_star, c.Gamma);
           stored += jkr::stored_energy(a_break, R, c.E_star, c.Gamma);

@@ -63,9 +63,7 @@ template <bool Adhesive> inline double effective_pull_off(const PairCoefficients
 // no-slip proportional path it misses 1/6 of the work, and it ignores the stiffer peeled radius.
 // The energy is therefore carried in the history as (tangential work) - (frictional
 // dissipation), with the dissipation computed where slip happens (see tangential_step).
-// Arguments other than h are kept for callers.
-inline double tangential_energy(const PairCoefficients& /*c*/, double /*R*/, double /*P*/,
-                                const ContactHistory& h)
+inline double tangential_energy(const ContactHistory& h)
 {
   return h.stored_energy;
 }

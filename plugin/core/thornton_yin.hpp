@@ -13,14 +13,7 @@
 
 namespace tycore {
 
-// contact radius and normal force at overlap delta (>= delta_f for adhesive contacts)
-template <bool Adhesive>
-inline double normal_contact_radius(const PairCoefficients& c, double R, double delta)
-{
-  return Adhesive ? jkr::contact_radius(delta, R, c.E_star, c.Gamma)
-                  : std::sqrt(R * std::max(delta, 0.0));
-}
-
+// normal force at contact radius a
 template <bool Adhesive>
 inline double normal_force_of_radius(const PairCoefficients& c, double R, double a)
 {
@@ -65,18 +58,18 @@ inline ContactResult evaluate_contact(const PairCoefficients& c, double R, doubl
     r.normal_energy = Adhesive ? jkr::stored_energy(a, R, c.E_star, c.Gamma)
                                : 8.0 * c.E_star * (a2 * a2 * a) / (15.0 * R * R);
   }
-  r.tangential_energy = tangential_energy(c, R, r.P, h);
+  r.tangential_energy = tangential_energy(h);
   r.sliding = h.sliding != 0.0;
   r.peeling = h.peeling != 0.0;
   return r;
 }
 
-// elastic energy stored in a contact of radius a at normal force P: the JKR normal part (zero at
-// first touch) plus the tangential part carried in the history
-inline double contact_stored_energy(const PairCoefficients& c, double R, double a, double P,
+// elastic energy stored in a contact of radius a: the JKR normal part (zero at first touch)
+// plus the tangential part carried in the history (the normal force is not needed)
+inline double contact_stored_energy(const PairCoefficients& c, double R, double a, double /*P*/,
                                     const ContactHistory& h)
 {
-  return jkr::stored_energy(a, R, c.E_star, c.Gamma) + tangential_energy(c, R, P, h);
+  return jkr::stored_energy(a, R, c.E_star, c.Gamma) + tangential_energy(h);
 }
 
 }    // namespace tycore
