@@ -41,7 +41,7 @@ import tempfile
 import numpy as np
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(REPO, "analysis"))
+sys.path.insert(0, os.path.join(REPO, "python"))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from provenance import write_result  # noqa: E402
 from pair_speed import LOAD  # noqa: E402  (the two lines that load the plugin's styles)
@@ -138,7 +138,7 @@ def plot(records, png):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    from tyanalysis.figures import save_figure
+    from tylmp.analysis.figures import save_figure
     fig, (a1, a2, a3) = plt.subplots(1, 3, figsize=(13, 4))
     for name, r in records.items():
         d13 = (r["eps1"] - r["eps3"]) * 100

@@ -29,8 +29,8 @@ import numpy as np  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from pair_speed import CASES, DT, LOAD, NEIGHBOR, REPO  # noqa: E402
 from provenance import stamp, write_result  # noqa: E402
-sys.path.insert(0, os.path.join(REPO, "analysis"))
-from tyanalysis.figures import save_figure  # noqa: E402
+sys.path.insert(0, os.path.join(REPO, "python"))
+from tylmp.analysis.figures import save_figure  # noqa: E402
 
 LAWS = ["thornton/yin G=0.6", "granular jkr+mindlin", "thornton/yin G=0",
         "granular hertz/material+mindlin", "gran/hertz/history"]

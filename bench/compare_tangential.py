@@ -32,8 +32,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(REPO, "analysis"))
-from tyanalysis.figures import save_figure  # noqa: E402
+sys.path.insert(0, os.path.join(REPO, "python"))
+from tylmp.analysis.figures import save_figure  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from pair_speed import LOAD  # noqa: E402  (the two lines that load the plugin's styles)
 

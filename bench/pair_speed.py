@@ -96,7 +96,7 @@ import sys
 import tempfile
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(REPO, "analysis"))
+sys.path.insert(0, os.path.join(REPO, "python"))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from provenance import lammps_version, write_result  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -266,7 +266,7 @@ def plot(csv_paths, png):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    from tyanalysis.figures import save_figure
+    from tylmp.analysis.figures import save_figure
     tables = []
     for path in csv_paths:
         with open(path) as fh:

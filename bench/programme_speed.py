@@ -67,8 +67,8 @@ import sys
 import time
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(REPO, "analysis"))
-from tyanalysis.io import write_text  # noqa: E402
+sys.path.insert(0, os.path.join(REPO, "python"))
+from tylmp.analysis.io import write_text  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from provenance import machine, write_result  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -134,9 +134,9 @@ def records_digest(rundir):
 
 
 def job_records(rundir, job):
-    """The record(s) of one job: a run's CSV (tyanalysis.reproduce.record_name), a
+    """The record(s) of one job: a run's CSV (tylmp.analysis.reproduce.record_name), a
     preparation's specimen CSVs (tylmp_specimens/SPECIMEN_*.csv)."""
-    from tyanalysis import reproduce
+    from tylmp.analysis import reproduce
     if job.startswith("prepare_"):
         pattern = os.path.join("tylmp_specimens", job[len("prepare_"):] + "_*.csv")
     else:
@@ -177,8 +177,8 @@ def job_rows(variant, rundir, started, skip=()):
 
 
 def programme_jobs():
-    """Every job of the paper programme: the preparations and the runs (tyanalysis.reproduce)."""
-    from tyanalysis import reproduce
+    """Every job of the paper programme: the preparations and the runs (tylmp.analysis.reproduce)."""
+    from tylmp.analysis import reproduce
     names = list(reproduce.PROGRAMME)
     preps = sorted({reproduce.prepare_name(reproduce.specimen_of(n)) for n in names})
     return preps + names
@@ -193,9 +193,9 @@ def start_call(variant, library, decks, scale, jobs, rundir, only=None):
     the process."""
     shutil.rmtree(rundir, ignore_errors=True)
     env = dict(os.environ, TYLMP_LIBRARY=library,
-               PYTHONPATH=os.path.join(REPO, "analysis") + os.pathsep
+               PYTHONPATH=os.path.join(REPO, "python") + os.pathsep
                + os.environ.get("PYTHONPATH", ""))
-    cmd = [sys.executable, "-m", "tyanalysis", "reproduce", "--scale", scale, "--jobs",
+    cmd = [sys.executable, "-m", "tylmp.analysis", "reproduce", "--scale", scale, "--jobs",
            str(jobs), "--dir", rundir, "--inputs", decks] + (["--only"] + only if only else [])
     print(f"programme_speed: {variant}: {' '.join(cmd)} (TYLMP_LIBRARY={library})", flush=True)
     with open(rundir + ".out", "w") as out:

@@ -14,8 +14,8 @@ import subprocess
 import sys
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(REPO, "analysis"))
-from tyanalysis.io import write_json  # noqa: E402
+sys.path.insert(0, os.path.join(REPO, "python"))
+from tylmp.analysis.io import write_json  # noqa: E402
 
 
 @functools.lru_cache(maxsize=None)

@@ -24,7 +24,7 @@ import time
 from concurrent.futures import ThreadPoolExecutor
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(REPO, "analysis"))
+sys.path.insert(0, os.path.join(REPO, "python"))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from lammps_log import loops  # noqa: E402
 
@@ -43,7 +43,7 @@ def run_name(rate, frac):
 
 def measure(csv_path, strain):
     import numpy as np
-    from tyanalysis.io import read_servo_csv as read_csv
+    from tylmp.analysis.io import read_servo_csv as read_csv
     t = read_csv(csv_path)
     d13, sinphi = np.asarray(t["eps_d13"]), np.asarray(t["sinphi"])
     keep = d13 <= strain * (1 + 1e-9)
@@ -183,7 +183,7 @@ def plot(rows, ref, path):
                  f"(circles: Δt = {ref['dt_fraction']:g} t_R; squares: other Δt; labels: rate, Δt/t_R; "
                  f"dashed: run-to-run scatter)",
                  fontsize=8)
-    from tyanalysis.figures import save_figure
+    from tylmp.analysis.figures import save_figure
     save_figure(fig, path)
 
 

@@ -53,10 +53,10 @@ from yade import utils
 
 # yade -x runs the script with execfile: __file__ is yade's own, sys.argv[0] the script
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(sys.argv[0])))
-sys.path.insert(0, os.path.join(REPO, "analysis"))
-from tyanalysis import invariants as inv  # noqa: E402
-from tyanalysis.io import read_sphere_data, write_json  # noqa: E402
-from tyanalysis.metrics import coordination  # noqa: E402
+sys.path.insert(0, os.path.join(REPO, "python"))
+from tylmp.analysis import invariants as inv  # noqa: E402
+from tylmp.analysis.io import read_sphere_data, write_json  # noqa: E402
+from tylmp.analysis.metrics import coordination  # noqa: E402
 
 E, NU, MU, DENSITY = 70e9, 0.3, 0.3, 2650e12
 # inputs/common/numerics.in: dt_fraction x Rayleigh time of the smallest sphere (R = 0.0675 mm)

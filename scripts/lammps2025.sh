@@ -10,7 +10,8 @@
 # The LAMMPS build is installed under $TYLMP_CACHE (default ~/.cache/tylmp), in a directory
 # named by the LAMMPS version and a hash of its configuration, and reused by later runs: a
 # changed configuration builds anew. Our library is built in build-lammps2025/ (or
-# $TYLMP_LAMMPS2025_BUILD_DIR) and installed into that LAMMPS prefix.
+# $TYLMP_LAMMPS2025_BUILD_DIR) and the Python package with it installed with pip into a virtual
+# environment in that LAMMPS prefix (tylmp/venv: also its `tyanalysis` command).
 # The last line of output is the path of a wrapper that runs this lmp with the library and
 # Python paths set: any deck with the two loader lines runs against 4 Feb 2025 through it.
 set -euo pipefail
@@ -129,24 +130,33 @@ install_python_module() {
 }
 
 build_tylmp() {
-  # our library against that LAMMPS, in its own build tree, installed into the LAMMPS prefix
-  # (not into the system's Python site directory, which holds the 29 Sep 2021 build)
+  # our library against that LAMMPS, in its own build tree, and the Python package with it
+  # (build/python) installed with pip into a virtual environment beside that LAMMPS (not into
+  # the system's Python, nor into the .venv of scripts/setup.sh, which has the 29 Sep 2021 build)
   cmake -S "$repo" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release \
     -DLAMMPS_SOURCE_DIR="$PREFIX/share/lammps-src" -DLAMMPS_DIR="$PREFIX/lib/cmake/LAMMPS" \
-    -DCMAKE_INSTALL_PREFIX="$PREFIX/tylmp" -DTYLMP_PYTHON_SITE=python >/dev/null
+    -DCMAKE_INSTALL_PREFIX="$PREFIX/tylmp" >/dev/null
   nice cmake --build "$BUILD" -j "$JOBS" >/dev/null
-  cmake --install "$BUILD" >/dev/null
+  if ! "$VENV/bin/python" -c "import numpy" >/dev/null 2>&1; then
+    /usr/bin/python3 -m venv --clear --system-site-packages "$VENV"
+  fi
+  rm -rf "$BUILD/python/build" "$BUILD/python/tylmp.egg-info"
+  "$VENV/bin/python" -m pip install --quiet --no-build-isolation --no-index "$BUILD/python"
+  cmake --install "$BUILD" --prefix "$VENV" >/dev/null
 }
 
 write_wrapper() {
-  # lmp of this build with its liblammps, its Python module and the tylmp installed beside it
-  # (after any PYTHONPATH of the caller, so a development build on PYTHONPATH comes first)
+  # lmp of this build with its liblammps, its Python module and the tylmp package of the
+  # environment above: both on PYTHONPATH after any PYTHONPATH of the caller (so that a
+  # development build there comes first), the LAMMPS module before Debian's of 29 Sep 2021
+  local site
+  site="$("$VENV/bin/python" -c 'import sysconfig; print(sysconfig.get_path("purelib"))')"
   mkdir -p "$PREFIX/tylmp/bin"
   cat >"$PREFIX/tylmp/bin/lmp.tmp" <<WRAP
 #!/bin/sh
 # LAMMPS $LAMMPS_DATE with tylmp, written by $repo/scripts/lammps2025.sh
 export LD_LIBRARY_PATH="$PREFIX/lib\${LD_LIBRARY_PATH:+:\$LD_LIBRARY_PATH}"
-export PYTHONPATH="\${PYTHONPATH:+\$PYTHONPATH:}$PREFIX/tylmp/python:$PREFIX/lib/python3/dist-packages"
+export PYTHONPATH="\${PYTHONPATH:+\$PYTHONPATH:}$PREFIX/lib/python3/dist-packages:$site"
 exec "$PREFIX/bin/lmp" "\$@"
 WRAP
   chmod +x "$PREFIX/tylmp/bin/lmp.tmp"
@@ -154,6 +164,7 @@ WRAP
 }
 
 BUILD="${TYLMP_LAMMPS2025_BUILD_DIR:-$repo/build-lammps2025}"
+VENV="$PREFIX/tylmp/venv"
 bash "$repo/scripts/setup.sh" --packages          # compilers, MPI, python3-dev, Eigen, GoogleTest
 build_lammps
 install_python_module

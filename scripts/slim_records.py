@@ -6,7 +6,7 @@ rounded to 9 significant digits, the others, which it recomputes from those (met
 or only plots, to DIGITS. The full record is what the run writes; the
 command that wrote each one is in docs/validation.md and docs/fidelity.md.
 
-    PYTHONPATH=analysis python3 scripts/slim_records.py [--digits 4] NAME.csv ...
+    PYTHONPATH=python /usr/bin/python3 scripts/slim_records.py [--digits 4] NAME.csv ...
 """
 import argparse
 import lzma
@@ -15,8 +15,8 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
-                                "analysis"))
-from tyanalysis import io  # noqa: E402
+                                "python"))
+from tylmp.analysis import io  # noqa: E402
 
 
 # Z and Z_m are solved for integer rattler counts (metrics.rattlers_from_z): kept as written

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Set up everything, then run the whole test suite (C++ core tests run inside pytest) against
-# each LAMMPS version: 29 Sep 2021 (Debian 12's lmp, the installed build of tylmp), then
+# each LAMMPS version: 29 Sep 2021 (Debian 12's lmp, this tree's build of tylmp), then
 # 4 Feb 2025 (built from Debian 13's source and cached by scripts/lammps2025.sh).
 #   bash scripts/test.sh [pytest arguments]
 #   TYLMP_TEST_LAMMPS=2021 bash scripts/test.sh     (one version only: 2021 or 2025)

@@ -1,4 +1,5 @@
-"""Shared test set-up: use the freshly built tylmp (build/python) and tyanalysis (analysis/)."""
+"""Shared test set-up: use the package tylmp of the fresh build (build/python: the sources of
+python/ with the library and the decks), not an installed one."""
 import importlib.util
 import os
 import sys
@@ -7,7 +8,7 @@ import pytest
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BUILD = os.environ.get("TYLMP_BUILD_DIR", os.path.join(REPO, "build"))
-PYTHON_DIRS = [os.path.join(BUILD, "python"), os.path.join(REPO, "analysis")]
+PYTHON_DIRS = [os.path.join(BUILD, "python")]
 
 for d in reversed(PYTHON_DIRS):
     if d not in sys.path:
@@ -35,3 +36,16 @@ def bench():
             spec.loader.exec_module(modules[name])
         return modules[name]
     return load
+
+
+@pytest.fixture(scope="session")
+def command_dir(tmp_path_factory):
+    """A directory with a `tyanalysis` command of the build under test, for PATH: what pip's
+    console script is in an install (python/pyproject.toml), run by this interpreter with
+    build/python first on sys.path."""
+    d = tmp_path_factory.mktemp("bin")
+    script = d / "tyanalysis"
+    script.write_text(f"#!{sys.executable}\nimport sys\nsys.path.insert(0, {PYTHON_DIRS[0]!r})\n"
+                      "from tylmp.analysis.cli import main\nsys.exit(main())\n")
+    script.chmod(0o755)
+    return str(d)

@@ -1,6 +1,6 @@
-"""tyanalysis (analysis/tyanalysis): invariants against hand calculations, the CSV reader's
+"""tylmp.analysis (python/tylmp/analysis): invariants against hand calculations, the CSV reader's
 tolerance of a partially written last row, and every CLI subcommand run as
-`/usr/bin/python3 -m tyanalysis ...` on synthetic records whose answers are known in closed form."""
+`/usr/bin/python3 -m tylmp.analysis ...` on synthetic records whose answers are known in closed form."""
 import json
 import math
 import os
@@ -11,11 +11,10 @@ import sys
 import numpy as np
 import pytest
 
-from tyanalysis import compare, io, metrics
-from tyanalysis import invariants as inv
+from tylmp.analysis import compare, io, metrics
+from tylmp.analysis import invariants as inv
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-ANALYSIS = os.path.join(REPO, "analysis")
 PY = "/usr/bin/python3" if os.path.exists("/usr/bin/python3") else sys.executable
 P0 = 100e3                      # mean stress, Pa
 
@@ -132,9 +131,8 @@ def files(tmp_path_factory):
 
 def run_cli(*args, cwd=None):
     env = dict(os.environ)
-    env["PYTHONPATH"] = os.pathsep.join([ANALYSIS] + [p for p in env.get("PYTHONPATH", "").split(os.pathsep) if p])
     env["MPLBACKEND"] = "Agg"
-    r = subprocess.run([PY, "-m", "tyanalysis", *map(str, args)], capture_output=True, text=True,
+    r = subprocess.run([PY, "-m", "tylmp.analysis", *map(str, args)], capture_output=True, text=True,
                        env=env, cwd=cwd, timeout=60)
     assert r.returncode == 0, f"{args}\nstdout:\n{r.stdout}\nstderr:\n{r.stderr}"
     return r.stdout
@@ -546,7 +544,7 @@ def test_cli_isotropic_record_does_not_break(tmp_path):
 
 def test_curve_spread_measures_horizontal_distance_of_curves():
     # y = x and y = 1.1 x reach every level y0 at x = y0 and y0/1.1: spread (1 - 1/1.1)/mean
-    from tyanalysis import metrics
+    from tylmp.analysis import metrics
     x = np.linspace(0.0, 10.0, 1001)
     spread = metrics.curve_spread([(x, x), (x, 1.1 * x)], np.linspace(1.0, 7.0, 13))
     assert spread == pytest.approx((1 - 1 / 1.1) / ((1 + 1 / 1.1) / 2), rel=1e-9)
@@ -680,30 +678,6 @@ def test_rattlers_recovered_from_recorded_z_and_zm(tmp_path):
     assert r["N0_N1"] == "721,3" and r["N"] == 3620
 
 
-def test_tyanalysis_command_uses_its_own_interpreter(files, tmp_path):
-    """The `tyanalysis` command (build/bin/tyanalysis, installed to bin/) runs with the Python
-    that has the packages even when the `python3` first on PATH is another one."""
-    build = os.environ.get("TYLMP_BUILD_DIR", os.path.join(REPO, "build"))
-    command = os.path.join(build, "bin", "tyanalysis")
-    assert os.access(command, os.X_OK), command
-    fake = tmp_path / "fakebin"
-    fake.mkdir()
-    (fake / "python3").write_text("#!/bin/sh\necho 'not the python with numpy' >&2\nexit 3\n")
-    (fake / "python3").chmod(0o755)
-    env = dict(os.environ, MPLBACKEND="Agg",
-               PATH=os.pathsep.join([str(fake), os.path.dirname(command), os.environ["PATH"]]),
-               PYTHONPATH=os.pathsep.join([ANALYSIS] + [p for p in os.environ.get(
-                   "PYTHONPATH", "").split(os.pathsep) if p]))
-    # what a user types after a deck: the bare command name, found on PATH
-    r = subprocess.run(["tyanalysis", "summary", files["dense.csv"]], capture_output=True,
-                       text=True, env=env, timeout=60)
-    assert r.returncode == 0, r.stdout + r.stderr
-    assert json.loads(r.stdout)["q_peak_kPa"] == pytest.approx(120.0)
-    r = subprocess.run(["tyanalysis", "--help"], capture_output=True, text=True, env=env,
-                       timeout=60)
-    assert r.returncode == 0 and r.stdout.startswith("usage: tyanalysis ")
-
-
 # ---- figures: the paper's values, labels, guides ----------------------------------------------
 
 @pytest.fixture
@@ -734,7 +708,7 @@ def drawn(monkeypatch):
 def capture_figures(monkeypatch, describe):
     """A function running the CLI in this process that returns describe(fig) of the last figure
     it saved (describe may lay the figure out)."""
-    from tyanalysis import cli, figures
+    from tylmp.analysis import cli, figures
     kept = []
     save = figures.save_figure
 
@@ -841,7 +815,7 @@ def test_fidelity_table_shifts_from_the_base(tmp_path, capsys):
     """tyanalysis fidelity: each factor's responses and their shifts from the base, from the
     records named as reproduce --programme fidelity names them. Synthetic axisymmetric
     records: void ratio e0 + 0.3 x, so e at 30 % is e0 + 0.09; solid fraction 1/(1 + e0)."""
-    from tyanalysis import fidelity, reproduce
+    from tylmp.analysis import fidelity, reproduce
     prog = reproduce.PROGRAMMES["fidelity"]
     for factor, e0 in (("base", 0.515), ("seed2", 0.525)):
         name = fidelity.run_name(factor, "axisym_dense")
@@ -873,7 +847,7 @@ def test_fidelity_table_shifts_from_the_base(tmp_path, capsys):
     # a directory without the study's records, or none at all: an error that says so
     empty = tmp_path / "empty"
     empty.mkdir()
-    from tyanalysis import cli
+    from tylmp.analysis import cli
     for d, message in ((empty, "no record of tyanalysis reproduce --programme fidelity"),
                        (tmp_path / "missing", "no such directory")):
         assert cli.main(["fidelity", str(d)]) == 2
@@ -1011,7 +985,7 @@ def test_cycle_work_is_numbered_as_the_cyclic_deck_numbers_cycles(tmp_path):
     synthetic record of 3 cycles whose deviator is +s_k while compressing and -s_k while
     extending in cycle k (p and eps_v constant): the loop of cycle k encloses 2A x 2 s_k, its
     work is (2/3)(4 A s_k); cycles 2 and 3 are complete, cycle 1 is not."""
-    from tyanalysis import cyclic as cyc
+    from tylmp.analysis import cyclic as cyc
     A, s_k, m = 0.01, {1: 10e3, 2: 20e3, 3: 40e3}, 400
     legs = [(0.0, A, 1)] + [(A, -A, 1)] + [(-A, A, 2), (A, -A, 2), (-A, A, 3), (A, -A, 3)]
     d13, s, rate = [], [], []

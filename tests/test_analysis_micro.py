@@ -7,8 +7,8 @@ import sys
 import numpy as np
 import pytest
 
-from tyanalysis import io
-from tyanalysis import micromechanics as micro
+from tylmp.analysis import io
+from tylmp.analysis import micromechanics as micro
 
 
 def test_names_follow_the_compute_vector_layout(repo):
@@ -50,7 +50,7 @@ def synthetic(n=20):
 
 
 def run_cli(*args):
-    return subprocess.run([sys.executable, "-m", "tyanalysis", *map(str, args)],
+    return subprocess.run([sys.executable, "-m", "tylmp.analysis", *map(str, args)],
                           capture_output=True, text=True)
 
 

@@ -85,9 +85,9 @@ def test_record_digest_tells_the_same_records_from_different_ones(tmp_path, benc
 
 def test_job_rows_read_what_reproduce_logs(tmp_path, bench):
     """bench/programme_speed.py's job accounting reads reproduce's own "done" lines: jobs run by
-    tyanalysis.reproduce.run_jobs (two at once) whose logs carry known loop lines come back with
+    tylmp.analysis.reproduce.run_jobs (two at once) whose logs carry known loop lines come back with
     those loop times and steps; a job that failed has no row."""
-    from tyanalysis import reproduce
+    from tylmp.analysis import reproduce
     speed = bench("programme_speed")
     rundir = tmp_path / "call"
     rundir.mkdir()

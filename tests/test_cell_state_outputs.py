@@ -7,7 +7,7 @@ import pytest
 
 from conftest import REPO
 from lmprun import LOAD_TYLMP, run_deck
-from tyanalysis.io import read_sphere_data
+from tylmp.analysis.io import read_sphere_data
 
 SPECIMEN = f"{REPO}/bench/data/dense_paper_100kPa.data"
 

@@ -293,7 +293,7 @@ def test_tyanalysis_draws_the_recorded_micromechanics(sheared):
     import subprocess
     import sys
     work, end, _ = sheared
-    out = subprocess.run([sys.executable, "-m", "tyanalysis", "micromechanics",
+    out = subprocess.run([sys.executable, "-m", "tylmp.analysis", "micromechanics",
                           str(work / "micro.txt"), "--out", str(work / "micro.png")],
                          capture_output=True, text=True, check=True).stdout
     values = dict(kv.split("=") for kv in out.splitlines()[0].split(": ", 1)[1].split())

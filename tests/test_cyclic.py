@@ -212,7 +212,7 @@ def test_stress_control_turns_at_the_stress_amplitude(dense_stress):
 def test_cyclic_figure(dense_strain, tmp_path):
     work, _, _ = dense_strain
     out = tmp_path / "cyclic.png"
-    proc = subprocess.run([PY, "-m", "tyanalysis", "cyclic", str(work / "cyclic.csv"),
+    proc = subprocess.run([PY, "-m", "tylmp.analysis", "cyclic", str(work / "cyclic.csv"),
                            "--out", str(out)], capture_output=True, text=True, env=_env())
     assert proc.returncode == 0, proc.stdout + proc.stderr
     # 2 cycles (run_cyclic), the first from 0: cycle 2 is the one complete loop (from -A to

@@ -9,7 +9,7 @@ their CSV records checked qualitatively against the paper (sections 3-5, Figs 1-
   cdst.in          the strain stays on its circle while the Lode angles turn (Fig 7)
   plane_strain.in  each leg of the triangle keeps one principal deviatoric strain fixed
                    (Figs 8-9), both directions
-and the analysis CLI (python3 -m tyanalysis) draws every figure from these records; thermo shows
+and the analysis CLI (python3 -m tylmp.analysis) draws every figure from these records; thermo shows
 the fix's outputs by name (v_cell_NAME, fix cell/servo's `variables yes`) and the deck prints its `tyanalysis` command.
 The decks' -var choices are checked, and the specimen cache (tylmp.decks) is keyed on the
 preparation settings, never left torn, and found from any directory (issues 14, 15).
@@ -84,7 +84,7 @@ def smooth(y, n=9):
 
 
 def cli(*args, cwd):
-    proc = subprocess.run([PY, "-m", "tyanalysis", *args], cwd=str(cwd), capture_output=True,
+    proc = subprocess.run([PY, "-m", "tylmp.analysis", *args], cwd=str(cwd), capture_output=True,
                           text=True, timeout=300, env=_env())
     assert proc.returncode == 0, proc.stdout + proc.stderr
     return proc.stdout
@@ -239,13 +239,12 @@ def test_axisym_thermo_named_outputs(axisym_dense):
         assert np.allclose(ours, theirs, rtol=1e-4, atol=1e-12), name
 
 
-def test_axisym_prints_its_plot_command(axisym_dense):
+def test_axisym_prints_its_plot_command(axisym_dense, command_dir):
     """The deck ends with the plotting command; typed as printed (tyanalysis on PATH) it
     draws the figure."""
     line = [x for x in OUTPUT["axisym"].splitlines() if x.startswith("plot: ")][-1]
     assert line == "plot: tyanalysis axisym axisym.csv --n 500 --specimen dense --out axisym.png"
-    build = os.environ.get("TYLMP_BUILD_DIR", os.path.join(REPO, "build"))
-    env = dict(_env(), PATH=os.pathsep.join([os.path.join(build, "bin"), os.environ["PATH"]]))
+    env = dict(_env(), PATH=os.pathsep.join([command_dir, os.environ["PATH"]]))
     proc = subprocess.run(line[len("plot: "):].split(), cwd=str(axisym_dense), env=env,
                           capture_output=True, text=True, timeout=300)
     assert proc.returncode == 0, proc.stdout + proc.stderr
@@ -711,8 +710,7 @@ def test_reproduce_starts_a_run_when_its_specimen_is_ready(tmp_path):
     """run_jobs: a run waits for its own preparation only (two slots: the loose run starts
     while the dense preparation still goes), and the runs of a failed preparation are skipped
     while the others run. The jobs are shell commands that stamp their start and end times."""
-    sys.path.insert(0, os.path.join(REPO, "analysis"))
-    from tyanalysis.reproduce import Job, run_jobs
+    from tylmp.analysis.reproduce import Job, run_jobs
 
     def job(name, seconds, needs=None, rc=0, weight=1):
         cmd = ["sh", "-c", f"date +%s.%N > {name}.start; sleep {seconds}; "
@@ -741,9 +739,8 @@ def test_reproduce_trace_study_runs_factor_by_factor(tmp_path):
     factor's preparation before its runs, so that an interrupted call leaves the first factors
     whole rather than every factor's specimen and no record: one slot, shell jobs that append
     their names to one file."""
-    sys.path.insert(0, os.path.join(REPO, "analysis"))
-    from tyanalysis import fidelity
-    from tyanalysis.reproduce import PROGRAMMES, Job, rank_of, run_jobs
+    from tylmp.analysis import fidelity
+    from tylmp.analysis.reproduce import PROGRAMMES, Job, rank_of, run_jobs
     prog = PROGRAMMES["fidelity"]
     assert [rank_of(fidelity.run_name(f, "axisym_dense"), prog) for f in
             ("base", "seed2", "gamma0_shear", "gamma06_prep")] == [0, 1, 2, 3]
@@ -764,7 +761,7 @@ def test_reproduce_trace_study_runs_factor_by_factor(tmp_path):
 
 
 def test_reproduce_refuses_an_unknown_run(tmp_path):
-    proc = subprocess.run([PY, "-m", "tyanalysis", "reproduce", "--dir", str(tmp_path),
+    proc = subprocess.run([PY, "-m", "tylmp.analysis", "reproduce", "--dir", str(tmp_path),
                            "--only", "axisym_medium"], capture_output=True, text=True, env=_env())
     assert proc.returncode != 0
     assert "unknown run(s) axisym_medium; the runs are: axisym_dense, axisym_loose" in proc.stderr

@@ -166,7 +166,6 @@ def lammps2025_wrapper():
 def both_lammps():
     """{version: (lmp command, PYTHONPATH)} for 29 Sep 2021 and 4 Feb 2025, or skip. Each side's
     PYTHONPATH has its own build of tylmp when the repository has one (else the installed one)."""
-    analysis = os.path.join(REPO, "analysis")
     sides = {}
     build21 = BUILD if library_for(V2021) else os.path.join(REPO, "build")
     build25 = BUILD if library_for(V2025) else os.environ.get(
@@ -176,7 +175,7 @@ def both_lammps():
         if not cmd or not os.path.exists(cmd):
             pytest.skip(f"no LAMMPS {version} on this machine (scripts/lammps2025.sh builds 4 Feb 2025)")
         path = [os.path.join(build, "python")] if library_for(version, build) else []
-        env = dict(os.environ, PYTHONPATH=os.pathsep.join(path + [analysis]))
+        env = dict(os.environ, PYTHONPATH=os.pathsep.join(path))
         if lmp_info(cmd, env)[0] != version:
             pytest.skip(f"{cmd} is not LAMMPS {version}")
         sides[version] = (cmd, env["PYTHONPATH"])

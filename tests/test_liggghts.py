@@ -337,8 +337,8 @@ def test_axisymmetric_deck_holds_the_lateral_stress_and_reads_as_a_cell_record(t
     # inputs/liggghts/axisym.in on the committed 3620-sphere dense specimen to 0.2 % axial
     # strain: LIGGGHTS's fix deform shortens x at the true rate 5e-5 1/s while its lateral edges
     # follow the deck's stress servo; tyanalysis reads the record as a fix cell/servo one
-    from tyanalysis import liggghts
-    from tyanalysis.io import read_sphere_data
+    from tylmp.analysis import liggghts
+    from tylmp.analysis.io import read_sphere_data
     specimen = os.path.join(REPO, "bench", "data", "dense_paper_100kPa.data")
     liggghts_ok(os.path.join(DECKS, "axisym.in"), tmp_path,
                 variables={"strain": 0.002, "data": specimen})
@@ -364,8 +364,8 @@ def test_axisymmetric_deck_holds_the_lateral_stress_and_reads_as_a_cell_record(t
     assert rec["Z"][0] == pytest.approx(5.336, rel=0.01)
     assert np.all(np.isnan(rec["sliding_fraction"]))
     # the command line writes the same record, which reads as a fix cell/servo one
-    from tyanalysis import cli
-    from tyanalysis.io import read_servo_csv
+    from tylmp.analysis import cli
+    from tylmp.analysis.io import read_servo_csv
     out = str(tmp_path / "axisym_liggghts.csv")
     assert cli.main(["liggghts-record", str(tmp_path / "axisym_liggghts_raw.csv"),
                      "--out", out]) in (0, None)

@@ -1,5 +1,5 @@
 """docs/tutorial.md, run as a new user runs it: every ```sh block, in order, in one fresh
-directory holding inputs/ (as the repository root does), with the build's tylmp and tyanalysis
+directory holding inputs/ (as the repository root does), with the build's package tylmp
 (TYLMP_BUILD_DIR, conftest.py) and its `tyanalysis` command on PATH. Then what the tutorial says
 happened is checked: the material and the table of sizes reached the specimen, the timestep is
 0.2 of the Rayleigh time of the smallest sphere (docs/theory.md §4.1), the preparation printed
@@ -14,7 +14,6 @@ import pytest
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 TUTORIAL = os.path.join(REPO, "docs", "tutorial.md")
-BUILD = os.environ.get("TYLMP_BUILD_DIR", os.path.join(REPO, "build"))
 
 
 def commands():
@@ -24,11 +23,11 @@ def commands():
 
 
 @pytest.fixture(scope="module")
-def walked(tmp_path_factory):
+def walked(tmp_path_factory, command_dir):
     work = tmp_path_factory.mktemp("tutorial")
     os.symlink(os.path.join(REPO, "inputs"), work / "inputs")
     env = dict(os.environ, MPLBACKEND="Agg", OMPI_MCA_btl_vader_single_copy_mechanism="none",
-               PATH=os.path.join(BUILD, "bin") + os.pathsep + os.environ["PATH"])
+               PATH=command_dir + os.pathsep + os.environ["PATH"])
     outputs = []
     for block in commands():
         proc = subprocess.run(["bash", "-e", "-c", block], cwd=str(work), env=env,

@@ -2,7 +2,7 @@
 the same specimen. YADE's scene (bench/yade_axisym.py) and the LAMMPS deck
 (bench/yade_axisym.in) must hold, at step 0, the solid fraction, contacts and mean stress of
 the data file, computed here independently: contacts as geometric overlaps by a periodic
-KD-tree (tyanalysis.metrics.contacts), the stress as the Love-Weber mean stress of Hertz
+KD-tree (tylmp.analysis.metrics.contacts), the stress as the Love-Weber mean stress of Hertz
 forces F = (4/3) E* sqrt(R*) delta^(3/2) on those overlaps (Gamma = 0, no tangential force at a
 fresh start). The YADE test is skipped without `yade` (Debian: apt-get install yade)."""
 import json
@@ -13,8 +13,8 @@ import subprocess
 import numpy as np
 import pytest
 
-from tyanalysis import metrics
-from tyanalysis.io import read_servo_csv, read_sphere_data
+from tylmp.analysis import metrics
+from tylmp.analysis.io import read_servo_csv, read_sphere_data
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DATA = os.path.join(REPO, "bench", "data", "dense_paper_100kPa.data")
@@ -83,7 +83,7 @@ def test_lammps_deck_at_step_0_is_the_data_file(data_state, tmp_path):
 def test_compare_reads_the_responses_of_a_known_record(tmp_path, bench):
     # a synthetic axisymmetric record: eps1 - eps3 = d, eps_v = -0.3 d (constant dilation
     # rate 0.3), p = 100 kPa, q = min(5e8 d, 90 kPa), Z falling linearly from 5 to 4 over 10 %
-    from tyanalysis.io import write_servo_csv
+    from tylmp.analysis.io import write_servo_csv
     d = np.concatenate([np.linspace(0, 0.002, 201), np.linspace(0.0021, 0.12, 1190)])
     ev = -0.3 * d
     e3 = (ev - d) / 3

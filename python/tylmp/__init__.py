@@ -1,5 +1,8 @@
 """tylmp: Thornton–Yin contact law and stress-controlled periodic cell for LAMMPS.
 
+The package: this loader, the decks' helpers (tylmp.decks, tylmp.specimen) and the decks
+themselves (tylmp/inputs), and the analysis (tylmp.analysis, the `tyanalysis` command).
+
 Load the styles into a running LAMMPS (the Debian `lmp` has no PLUGIN package) with
 two lines of an input deck:
 
@@ -19,7 +22,7 @@ import sys
 
 __all__ = ["load", "library_path", "built_for"]
 
-_LIBRARY_NAME = "tylmp.so"             # in a build or install: the build made (installed) last
+_LIBRARY_NAME = "tylmp.so"             # in a build tree: the build made last
 _VERSIONED_NAME = "tylmp-{}.so"        # the build for LAMMPS version YYYYMMDD
 _TAG = re.compile(rb"tylmp-lammps-version=(\d{8})")
 _libraries = {}
@@ -39,7 +42,8 @@ def library_path(lammps_version=None):
     """Path of the shared library with the styles: $TYLMP_LIBRARY if set, else the build for
     `lammps_version` (YYYYMMDD, as lammps.version() gives it) next to this file or in another
     tylmp package directory on sys.path (builds for two LAMMPS versions on one PYTHONPATH),
-    else the build made last next to this file (tylmp.so)."""
+    else the build next to this file: tylmp.so in a build tree (the build made last), the one
+    tylmp-YYYYMMDD.so in an installed package."""
     override = os.environ.get("TYLMP_LIBRARY")
     if override:
         return override
@@ -49,6 +53,10 @@ def library_path(lammps_version=None):
         for directory in [here] + [os.path.join(p or ".", "tylmp") for p in sys.path]:
             if os.path.exists(os.path.join(directory, name)):
                 return os.path.join(directory, name)
+    if not os.path.exists(os.path.join(here, _LIBRARY_NAME)):
+        builds = sorted(f for f in os.listdir(here) if re.fullmatch(r"tylmp-\d{8}\.so", f))
+        if len(builds) == 1:
+            return os.path.join(here, builds[0])
     return os.path.join(here, _LIBRARY_NAME)
 
 
@@ -68,8 +76,10 @@ def _open_library(lammps_version):
         return _libraries[path]
     if not os.path.exists(path):
         raise FileNotFoundError(
-            f"tylmp: shared library not found at {path}; build and install with "
-            "'cmake -S . -B build && cmake --build build && cmake --install build'")
+            f"tylmp: shared library not found at {path}; build it and install the package "
+            "build/python with it: 'cmake -S . -B build && cmake --build build && "
+            ".venv/bin/pip install --no-build-isolation --no-index build/python' "
+            "(README, Install), or point TYLMP_LIBRARY at a build")
     built = built_for(path)
     if built != lammps_version:
         here = os.path.dirname(path)

@@ -5,7 +5,7 @@ as many at once as there are cores, then every figure and the summary table.
                          [--jobs N] [--inputs DIR] [--only NAME ...] [--dry-run]
 
 The runs are the decks of inputs/ with the settings validation.md gives for each figure
-(PROGRAMME below). Each specimen is prepared once (one job each, in DIR/tylmp_specimens,
+(programmes.PROGRAMME). Each specimen is prepared once (one job each, in DIR/tylmp_specimens,
 reused by every later run and by a later call); a shear run starts as soon as its specimen is
 ready, longest first, at most `jobs` runs at a time (default: the number of cores). Each run writes its CSV record and a
 LAMMPS log in DIR; a run whose record already ends at its target (a finished earlier call)
@@ -17,66 +17,26 @@ the summary table paper against ours (summary.md in DIR, `tyanalysis compare`).
 `--scale quick` runs the same programme on the decks' quick scale (500 spheres, ten times the
 paper's rates): minutes instead of hours, for checking the machinery.
 """
-import importlib.util
 import os
+import re
 import shlex
 import subprocess
 import time
 
-from . import fidelity
-
-# name -> (deck, {variable: value}, the deck's `out` prefix, weight = expected core-minutes at
-# paper scale, validation.md). The variables are those of validation.md's commands.
-PROGRAMME = {
-    "axisym_dense": ("axisym.in", {"specimen": "dense", "rate": "1e-5"}, "axisym_dense_paper", 43),
-    "axisym_loose": ("axisym.in", {"specimen": "loose", "rate": "1e-5"}, "axisym_loose_paper", 46),
-    **{f"friction_mu{mu}": ("friction.in", {"mu": mu, "rate": "5e-5"}, "friction_paper", w)
-       for mu, w in (("0", 5), ("0.1", 7), ("0.2", 9), ("0.3", 10), ("0.5", 14), ("1.0", 19))},
-    **{f"radial_dense_b{b}": ("radial.in", {"specimen": "dense", "b": b, "strain": "0.10",
-                                            "rate": "1e-5"}, "radial_paper", 16)
-       for b in ("0.25", "0.5", "0.75", "1")},
-    **{f"radial_loose_b{b}": ("radial.in", {"specimen": "loose", "b": b, "strain": "0.30",
-                                            "rate": "1e-5"}, "radial_loose_paper_1e-5", w)
-       for b, w in (("0.25", 16), ("0.5", 22), ("0.75", 18), ("1", 26))},
-    "cdst": ("cdst.in", {}, "cdst_paper", 3),
-    "plane_strain_cw": ("plane_strain.in", {"rotation": "cw"}, "plane_strain_cw_paper", 7),
-    "plane_strain_ccw": ("plane_strain.in", {"rotation": "ccw"}, "plane_strain_ccw_paper", 7),
-}
-SPECIMENS = ("dense", "loose")
-# expected core-minutes of each preparation at paper scale (the two-stage protocol,
-# docs/fidelity.md "Preparation protocol"): preparations start before any run
-PREP_WEIGHT = {"dense": 15, "loose": 5}
-# decks that run a list of values and name each record PREFIX_<variable><value>.csv
-LIST_VARIABLE = {"friction.in": "mu", "radial.in": "b"}
-# the programmes: the paper's figures, and the trace study of docs/fidelity.md, whose entries
-# carry a fifth element, the preparation variables of the run's specimen
-PROGRAMMES = {"paper": PROGRAMME, "fidelity": fidelity.programme()}
-
-
-def entry(name, prog=PROGRAMME):
-    """(deck, variables, out prefix, weight, preparation variables) of a run."""
-    deck, vars_, out, weight, *prep = prog[name]
-    return deck, vars_, out, weight, (prep[0] if prep else {})
+from .programmes import PREP_WEIGHT, PROGRAMME, PROGRAMMES, entry, factor_rank, record_name
 
 
 def rank_of(name, prog=PROGRAMME):
     """Start order of a run's group: in the trace study its factor's place in
-    fidelity.FACTORS, so that an interrupted call leaves whole factors, the first ones;
+    programmes.FACTORS, so that an interrupted call leaves whole factors, the first ones;
     0 for every run of the paper programme."""
-    return fidelity.factor_rank(name) if prog is PROGRAMMES["fidelity"] else 0
+    return factor_rank(name) if prog is PROGRAMMES["fidelity"] else 0
 
 
 def specimen_of(name, prog=PROGRAMME):
     """The specimen a run shears (the decks' default: dense) and its preparation variables."""
     deck, vars_, _, _, prep = entry(name, prog)
     return vars_.get("specimen", "dense"), tuple(sorted(prep.items()))
-
-
-def record_name(name, prog=PROGRAMME):
-    """CSV file of a run."""
-    deck, vars_, out, _, _ = entry(name, prog)
-    key = LIST_VARIABLE.get(deck)
-    return f"{out}_{key}{vars_[key]}.csv" if key else out + ".csv"
 
 
 def command(name, scale, inputs, prog=PROGRAMME):
@@ -132,19 +92,29 @@ def finished(path):
 
 
 def find_inputs():
-    """The decks: the repository's inputs/ beside this package when run from a checkout, else
-    the copy installed with the tylmp package."""
-    here = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(
-        os.path.abspath(__file__)))), "inputs")
-    if os.path.isfile(os.path.join(here, "axisym.in")):
-        return here
-    spec = importlib.util.find_spec("tylmp")
-    if spec and spec.origin:
-        installed = os.path.join(os.path.dirname(spec.origin), "inputs")
-        if os.path.isfile(os.path.join(installed, "axisym.in")):
-            return installed
+    """The decks: the repository's inputs/ when this package runs from a checkout
+    (python/tylmp), else the copy that goes with the package (tylmp/inputs: a build tree's
+    python/ or an install)."""
+    package = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    for here in (os.path.join(os.path.dirname(os.path.dirname(package)), "inputs"),
+                 os.path.join(package, "inputs")):
+        if os.path.isfile(os.path.join(here, "axisym.in")):
+            return here
     raise SystemExit("tyanalysis reproduce: no decks found (give --inputs DIR, the "
                      "repository's inputs/)")
+
+
+def lmp_environment():
+    """The environment of the lmp runs: when a build of the library sits in this tylmp
+    package, the directory holding the package goes first on PYTHONPATH, so that the decks'
+    `from tylmp import load` in LAMMPS's embedded Python takes this package and its library
+    whether or not its virtual environment is active (on PATH)."""
+    env = dict(os.environ)
+    package = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    if any(re.fullmatch(r"tylmp(-\d{8})?\.so", f) for f in os.listdir(package)):
+        rest = [p for p in env.get("PYTHONPATH", "").split(os.pathsep) if p]
+        env["PYTHONPATH"] = os.pathsep.join([os.path.dirname(package)] + rest)
+    return env
 
 
 def figure_commands(d):
@@ -198,6 +168,7 @@ def run_jobs(jobs, workdir, width, every, log):
     pending = sorted(jobs, key=lambda j: (j.rank, j.needs is not None, -j.weight))
     running, failed, done = [], [], 0
     total = len(jobs)
+    env = lmp_environment()
     last_report = time.monotonic()
     while pending or running:
         for j in [j for j in pending if j.needs is not None and j.needs.state in ("failed",
@@ -215,7 +186,7 @@ def run_jobs(jobs, workdir, width, every, log):
             pending.remove(j)
             j.state = "running"
             j.start = time.monotonic()
-            j.proc = subprocess.Popen(j.cmd, cwd=workdir, stdout=subprocess.DEVNULL,
+            j.proc = subprocess.Popen(j.cmd, cwd=workdir, env=env, stdout=subprocess.DEVNULL,
                                       stderr=subprocess.STDOUT)
             running.append(j)
             log(f"started {j.name}: {shlex.join(j.cmd)}")
@@ -242,7 +213,9 @@ def run_jobs(jobs, workdir, width, every, log):
     return failed
 
 
-def main(args):
+def main(args, draw):
+    """Run the programme of the parsed `tyanalysis reproduce` arguments; draw(argv) runs one
+    tyanalysis command (cli.main) for each figure and table once the runs have ended."""
     inputs = os.path.abspath(args.inputs) if args.inputs else find_inputs()
     width = args.jobs or os.cpu_count() or 1
     os.makedirs(args.dir, exist_ok=True)
@@ -287,16 +260,15 @@ def main(args):
         return 0
     log(f"{len(prep)} preparations and {len(shear)} runs, {width} at a time, in {workdir}")
     failed = run_jobs(list(prep.values()) + shear, workdir, width, args.every, log)
-    from .cli import main as cli_main
     if programme != "paper":
-        cli_main(fidelity_command(workdir))
+        draw(fidelity_command(workdir))
         log(f"{len(failed)} run(s) failed")
         return 1 if failed else 0
     drawn = 0
     for c in figure_commands(workdir):
         files = [a for a in c if a.endswith(".csv")]
         if all(os.path.exists(p) for p in files):
-            cli_main(c)
+            draw(c)
             drawn += 1
         else:
             log(f"not drawn (records missing): tyanalysis {c[0]} ... {c[-1]}")

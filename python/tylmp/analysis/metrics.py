@@ -1,7 +1,7 @@
 """Quantities derived from a `fix cell/servo` record and the key numbers of a test.
 
-Everything is recomputed from the raw principal columns (sig1..3, eps1..3) with
-tyanalysis.invariants, so the derived columns the fix writes can be checked against an
+Everything is recomputed from the raw principal columns (sig1..3, eps1..3) with the
+invariants module, so the derived columns the fix writes can be checked against an
 independent implementation (see `consistency`).
 """
 import math
@@ -205,12 +205,29 @@ STRESS_MEASURES = {
 }
 
 
+def prestrain_end(table, tol_deg=1e-6):
+    """Index of the last row of the axisymmetric-compression prestrain: the row before the
+    strain Lode angle first leaves 0 deg by more than tol_deg (None if it never does).
+    On the prestrain leg the fix keeps eps2 = eps3 to round-off (Lode angle < 2e-10 deg in the
+    paper-scale records), while the first row on a circle or triangle has turned by the
+    path speed x CSV interval (0.8 deg at paper scale), so the tolerance is tiny: a tolerance
+    of 1 deg took that first, already unloading row (q 5 kPa below the prestrain's) as the end
+    of the prestrain (docs/fidelity.md "Definitions")."""
+    d = derived(table)
+    r = np.hypot(d["pi_ex"], d["pi_ey"])
+    dev = np.abs((d["lode_strain_deg"] + 180.0) % 360.0 - 180.0)
+    active = (r > 1e-3 * np.nanmax(r)) & (dev > tol_deg)
+    idx = np.flatnonzero(active)
+    if idx.size == 0 or idx[0] == 0 or not r[idx[0] - 1] > 1e-3 * np.nanmax(r):
+        return None                  # never leaves compression, or no compression prestrain
+    return int(idx[0]) - 1
+
+
 def compression_leg(table):
     """Slice of the rows of the first axisymmetric-compression leg: up to the end of a
-    pre-strain (compare.prestrain_end), or the whole record if the strain never leaves
+    pre-strain (prestrain_end), or the whole record if the strain never leaves
     compression (an axisymmetric test)."""
-    from . import compare
-    i0 = compare.prestrain_end(table)
+    i0 = prestrain_end(table)
     return slice(0, len(table) if i0 is None else i0 + 1)
 
 

@@ -1,5 +1,5 @@
-"""Command line: tyanalysis <subcommand> ... (installed by CMake; or python3 -m tyanalysis with
-the interpreter that has the packages); see --help of each subcommand."""
+"""Command line: tyanalysis <subcommand> ... (the console command of the tylmp package, or
+python -m tylmp.analysis); see --help of each subcommand."""
 import argparse
 import json
 import math
@@ -212,7 +212,7 @@ def cmd_pi_plane(a):
             guides.append((f"{lab}: circle r = {100 * r0:.3g} %", *inv.circle_pi(r0)))
         if r0 and guide in ("triangle", "both"):
             guides.append((f"{lab}: plane-strain triangle", *inv.plane_strain_triangle_pi(r0)))
-        # the paper's values (tyanalysis/paper.py), with --paper
+        # the paper's values (tylmp/analysis/paper.py), with --paper
         if a.paper and i0 is not None and "q0" not in drawn:
             drawn.add("q0")
             marks.append(("stress", paper.label("prestrain_q_kPa",
@@ -414,7 +414,8 @@ def build_parser():
             p.add_argument("--out", required=True, help="PNG to write")
             p.add_argument("--labels", nargs="+", help="one legend label per file")
             p.add_argument("--paper", action="store_true",
-                           help="draw the paper's values over the records (tyanalysis/paper.py)")
+                           help="draw the paper's values over the records "
+                           "(tylmp/analysis/paper.py)")
             p.add_argument("--n", type=int, help="number of spheres, stated under the figure")
             p.add_argument("--specimen", help="the specimen (e.g. dense, loose), stated under "
                                               "the figure")
@@ -455,8 +456,8 @@ def build_parser():
     p = sub.add_parser("micromechanics", help="fabric, strong/weak and normal/tangential stress, "
                        "sliding fraction from a record of compute thornton/yin/micromechanics")
     p.add_argument("file", help="CSV of fix cell/servo, or table of fix print or fix ave/time, "
-                   "with the compute's 41 values (named as tyanalysis.micromechanics.NAMES or "
-                   "PREFIX[1..41])")
+                   "with the compute's 41 values (named as "
+                   "tylmp.analysis.micromechanics.NAMES or PREFIX[1..41])")
     p.add_argument("--out", required=True, help="PNG to write")
     p.add_argument("--x", help="x-axis column (default eps_d13, else step or TimeStep)")
     p.add_argument("--prefix", help="indexed columns PREFIX[k] to use (e.g. c_micro)")
@@ -539,7 +540,7 @@ def cmd_reproduce(a):
         raise ValueError("--jobs must be at least 1")
     if not a.every > 0:
         raise ValueError("--every must be positive")
-    status = reproduce.main(a)
+    status = reproduce.main(a, draw=main)
     if status:
         raise SystemExit(status)
 

@@ -1,5 +1,5 @@
 """The markdown comparison table (quantity | paper | ours | difference | band | inside) of our
-records against the paper's numbers and bands (tyanalysis/paper.py)."""
+records against the paper's numbers and bands (tylmp/analysis/paper.py)."""
 import json
 import math
 
@@ -7,8 +7,9 @@ import numpy as np
 
 from . import invariants as inv
 from . import metrics, paper
+from .metrics import prestrain_end
 
-PAPER = paper.VALUES          # the paper's numbers: one table, tyanalysis/paper.py
+PAPER = paper.VALUES          # the paper's numbers: one table, tylmp/analysis/paper.py
 BANDS = paper.BANDS
 
 
@@ -114,24 +115,6 @@ def from_radial(tables, role="dense", compression=None):
     if ext and comp:
         out[f"extension_minus_compression_{role}"] = ext[0]["sinphi_max"] - comp[0]["sinphi_max"]
     return out
-
-
-def prestrain_end(table, tol_deg=1e-6):
-    """Index of the last row of the axisymmetric-compression prestrain: the row before the
-    strain Lode angle first leaves 0 deg by more than tol_deg (None if it never does).
-    On the prestrain leg the fix keeps eps2 = eps3 to round-off (Lode angle < 2e-10 deg in the
-    paper-scale records), while the first row on a circle or triangle has turned by the
-    path speed x CSV interval (0.8 deg at paper scale), so the tolerance is tiny: a tolerance
-    of 1 deg took that first, already unloading row (q 5 kPa below the prestrain's) as the end
-    of the prestrain (docs/fidelity.md "Definitions")."""
-    d = metrics.derived(table)
-    r = np.hypot(d["pi_ex"], d["pi_ey"])
-    dev = np.abs((d["lode_strain_deg"] + 180.0) % 360.0 - 180.0)
-    active = (r > 1e-3 * np.nanmax(r)) & (dev > tol_deg)
-    idx = np.flatnonzero(active)
-    if idx.size == 0 or idx[0] == 0 or not r[idx[0] - 1] > 1e-3 * np.nanmax(r):
-        return None                  # never leaves compression, or no compression prestrain
-    return int(idx[0]) - 1
 
 
 def stress_rotation(table, strain_rotation_deg=paper.PS_STRAIN_ROTATION_DEG):

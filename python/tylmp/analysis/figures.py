@@ -137,7 +137,7 @@ def axisym(tables, labels, out, paper_marks=False, about=None):
 
 
 def _axisym_paper(a1, a2):
-    """The paper's numbers of Figs 1-2 (tyanalysis/paper.py)."""
+    """The paper's numbers of Figs 1-2 (tylmp/analysis/paper.py)."""
     a1.axvline(paper.value("eps_d13_at_peak_dense_pct"), color="0.5", ls=":", lw=1,
                label=paper.label("eps_d13_at_peak_dense_pct", "dense peak at about 5 %"))
     for role, marker in (("dense", "o"), ("loose", "s")):
@@ -178,7 +178,7 @@ def cyclic(tables, labels, out, about=None):
 def friction(mus, sinphi_max, sinphi_cv, out, paper_marks=False, tables=(), about=None):
     """Fig. 3: peak and critical-state sin(phi) against interparticle friction, points in
     increasing mu. The paper's Skinner data and Horne curve have no numbers in its text
-    (tyanalysis/paper.py): the figure says so instead of drawing them."""
+    (tylmp/analysis/paper.py): the figure says so instead of drawing them."""
     order = np.argsort(mus)
     mus = np.asarray(mus, float)[order]
     fig, ax = plt.subplots(figsize=(5.5, 4.5))
