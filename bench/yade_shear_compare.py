@@ -1,0 +1,138 @@
+#!/usr/bin/env python3
+"""Compare the records of the simple-shear cross-check against YADE (docs/comparison.md,
+"Simple shear against YADE"): LAMMPS runs of bench/yade_simple_shear.in (fix cell/servo shear
+xz) and YADE runs of bench/yade_simple_shear.py, each a record with the columns gamma, tau,
+sig_n, tau_ratio and eps_v.
+
+    /usr/bin/python3 bench/yade_shear_compare.py --ref LABEL=CSV --other LABEL=CSV [--other ...]
+        [--gamma-end 0.10] [--out bench/results/yade_simple_shear]
+
+Per run: the peak of tau/sigma_n, the gamma where it occurs and the gamma range where tau/sigma_n
+stays within 1 % of it (the peak of a dense specimen is broad), eps_v (compression positive) at
+gamma = --gamma-end or, for a run that stops short, at the largest gamma it reached (the key
+eps_v_at_gamma_end_pct, with gamma_eps_v_pct saying where it was read), the largest dilatancy
+-d eps_v/d gamma (over intervals of 0.5 % of gamma), and the range of sigma_n past gamma = 0.5 %;
+every other run's differences from --ref. Writes OUT.json, OUT_curves.csv (run, gamma,
+tau_ratio, eps_v, sig_n) and OUT.png (tau/sigma_n, eps_v, sigma_n against gamma).
+"""
+import argparse
+import csv
+import os
+import sys
+
+import numpy as np
+
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(REPO, "analysis"))
+from tyanalysis import metrics  # noqa: E402
+from tyanalysis.io import read_servo_csv  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from provenance import write_result  # noqa: E402
+
+NEEDED = ("step", "gamma", "tau", "sig_n", "tau_ratio", "eps_v")
+DILATANCY_STEP = 0.005        # intervals of gamma for -d eps_v / d gamma
+WITHIN = 0.01                 # the peak's plateau: tau/sigma_n within 1 % of its maximum
+
+
+def responses(path, gamma_end=0.10):
+    t = read_servo_csv(path, require=NEEDED)
+    g, r, ev, sn = (np.asarray(t[c], float) for c in ("gamma", "tau_ratio", "eps_v", "sig_n"))
+    i = int(np.nanargmax(r))
+    near = np.nonzero(r >= (1 - WITHIN) * r[i])[0]
+    g_read = min(gamma_end, float(g[-1]))
+    out = {"file": os.path.relpath(os.path.abspath(path), REPO), "rows": len(t),
+           "steps": int(t["step"][-1]), "gamma_end_pct": float(g[-1] * 100),
+           "tau_ratio_max": float(r[i]), "gamma_at_tau_ratio_max_pct": float(g[i] * 100),
+           "peak_inside_record": bool(i < len(r) - 1),
+           "gamma_within_1pct_of_peak_from_pct": float(g[near[0]] * 100),
+           "gamma_within_1pct_of_peak_to_pct": float(g[near[-1]] * 100),
+           "gamma_eps_v_pct": g_read * 100,
+           "eps_v_at_gamma_end_pct": metrics.value_at(g, ev, g_read) * 100}
+    past = g > 0.005
+    if np.any(past):
+        out["sig_n_past_0.5pct_min_kPa"] = float(np.min(sn[past]) / 1e3)
+        out["sig_n_past_0.5pct_max_kPa"] = float(np.max(sn[past]) / 1e3)
+    grid = np.arange(0.0, g[-1], DILATANCY_STEP)
+    if len(grid) > 1:
+        rate = -np.diff(np.interp(grid, g, ev)) / DILATANCY_STEP
+        k = int(np.argmax(rate))
+        out["dilatancy_max"] = float(rate[k])
+        out["gamma_at_dilatancy_max_pct"] = float(0.5 * (grid[k] + grid[k + 1]) * 100)
+    return out, {"gamma": g, "tau_ratio": r, "eps_v": ev, "sig_n": sn}
+
+
+def differences(ref, other):
+    out = {}
+    for k, v in other.items():
+        r = ref.get(k)
+        if isinstance(v, float) and isinstance(r, float):
+            out[k] = {"diff": v - r, "rel": (v - r) / r if r else None}
+    return out
+
+
+def plot(curves, png, title):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(1, 3, figsize=(13, 4))
+    for k, (label, c) in enumerate(curves.items()):
+        x, col = 100 * c["gamma"], f"C{k}"
+        ax[0].plot(x, c["tau_ratio"], lw=0.8, color=col, label=label)
+        ax[1].plot(x, 100 * c["eps_v"], lw=0.8, color=col, label=label)
+        ax[2].plot(x, c["sig_n"] / 1e3, lw=0.8, color=col, label=label)
+    ax[0].set_ylabel("τ/σn")
+    ax[1].set_ylabel("ε_v (%), compression > 0")
+    ax[2].set_ylabel("σn (kPa)")
+    for a in ax:
+        a.set_xlabel("γ (%)")
+        a.grid(alpha=0.3)
+        a.legend(fontsize=7)
+    fig.suptitle(title, fontsize=9)
+    fig.tight_layout()
+    tmp = png + ".tmp.png"
+    fig.savefig(tmp, dpi=110)
+    os.replace(tmp, png)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--ref", required=True, help="LABEL=CSV of the reference run (ours)")
+    ap.add_argument("--other", action="append", required=True, help="LABEL=CSV (repeatable)")
+    ap.add_argument("--gamma-end", type=float, default=0.10, help="gamma where eps_v is read")
+    ap.add_argument("--title", default="simple shear at constant σn, Γ = 0, μ = 0.3, no damping")
+    ap.add_argument("--out", default=os.path.join(REPO, "bench", "results", "yade_simple_shear"))
+    a = ap.parse_args(argv)
+    runs = [a.ref] + a.other
+    if any("=" not in r for r in runs):
+        ap.error("runs are given as LABEL=CSV")
+    labels = [r.split("=", 1)[0] for r in runs]
+    if len(set(labels)) != len(labels):
+        ap.error(f"labels must differ: {labels}")
+    results, curves = {}, {}
+    for r in runs:
+        label, path = r.split("=", 1)
+        results[label], curves[label] = responses(path, a.gamma_end)
+    ref = labels[0]
+    summary = {"reference": ref, "gamma_end": a.gamma_end, "runs": results,
+               "differences_from_reference": {k: differences(results[ref], results[k])
+                                              for k in labels[1:]}}
+    write_result(a.out + ".json", summary)
+    tmp = a.out + "_curves.csv.tmp"
+    with open(tmp, "w", newline="", encoding="utf-8") as fh:
+        w = csv.writer(fh)
+        w.writerow(["run", "gamma", "tau_ratio", "eps_v", "sig_n"])
+        for label, c in curves.items():
+            for row in zip(c["gamma"], c["tau_ratio"], c["eps_v"], c["sig_n"]):
+                w.writerow([label] + [repr(float(v)) for v in row])
+    os.replace(tmp, a.out + "_curves.csv")
+    plot(curves, a.out + ".png", a.title)
+    keys = [k for k in results[ref] if k != "file"]
+    print("response".ljust(36) + "".join(lbl.rjust(16) for lbl in labels))
+    for k in keys:
+        vals = [results[lbl].get(k) for lbl in labels]
+        print(k.ljust(36) + "".join((f"{v:16.5g}" if isinstance(v, float) else f"{str(v):>16}")
+                                     for v in vals))
+
+
+if __name__ == "__main__":
+    main()
