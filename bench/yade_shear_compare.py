@@ -7,8 +7,9 @@ sig_n, tau_ratio and eps_v.
     /usr/bin/python3 bench/yade_shear_compare.py --ref LABEL=CSV --other LABEL=CSV [--other ...]
         [--gamma-end 0.10] [--out bench/results/yade_simple_shear]
 
-Per run: the peak of tau/sigma_n, the gamma where it occurs and the gamma range where tau/sigma_n
-stays within 1 % of it (the peak of a dense specimen is broad), eps_v (compression positive) at
+Per run: the peak of tau/sigma_n averaged over gamma windows of 0.5 % (and of the rows
+themselves), the gamma where it occurs and the gamma range where the average stays within 1 %
+of it (the peak of a dense specimen is broad), eps_v (compression positive) at
 gamma = --gamma-end or, for a run that stops short, at the largest gamma it reached (the key
 eps_v_at_gamma_end_pct, with gamma_eps_v_pct saying where it was read), the largest dilatancy
 -d eps_v/d gamma (over intervals of 0.5 % of gamma), and the range of sigma_n past gamma = 0.5 %;
@@ -32,20 +33,32 @@ from provenance import write_result  # noqa: E402
 NEEDED = ("step", "gamma", "tau", "sig_n", "tau_ratio", "eps_v")
 DILATANCY_STEP = 0.005        # intervals of gamma for -d eps_v / d gamma
 WITHIN = 0.01                 # the peak's plateau: tau/sigma_n within 1 % of its maximum
+SMOOTH, FINE = 0.005, 1e-5    # the window in gamma of the averaged tau/sigma_n, its grid
 
 
 def responses(path, gamma_end=0.10):
     t = read_servo_csv(path, require=NEEDED)
     g, r, ev, sn = (np.asarray(t[c], float) for c in ("gamma", "tau_ratio", "eps_v", "sig_n"))
-    i = int(np.nanargmax(r))
-    near = np.nonzero(r >= (1 - WITHIN) * r[i])[0]
+    # the peak of tau/sigma_n averaged over gamma windows of SMOOTH (a 500-sphere record
+    # fluctuates by +-0.02 from row to row; its largest row is the largest fluctuation)
+    fine = np.arange(0.0, g[-1] + 0.5 * FINE, FINE)
+    half = int(round(0.5 * SMOOTH / FINE))
+    kernel = np.ones(2 * half + 1) / (2 * half + 1)
+    smooth = np.convolve(np.interp(fine, g, r), kernel, mode="same")
+    inside = np.arange(len(fine))
+    inside = (inside >= half) & (inside < len(fine) - half)
+    fine, smooth = fine[inside], smooth[inside]
+    i = int(np.nanargmax(smooth))
+    near = np.nonzero(smooth >= (1 - WITHIN) * smooth[i])[0]
+    row = int(np.nanargmax(r))
     g_read = min(gamma_end, float(g[-1]))
     out = {"file": os.path.relpath(os.path.abspath(path), REPO), "rows": len(t),
            "steps": int(t["step"][-1]), "gamma_end_pct": float(g[-1] * 100),
-           "tau_ratio_max": float(r[i]), "gamma_at_tau_ratio_max_pct": float(g[i] * 100),
-           "peak_inside_record": bool(i < len(r) - 1),
-           "gamma_within_1pct_of_peak_from_pct": float(g[near[0]] * 100),
-           "gamma_within_1pct_of_peak_to_pct": float(g[near[-1]] * 100),
+           "tau_ratio_max": float(smooth[i]), "gamma_at_tau_ratio_max_pct": float(fine[i] * 100),
+           "peak_inside_record": bool(i < len(smooth) - 1),
+           "gamma_within_1pct_of_peak_from_pct": float(fine[near[0]] * 100),
+           "gamma_within_1pct_of_peak_to_pct": float(fine[near[-1]] * 100),
+           "tau_ratio_max_row": float(r[row]), "gamma_at_tau_ratio_max_row_pct": float(g[row] * 100),
            "gamma_eps_v_pct": g_read * 100,
            "eps_v_at_gamma_end_pct": metrics.value_at(g, ev, g_read) * 100}
     past = g > 0.005
