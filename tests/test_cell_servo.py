@@ -599,10 +599,12 @@ def small_deck(fix, boundary="p p p", box=None, pair=PAIR, run=10):
 BAD_INPUT = [
     ("nonperiodic", small_deck(f"fix c all cell/servo iso {P0}", boundary="p p f"),
      "requires a fully periodic box"),
-    ("triclinic", small_deck(f"fix c all cell/servo iso {P0}",
-                             box="region box prism 0 2 0 2 0 2 0.1 0 0"),
-     "requires an orthogonal box"),
-    ("unknown_mode", small_deck(f"fix c all cell/servo shear {P0}"), "unknown mode 'shear'"),
+    ("shear_on_orthogonal_box", small_deck(f"fix c all cell/servo shear xz 1e-4 {P0}"),
+     "needs a triclinic box"),
+    ("shear_axes_on_orthogonal_box",
+     small_deck(f"fix c all cell/servo axes x rate 0 y rate 0 z stress {P0} xz rate 1e-4"),
+     "needs a triclinic box"),
+    ("unknown_mode", small_deck(f"fix c all cell/servo shearing {P0}"), "unknown mode 'shearing'"),
     ("unknown_keyword", small_deck(f"fix c all cell/servo iso {P0} gian 0.1"),
      "unknown keyword 'gian'"),
     ("b_outside", small_deck(f"fix c all cell/servo constant_b 1.5 x 1e-5 {P0}"),
@@ -777,7 +779,7 @@ def test_resume_after_crash_appends_without_repeated_steps(specimen, tmp_path):
     assert max_relative_difference(a, b, ["eps1", "eps2", "eps3", "p", "q"]) < 1e-9
 
 
-def restart_record_offset(data, tag=8462.0, version=2.0):
+def restart_record_offset(data, tag=8462.0, version=3.0):
     import struct
     at = data.find(struct.pack("<dd", tag, version))
     assert at >= 0, "no cell/servo record in the restart file"
@@ -811,9 +813,9 @@ def test_mismatched_restart_record_is_refused(tmp_path, damage):
               + fix + "\nrun 10\n")
     rc, out = run_deck(second, tmp_path, name="in.second")
     expected = {"path": "written by a run on another Pi-plane path",
-                "version": "has version 99, this build reads version 2",
-                "size": "says it holds 48 numbers, but its parts hold 49",
-                "old": "a record of an earlier build of fix cell/servo"}[damage]
+                "version": "has version 99, this build reads version 3",
+                "size": "says it holds 63 numbers, but its parts hold 64",
+                "old": "is not a cell/servo record"}[damage]
     error_line = next((line for line in out.splitlines() if "ERROR" in line), out[-2000:])
     assert expected in error_line, error_line
 
@@ -1222,5 +1224,5 @@ def test_axes_cap_warning_names_the_held_targets(specimen, tmp_path):
     out = shear_run(specimen, tmp_path, f"fix sh all cell/servo axes x rate 1e-3 y stress {P0} "
                     f"z stress {P0} max_rate 1e-8", 2100)
     line = next((l for l in out.splitlines() if CAP_WARNING in l), out[-3000:])
-    assert "sig2 = " in line and "sig3 = " in line and "target 1e+05" in line, line
+    assert "sig_yy = " in line and "sig_zz = " in line and "target 1e+05" in line, line
     assert "prescribed rate 0.001 1/s" in line and "target 0" not in line, line

@@ -19,12 +19,82 @@
 
 #include <array>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 namespace tycore {
 
 using MixedControl6 = MixedControlOf<6>;
+
+// ---------------------------------------------------------------------------------------------
+// The principal programmes in six components (docs/theory.md §11.2): a three-component control
+// is the six-component one whose shears are idle (prescribed at zero rate, no held stress or
+// actuator touching them). With idle shears the six-component step reduces exactly to the
+// three-component one of the principal block, which is what the fix steps then, so that a
+// principal programme gives the same numbers on any cell.
+
+inline MixedControl6 six_component_control(const MixedControl& c)
+{
+  MixedControl6 six;
+  six.prescribed_strain_rate.head<3>() = c.prescribed_strain_rate;
+  six.actuator_count = c.actuator_count;
+  six.actuators.topLeftCorner<3, 3>() = c.actuators;
+  six.stress_rows.topLeftCorner<3, 3>() = c.stress_rows;
+  six.stress_targets.head<3>() = c.stress_targets;
+  return six;
+}
+
+inline std::optional<MixedControl> principal_control(const MixedControl6& c)
+{
+  const int m = c.actuator_count;
+  if (m > 3 || c.prescribed_strain_rate.tail<3>() != Eigen::Vector3d::Zero()) return std::nullopt;
+  for (int k = 0; k < m; ++k)
+    if (c.actuators.col(k).tail<3>() != Eigen::Vector3d::Zero()
+        || c.stress_rows.row(k).tail<3>() != Eigen::RowVector3d::Zero())
+      return std::nullopt;
+  MixedControl three;
+  three.prescribed_strain_rate = c.prescribed_strain_rate.head<3>();
+  three.actuator_count = m;
+  three.actuators = c.actuators.topLeftCorner<3, 3>();
+  three.stress_rows = c.stress_rows.topLeftCorner<3, 3>();
+  three.stress_targets = c.stress_targets.head<3>();
+  return three;
+}
+
+inline CellMeasurement principal_measurement(const CellMeasurementOf<6>& cell)
+{
+  return {cell.stress.head<3>(), cell.stiffness.topLeftCorner<3, 3>(), cell.strain.head<3>()};
+}
+
+inline ServoMemory principal_memory(const ServoMemoryOf<6>& memory)
+{
+  ServoMemory m;
+  m.integral = memory.integral.head<3>();
+  m.last_strain_rate = memory.last_strain_rate.head<3>();
+  m.path_length = memory.path_length;
+  return m;
+}
+
+// the six-component memory and command after a principal step (idle shears: zero)
+inline ServoMemoryOf<6> six_component_memory(const ServoMemory& memory)
+{
+  ServoMemoryOf<6> m;
+  m.integral.head<3>() = memory.integral;
+  m.last_strain_rate.head<3>() = memory.last_strain_rate;
+  m.path_length = memory.path_length;
+  return m;
+}
+
+inline ServoCommandOf<6> six_component_command(const ServoCommand& command)
+{
+  ServoCommandOf<6> six{Vector6d::Zero(), command.saturated, command.stress_error};
+  six.strain_rate.head<3>() = command.strain_rate;
+  return six;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Simple shear
 
 struct ShearPlane {
   int direction = 0;    // i: the axis along which the top moves

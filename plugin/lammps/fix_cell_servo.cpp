@@ -17,7 +17,6 @@
 #include "cell_tally.h"
 
 #include "cell_statistics.hpp"
-#include "tylmp_numeric.h"
 #include "pi_plane.hpp"
 
 #include "atom.h"
@@ -27,6 +26,7 @@
 #include "error.h"
 #include "force.h"
 #include "input.h"
+#include "irregular.h"
 #include "math_const.h"
 #include "modify.h"
 #include "neighbor.h"
@@ -50,9 +50,9 @@ namespace {
 constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
 // the restart record starts with a tag, its version and its size (in doubles), so that a
 // record of another programme or of another version of this fix is refused, not misread;
-// 8461 tagged the unversioned record of earlier builds
-constexpr double RESTART_TAG = 8462.0, OLD_RESTART_TAG = 8461.0;
-constexpr int RESTART_VERSION = 2;
+// version 3: six-component servo memory, cumulative shears, cyclic state
+constexpr double RESTART_TAG = 8462.0;
+constexpr int RESTART_VERSION = 3;
 
 // the state a replaced fix leaves to the one that redefines it (same LAMMPS instance and ID):
 // Modify deletes the old fix before it constructs the new one
@@ -67,50 +67,6 @@ std::string continuation_key(LAMMPS *lmp, const char *id)
   return fmt::format("{}/{}", static_cast<const void *>(lmp), id);
 }
 
-const char *const OUTPUT_NAMES[] = {
-    "eps1", "eps2", "eps3", "eps_v", "eps_q", "eps_d13", "sig1", "sig2", "sig3", "p", "q", "b",
-    "lode_deg", "eta_LD", "sinphi", "void_ratio", "solid_fraction", "Z", "Zm",
-    "sliding_fraction", "unbalanced", "inertial_number", "pi_x", "pi_y", "pi_ex", "pi_ey",
-    "progress", "eta_seconds", "equilibrium", "rate1", "rate2", "rate3", "boundary_work",
-    "p_kinetic", "volume", "time", "eq_stress_ok", "eq_unbalanced_ok", "eq_kinetic_ok",
-    "eq_coordination_ok", "kinetic_ratio"};
-// the CSV columns after `step` (one list, used for the header and every row)
-const int CSV_COLUMNS[] = {
-    FixCellServo::TIME, FixCellServo::EPS1, FixCellServo::EPS2, FixCellServo::EPS3,
-    FixCellServo::EPS_V, FixCellServo::EPS_Q, FixCellServo::EPS_D13, FixCellServo::SIG1,
-    FixCellServo::SIG2, FixCellServo::SIG3, FixCellServo::P, FixCellServo::Q, FixCellServo::B,
-    FixCellServo::LODE_DEG, FixCellServo::ETA_LD, FixCellServo::SINPHI,
-    FixCellServo::VOID_RATIO, FixCellServo::SOLID_FRACTION, FixCellServo::Z, FixCellServo::ZM,
-    FixCellServo::SLIDING_FRACTION, FixCellServo::UNBALANCED, FixCellServo::INERTIAL_NUMBER,
-    FixCellServo::PI_X, FixCellServo::PI_Y, FixCellServo::PI_EX, FixCellServo::PI_EY,
-    FixCellServo::RATE1, FixCellServo::RATE2, FixCellServo::RATE3, FixCellServo::BOUNDARY_WORK,
-    FixCellServo::P_KINETIC, FixCellServo::VOLUME, FixCellServo::PROGRESS};
-static_assert(sizeof(OUTPUT_NAMES) / sizeof(OUTPUT_NAMES[0]) == FixCellServo::N_OUTPUT,
-              "one name per output");
-
-// a finite floating-point argument: utils::numeric takes 1e400 (it overflows to inf in strtod)
-// and its message does not say which argument was wrong
-double finite_number(LAMMPS *lmp, const char *text, const std::string &what)
-{
-  return tylmp::finite_numeric(FLERR, text, "fix cell/servo: " + what, lmp);
-}
-
-int positive_integer(LAMMPS *lmp, const char *text, const std::string &what)
-{
-  char *end = nullptr;
-  const long value = strtol(text, &end, 10);
-  if (end == text || *end != '\0' || value <= 0 || value > std::numeric_limits<int>::max())
-    lmp->error->all(FLERR, "fix cell/servo: {} must be a positive integer, got '{}'", what, text);
-  return static_cast<int>(value);
-}
-
-int axis_index(const char *name)
-{
-  if (strcmp(name, "x") == 0) return 0;
-  if (strcmp(name, "y") == 0) return 1;
-  if (strcmp(name, "z") == 0) return 2;
-  return -1;
-}
 
 }    // namespace
 
@@ -118,49 +74,59 @@ int axis_index(const char *name)
 
 FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), target_p(0.0), major_axis(0), major_rate(0.0), b_target(0.0),
-    path_speed(0.0), prestrain(0.0), inertial_cap(1e-3), equilibrium_every(0), equilibrium_reached(0),
+    initial_normal_stress(std::numeric_limits<double>::quiet_NaN()), path_speed(0.0),
+    prestrain(0.0), inertial_cap(1e-3), equilibrium_every(0), equilibrium_reached(0),
     elapsed_time(0.0), clock_step(0), boundary_work(0.0), restored(0), continued(0),
     continue_previous(1), contacts(0.0), sliding(0.0), force_sum(0.0),
     measured_step(-1), output_step(-1), particle_step(-1), mean_diameter(0.0), mean_density(0.0),
-    solid_volume(0.0), pressure(nullptr), pair(nullptr), csv_every(0),
+    solid_volume(0.0), irregular(nullptr), pressure(nullptr), pair(nullptr), csv_every(0),
     wall_start(0.0), step_start(0), saturated_steps(0), saturated_error(0.0),
     saturation_warned(false), cap_warning(true), named_variables(false)
 {
   tylmp::cite(lmp, tylmp::cite_thornton_2000);
-  if (narg < 5) error->all(FLERR, "Illegal fix cell/servo command: expected 'fix ID all cell/servo MODE ...' (modes: iso axes axisym constant_b deviatoric circle triangle polygon)");
+  if (narg < 5)
+    error->all(FLERR, "Illegal fix cell/servo command: expected 'fix ID all cell/servo MODE ...' "
+               "(modes: iso axes axisym constant_b deviatoric circle triangle polygon shear "
+               "shear_cv cyclic_shear undrained rotation)");
   if (strcmp(arg[1], "all") != 0)
     error->all(FLERR, "fix cell/servo: group must be 'all' (every particle follows the "
                "homogeneous deformation of the cell)");
   if (domain->dimension != 3) error->all(FLERR, "fix cell/servo requires a 3d simulation");
-  if (domain->triclinic)
-    error->all(FLERR, "fix cell/servo requires an orthogonal box (the principal axes are the "
-               "box axes); this box is triclinic");
   if (!domain->xperiodic || !domain->yperiodic || !domain->zperiodic)
     error->all(FLERR, "fix cell/servo requires a fully periodic box ('boundary p p p')");
 
-  box_change |= BOX_CHANGE_SIZE;
+  box_change |= BOX_CHANGE_SIZE | BOX_CHANGE_SHAPE;
   no_change_box = 1;
   restart_global = 1;
   vector_flag = 1;
   size_vector = N_OUTPUT;
   global_freq = 1;
   extvector = 0;
+  array_flag = 1;          // the affine stiffness C_IJ (Voigt6) the servo used last
+  size_array_rows = size_array_cols = 6;
+  extarray = 0;
   nevery = 1;
+  force_reneighbor = 1;    // a tilt flip (pre_exchange) needs a neighbor list rebuild
+  next_reneighbor = -1;
 
   for (auto &a : axis_input) a = {tycore::AxisControl::STRAIN_RATE, 0.0, "", -1, ""};
   major_input = {tycore::AxisControl::STRAIN_RATE, 0.0, "", -1, ""};
-  for (double &s : stress) s = 0.0;
-  for (double &s : kinetic_stress) s = 0.0;
+  stress.setZero();
   for (double &s : stiffness_sums) s = 0.0;
   for (double &o : output) o = NaN;
   for (double &o : origin) o = NaN;
-  for (int i = 0; i < 3; ++i) reference_length[i] = domain->prd[i];
+  for (int i = 0; i < 3; ++i) strain.reference_length(i) = domain->prd[i];
   clock_step = update->ntimestep;
 
   int iarg = 3;
   parse_mode(narg, arg, iarg);
   parse_keywords(narg, arg, iarg);
   if (mode == Mode::PATH) programme_path = path.to_array();
+  if (needs_triclinic() && !domain->triclinic)
+    error->all(FLERR, "fix cell/servo: this programme moves or holds a shear component, which "
+               "needs a triclinic box: make the box triclinic first ('change_box all "
+               "triclinic', or a triclinic region/data file)");
+  require_controllable();
 
   // a redefinition (same ID: Modify has just deleted the fix in this slot) continues the test
   // of the fix it replaces, unless 'continue no'
@@ -172,10 +138,9 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
   if (replacing && previous != stash.end()) {
     const Continuation &c = previous->second;
     if (continue_previous) {
-      for (int k = 0; k < 3; ++k) {
-        reference_length[k] = c.reference_length[k];
-        memory.last_strain_rate(k) = c.last_strain_rate[k];
-      }
+      strain = c.strain;
+      memory.last_strain_rate = c.last_strain_rate;
+      initial_normal_stress = c.initial_normal_stress;
       elapsed_time = c.elapsed_time;
       clock_step = c.clock_step;
       boundary_work = c.boundary_work;
@@ -194,8 +159,7 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
   // every path starts from the current strain (from the reference, kept by a continued test):
   // a leg to the path's first point goes in front unless the follower can close the gap itself
   if (mode == Mode::PATH) {
-    const Eigen::Vector3d strain(current_strain(0), current_strain(1), current_strain(2));
-    const Eigen::Vector2d from = tycore::pi_coordinates(strain);
+    const Eigen::Vector2d from = tycore::pi_coordinates(principal_strain());
     const int legs = path.segment_count();
     path = path.starting_from(from, tycore::MIN_STEPS_PER_LEG * path_speed * update->dt);
     if (path.segment_count() > legs && comm->me == 0)
@@ -204,42 +168,22 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
                      from.x(), from.y(), path.segments().front().length());
   }
 
-  try {
-    // controllability depends on which axes hold a stress, not on the values; equal-style
-    // variables are looked up only in init(), so they are not evaluated here
-    if (mode == Mode::AXES) {
-      std::array<tycore::AxisProgramme, 3> axes;
-      for (int k = 0; k < 3; ++k)
-        axes[k] = {axis_input[k].control,
-                   axis_input[k].variable.empty() ? axis_input[k].value : 1.0};
-      tycore::require_controllable(tycore::per_axis_control(axes));
-    } else if (mode == Mode::ISO) {
-      tycore::require_controllable(tycore::isotropic_compression_control(target_p));
-    }    // axisym and constant_b always are
-  } catch (std::exception &e) {
-    error->all(FLERR, "fix cell/servo: {}", e.what());
-  }
-
   pressure_id = std::string(id) + "_contact_stress";
   modify->add_compute(pressure_id + " all pressure NULL pair");
   // the contact tallies for a pair style other than thornton/yin (compute_cell_tally.h)
   tally_id = std::string(id) + "_contact_tally";
   modify->add_compute(tally_id + " all CELL_TALLY");
+  irregular = new Irregular(lmp);
   if (named_variables) define_named_variables();
 }
 
 // `variables yes`: an equal-style variable ID_NAME = f_ID[i] for every output, so that a deck
-// reads the fix's state by the names of the Output table (OUTPUT_NAMES, the one list) instead
+// reads the fix's state by the names of the Output table (output_name, the one list) instead
 // of by position. A variable of that name that exists already is an error, not overwritten;
 // the variables go with the fix.
-const char *FixCellServo::output_name(int i)
-{
-  return OUTPUT_NAMES[i];
-}
-
 std::string FixCellServo::output_variable(int i) const
 {
-  return fmt::format("{}_{}", id, OUTPUT_NAMES[i]);
+  return fmt::format("{}_{}", id, output_name(i));
 }
 
 void FixCellServo::define_named_variables()
@@ -264,10 +208,9 @@ FixCellServo::~FixCellServo()
 {
   // left for a fix that redefines this one (see the constructor)
   Continuation c;
-  for (int k = 0; k < 3; ++k) {
-    c.reference_length[k] = reference_length[k];
-    c.last_strain_rate[k] = memory.last_strain_rate(k);
-  }
+  c.strain = strain;
+  c.last_strain_rate = memory.last_strain_rate;
+  c.initial_normal_stress = initial_normal_stress;
   c.elapsed_time = elapsed_time;
   c.clock_step = clock_step;
   c.boundary_work = boundary_work;
@@ -279,6 +222,7 @@ FixCellServo::~FixCellServo()
   if (modify->find_compute(pressure_id) >= 0) modify->delete_compute(pressure_id);
   if (modify->find_compute(tally_id) >= 0) modify->delete_compute(tally_id);
   if (named_variables) delete_named_variables();
+  delete irregular;
   // (the pair may be gone already: pair thornton/yin clears its tally flag in init_style)
   // the box stops deforming with this fix: pair styles must not add an affine velocity
   for (int i = 0; i < 6; ++i) domain->h_rate[i] = 0.0;
@@ -294,137 +238,12 @@ void FixCellServo::post_run()
 
 int FixCellServo::setmask()
 {
-  return POST_INTEGRATE | END_OF_STEP;
+  return POST_INTEGRATE | PRE_EXCHANGE | END_OF_STEP;
 }
 
 /* ----------------------------------------------------------------------
    MODE args: see the header of docs/fix_cell_servo.md
 ------------------------------------------------------------------------- */
-
-FixCellServo::AxisInput FixCellServo::parse_value(const char *text, tycore::AxisControl control,
-                                                   const std::string &what)
-{
-  AxisInput in{control, 0.0, "", -1, what};
-  if (strncmp(text, "v_", 2) == 0) in.variable = text + 2;
-  else in.value = finite_number(lmp, text, what);
-  return in;
-}
-
-void FixCellServo::parse_mode(int narg, char **arg, int &iarg)
-{
-  const std::string name = arg[iarg++];
-  auto need = [&](int n) {
-    if (iarg + n > narg)
-      error->all(FLERR, "Illegal fix cell/servo {} command: expected {} more argument(s)", name,
-                 n);
-  };
-  auto stress_arg = [&](const char *what) {
-    const double value = finite_number(lmp, arg[iarg++], name + " " + what);
-    if (!(value > 0.0))
-      error->all(FLERR, "fix cell/servo {}: target {} = {} must be positive (a granular cell "
-                 "carries no tension)", name, what, value);
-    return value;
-  };
-  auto axis_arg = [&]() {
-    const int axis = axis_index(arg[iarg]);
-    if (axis < 0) error->all(FLERR, "fix cell/servo {}: axis '{}' is not x, y or z", name, arg[iarg]);
-    ++iarg;
-    return axis;
-  };
-
-  if (name == "iso") {
-    mode = Mode::ISO;
-    need(1);
-    target_p = stress_arg("mean stress p");
-  } else if (name == "axisym") {
-    mode = Mode::AXISYM;
-    need(3);
-    major_axis = axis_arg();
-    major_input = parse_value(arg[iarg++], tycore::AxisControl::STRAIN_RATE,
-                              "axisym axial strain rate");
-    major_rate = major_input.value;
-    if (major_input.variable.empty() && major_rate == 0.0)
-      error->all(FLERR, "fix cell/servo axisym: axial strain rate must be non-zero (> 0 "
-                 "compression, < 0 extension)");
-    target_p = stress_arg("mean stress p");
-  } else if (name == "constant_b") {
-    mode = Mode::CONSTANT_B;
-    need(4);
-    b_target = finite_number(lmp, arg[iarg++], "constant_b b");
-    if (!(b_target >= 0.0 && b_target <= 1.0))
-      error->all(FLERR, "fix cell/servo constant_b: b = {} is outside [0, 1]", b_target);
-    major_axis = axis_arg();
-    major_input = parse_value(arg[iarg++], tycore::AxisControl::STRAIN_RATE,
-                              "constant_b major-axis strain rate");
-    major_rate = major_input.value;
-    if (major_input.variable.empty() && !(major_rate > 0.0))
-      error->all(FLERR, "fix cell/servo constant_b: the major-axis strain rate must be positive "
-                 "(compression of the major axis)");
-    target_p = stress_arg("mean stress p");
-  } else if (name == "deviatoric") {
-    mode = Mode::DEVIATORIC;
-    need(4);
-    for (int k = 0; k < 3; ++k)
-      axis_input[k] = parse_value(arg[iarg++], tycore::AxisControl::STRAIN_RATE,
-                                  fmt::format("deviatoric strain rate R{}", k + 1));
-    target_p = stress_arg("mean stress p");
-  } else if (name == "axes") {
-    mode = Mode::AXES;
-    bool given[3] = {false, false, false};
-    while (iarg < narg && axis_index(arg[iarg]) >= 0) {
-      const int axis = axis_index(arg[iarg]);
-      if (given[axis])
-        error->all(FLERR, "fix cell/servo axes: axis {} is given twice", arg[iarg]);
-      if (iarg + 3 > narg)
-        error->all(FLERR, "fix cell/servo axes: axis {} needs 'stress VALUE' or 'rate VALUE'",
-                   arg[iarg]);
-      const std::string kind = arg[iarg + 1];
-      tycore::AxisControl control;
-      if (kind == "stress") control = tycore::AxisControl::STRESS;
-      else if (kind == "rate") control = tycore::AxisControl::STRAIN_RATE;
-      else
-        error->all(FLERR, "fix cell/servo axes: control '{}' of axis {} is neither 'stress' nor "
-                   "'rate'", kind, arg[iarg]);
-      axis_input[axis] = parse_value(arg[iarg + 2], control,
-                                     fmt::format("axes {} {}", arg[iarg], kind));
-      if (control == tycore::AxisControl::STRESS && axis_input[axis].variable.empty() &&
-          !(axis_input[axis].value > 0.0))
-        error->all(FLERR, "fix cell/servo axes: target stress of axis {} = {} must be positive",
-                   arg[iarg], axis_input[axis].value);
-      given[axis] = true;
-      iarg += 3;
-    }
-    for (int k = 0; k < 3; ++k)
-      if (!given[k])
-        error->all(FLERR, "fix cell/servo axes: axis {} has no control: give it 'stress VALUE' "
-                   "or 'rate VALUE'", tycore::axis_name(k));
-  } else if (name == "circle" || name == "triangle") {
-    mode = Mode::PATH;
-    need(2);
-    prestrain = number_in(arg[iarg++], name + " pre-strain", 0.0, 1.0, true,
-                          " (a natural strain)");
-    target_p = stress_arg("mean stress p");
-    path_kind = name;    // built in parse_keywords(), after its options
-  } else if (name == "polygon") {
-    mode = Mode::PATH;
-    need(1);
-    const int n = positive_integer(lmp, arg[iarg++], "polygon vertex count N");
-    if (n < 2) error->all(FLERR, "fix cell/servo polygon: needs at least 2 vertices, got {}", n);
-    need(2 * n + 1);
-    polygon_vertices.clear();
-    for (int k = 0; k < n; ++k, iarg += 2)
-      polygon_vertices.emplace_back(
-          number_in(arg[iarg], fmt::format("polygon vertex {} x", k + 1), -1.0, 1.0, false,
-                    " (a natural strain)"),
-          number_in(arg[iarg + 1], fmt::format("polygon vertex {} y", k + 1), -1.0, 1.0, false,
-                    " (a natural strain)"));
-    target_p = stress_arg("mean stress p");
-    path_kind = name;
-  } else {
-    error->all(FLERR, "fix cell/servo: unknown mode '{}' (expected iso, axes, axisym, "
-               "constant_b, deviatoric, circle, triangle or polygon)", name);
-  }
-}
 
 void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
 {
@@ -495,22 +314,22 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
       else error->all(FLERR, "fix cell/servo: plane_strain must be total or deviatoric, got '{}'", v);
       iarg += 2;
     } else if (key == "speed") {
-      path_speed = finite_number(lmp, value(), "speed");
+      path_speed = finite_number(value(), "speed");
       if (!(path_speed > 0.0))
         error->all(FLERR, "fix cell/servo: path speed must be positive, got {}", path_speed);
       iarg += 2;
     } else if (key == "gain") {
-      settings.gain = finite_number(lmp, value(), "gain");
+      settings.gain = finite_number(value(), "gain");
       iarg += 2;
     } else if (key == "integral_gain") {
-      settings.integral_gain = finite_number(lmp, value(), "integral_gain");
+      settings.integral_gain = finite_number(value(), "integral_gain");
       iarg += 2;
     } else if (key == "integral_band") {
       settings.integral_band = number_in(value(), "integral_band", 0.0, 1.0, false,
                                          " (a fraction of the stress level)");
       iarg += 2;
     } else if (key == "max_rate") {
-      settings.max_strain_rate = finite_number(lmp, value(), "max_rate");
+      settings.max_strain_rate = finite_number(value(), "max_rate");
       if (!(settings.max_strain_rate > 0.0))
         error->all(FLERR, "fix cell/servo: max_rate must be positive, got {}",
                    settings.max_strain_rate);
@@ -522,11 +341,11 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
       iarg += 2;
     } else if (key == "csv") {
       csv_path = value(1);
-      csv_every = positive_integer(lmp, value(2), "csv interval N");
+      csv_every = positive_integer(value(2), "csv interval N");
       iarg += 3;
     } else if (key == "extra") {
       // extra N name1 value1 ... : columns of the record from computes, fixes or variables
-      const int n = positive_integer(lmp, value(1), "extra column count N");
+      const int n = positive_integer(value(1), "extra column count N");
       if (iarg + 2 + 2 * n > narg)
         error->all(FLERR, "fix cell/servo: extra {} needs {} name-value pairs", n, n);
       for (int k = 0; k < n; ++k) {
@@ -540,17 +359,40 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
       iarg += 2 + 2 * n;
     } else if (key == "until") {
       const std::string name = value(1);
-      until_value = finite_number(lmp, value(2), "until value");
+      until_value = finite_number(value(2), "until value");
       until_output = -1;
       for (int k : {EPS1, EPS2, EPS3, EPS_V, EPS_Q, EPS_D13, SIG1, SIG2, SIG3, P, Q, B, LODE_DEG,
                     ETA_LD, SINPHI, VOID_RATIO, SOLID_FRACTION, PI_X, PI_Y, PI_EX, PI_EY, TIME,
-                    BOUNDARY_WORK})
-        if (name == OUTPUT_NAMES[k]) until_output = k;
+                    BOUNDARY_WORK, SIG_XY, SIG_XZ, SIG_YZ, GAMMA_XY, GAMMA_XZ, GAMMA_YZ, GAMMA,
+                    TAU, SIG_N, TAU_RATIO, R_U, CYCLES})
+        if (name == output_name(k)) until_output = k;
       if (until_output < 0)
         error->all(FLERR, "fix cell/servo: until: '{}' is not a strain, stress, void ratio, "
-                   "time or boundary_work output of the fix (names: docs/fix_cell_servo.md)",
-                   name);
+                   "time, boundary_work, shear or cycle output of the fix (names: "
+                   "docs/fix_cell_servo.md)", name);
+      if ((until_output == GAMMA || until_output == TAU || until_output == SIG_N
+           || until_output == TAU_RATIO) && !has_plane)
+        error->all(FLERR, "fix cell/servo: until {}: this programme has no shear plane (use "
+                   "gamma_xy, gamma_xz or gamma_yz, or a shear mode)", name);
+      if ((until_output == R_U || until_output == CYCLES)
+          && !(mode == Mode::SHEAR_CV || mode == Mode::CYCLIC_SHEAR))
+        error->all(FLERR, "fix cell/servo: until {}: only the constant-volume shear modes "
+                   "report it", name);
       iarg += 3;
+    } else if (key == "ru_limit" || key == "da_limit") {
+      if (mode != Mode::CYCLIC_SHEAR)
+        error->all(FLERR, "fix cell/servo: keyword '{}' applies only to cyclic_shear", key);
+      if (key == "ru_limit")
+        liquefaction.pore_pressure_ratio = number_in(value(), key, 0.0, 1.0, true);
+      else
+        liquefaction.double_amplitude_strain = number_in(value(), key, 0.0, 1.0, true,
+                                                         " (a double-amplitude shear strain)");
+      iarg += 2;
+    } else if (key == "angle") {
+      if (mode != Mode::ROTATION)
+        error->all(FLERR, "fix cell/servo: keyword 'angle' applies only to rotation");
+      stress_rotation.initial_angle_deg = number_in(value(), key, -360.0, 360.0, false, " degrees");
+      iarg += 2;
     } else if (key == "cap_warning") {
       cap_warning = yes_no();
       iarg += 2;
@@ -561,7 +403,7 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
       continue_previous = yes_no();
       iarg += 2;
     } else if (key == "equilibrium") {
-      equilibrium_every = positive_integer(lmp, value(), "equilibrium interval N");
+      equilibrium_every = positive_integer(value(), "equilibrium interval N");
       iarg += 2;
     } else if (key == "eq_stress") {
       criteria.stress_tolerance = fraction(value(), key);
@@ -576,7 +418,7 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
       criteria.coordination_tolerance = fraction(value(), key);
       iarg += 2;
     } else if (key == "eq_window") {
-      criteria.window = positive_integer(lmp, value(), "eq_window");
+      criteria.window = positive_integer(value(), "eq_window");
       iarg += 2;
     } else {
       error->all(FLERR, "fix cell/servo: unknown keyword '{}'", key);
@@ -609,58 +451,6 @@ void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
 
 /* ---------------------------------------------------------------------- */
 
-double FixCellServo::evaluate(AxisInput &in)
-{
-  if (in.variable.empty()) return in.value;
-  modify->clearstep_compute();
-  const double value = input->variable->compute_equal(in.ivar);
-  modify->addstep_compute(update->ntimestep + 1);
-  if (!std::isfinite(value))
-    error->all(FLERR, "fix cell/servo: variable {} ({}) evaluated to {} at step {}: not a "
-               "finite number", in.variable, in.what, value, update->ntimestep);
-  if (in.control == tycore::AxisControl::STRESS && !(value > 0.0))
-    error->all(FLERR, "fix cell/servo: variable {} ({}) evaluated to {} at step {}: a target "
-               "stress must be positive", in.variable, in.what, value, update->ntimestep);
-  return value;
-}
-
-// the major-axis rate of axisym and constant_b: a number, or a variable evaluated every step
-double FixCellServo::major_strain_rate()
-{
-  if (major_input.variable.empty()) return major_rate;
-  const double rate = evaluate(major_input);
-  if (mode == Mode::CONSTANT_B && rate < 0.0)
-    error->all(FLERR, "fix cell/servo: variable {} ({}) evaluated to {} at step {}: the major "
-               "axis of a constant-b path is compressed (rate >= 0)", major_input.variable,
-               major_input.what, rate, update->ntimestep);
-  major_rate_now = rate;
-  return rate;
-}
-
-tycore::MixedControl FixCellServo::current_control()
-{
-  switch (mode) {
-    case Mode::ISO: return tycore::isotropic_compression_control(target_p);
-    case Mode::AXISYM:
-      return tycore::axisymmetric_control(major_axis, major_strain_rate(), target_p);
-    case Mode::CONSTANT_B:
-      return tycore::constant_b_control(target_p, b_target, major_strain_rate(), major_axis,
-                                        (major_axis + 1) % 3, (major_axis + 2) % 3);
-    case Mode::DEVIATORIC: {
-      Eigen::Vector3d rate;
-      for (int k = 0; k < 3; ++k) rate(k) = evaluate(axis_input[k]);
-      return tycore::mean_stress_control(target_p, rate);
-    }
-    case Mode::AXES: {
-      std::array<tycore::AxisProgramme, 3> axes;
-      for (int k = 0; k < 3; ++k) axes[k] = {axis_input[k].control, evaluate(axis_input[k])};
-      return tycore::per_axis_control(axes);
-    }
-    case Mode::PATH: break;
-  }
-  return {};
-}
-
 /* ---------------------------------------------------------------------- */
 
 void FixCellServo::init()
@@ -684,13 +474,18 @@ void FixCellServo::init()
     if (itally < 0) error->all(FLERR, "fix cell/servo: its contact tally compute was deleted");
     pair = dynamic_cast<CellTallySource *>(modify->compute[itally]);
   }
-  pair->request_cell_tallies(false);    // from the setup force computation on
+  // from the setup force computation on; a triclinic cell tallies the full 6x6 stiffness
+  pair->request_cell_tallies(domain->triclinic != 0);
+  if (needs_triclinic() && !domain->triclinic)
+    error->all(FLERR, "fix cell/servo: the box was made orthogonal, but this programme moves "
+               "or holds a shear component, which needs a triclinic box");
 
   const int icompute = modify->find_compute(pressure_id);
   if (icompute < 0) error->all(FLERR, "fix cell/servo: its stress compute was deleted");
   pressure = modify->compute[icompute];
 
-  for (AxisInput *in : {&axis_input[0], &axis_input[1], &axis_input[2], &major_input}) {
+  for (AxisInput *in : {&axis_input[0], &axis_input[1], &axis_input[2], &axis_input[3],
+                        &axis_input[4], &axis_input[5], &major_input}) {
     AxisInput &a = *in;
     if (a.variable.empty()) continue;
     a.ivar = input->variable->find(a.variable.c_str());
@@ -729,9 +524,9 @@ void FixCellServo::choose_rate_cap()
   if (!major_input.variable.empty()) major_strain_rate();
   if (settings.max_strain_rate == 0.0) {
     settings.max_strain_rate = default_max_rate();
-    if (mode == Mode::AXES) {
-      // axes mode holds no mean stress (target_p = 0): take the level of the stress-held
-      // axes, not 1 Pa, whose inertial-number rate would all but freeze the servo
+    if (target_p == 0.0) {
+      // a programme that holds no mean stress (axes, shear): take the level of the held
+      // stresses, not 1 Pa, whose inertial-number rate would all but freeze the servo
       const double level = stress_level();
       if (level > 0.0)
         settings.max_strain_rate =
@@ -754,12 +549,17 @@ void FixCellServo::choose_rate_cap()
 // the held stresses and their targets, for messages (variables named, not evaluated)
 std::string FixCellServo::held_targets() const
 {
+  if (mode == Mode::SHEAR)
+    return fmt::format("sig_n = {:.4g}, target {:.4g}", output[SIG_N], normal_target);
+  if (mode == Mode::UNDRAINED)
+    return fmt::format("sig2 - sig3 = {:.4g}, target 0", stress((major_axis + 1) % 3)
+                       - stress((major_axis + 2) % 3));
   if (mode != Mode::AXES) return fmt::format("p = {:.4g}, target {:.4g}", output[P], target_p);
   std::string text;
-  for (int k = 0; k < 3; ++k)
+  for (int k = 0; k < 6; ++k)
     if (axis_input[k].control == tycore::AxisControl::STRESS)
-      text += fmt::format("{}sig{} = {:.4g}, target {}", text.empty() ? "" : "; ", k + 1,
-                          stress[k], axis_input[k].variable.empty()
+      text += fmt::format("{}sig_{} = {:.4g}, target {}", text.empty() ? "" : "; ",
+                          tycore::voigt_names[k], stress(k), axis_input[k].variable.empty()
                               ? fmt::format("{:.4g}", axis_input[k].value)
                               : "v_" + axis_input[k].variable);
   return text;
@@ -768,8 +568,8 @@ std::string FixCellServo::held_targets() const
 // largest prescribed principal strain rate (or path speed) of the programme [1/s]
 double FixCellServo::prescribed_rate() const
 {
-  double rate = std::max(std::fabs(major_input.variable.empty() ? major_rate : major_rate_now),
-                         path_speed);
+  double rate = std::max({std::fabs(major_input.variable.empty() ? major_rate : major_rate_now),
+                          path_speed, std::fabs(shear_rate)});
   for (const auto &a : axis_input)
     if (a.control == tycore::AxisControl::STRAIN_RATE && a.variable.empty())
       rate = std::max(rate, std::fabs(a.value));
@@ -790,12 +590,19 @@ double FixCellServo::default_max_rate() const
 void FixCellServo::setup(int)
 {
   // the rate of the last step carries on across runs and restarts
-  for (int i = 0; i < 3; ++i) {
-    domain->h_rate[i] = -memory.last_strain_rate(i) * domain->prd[i];
-    domain->h_ratelo[i] = -0.5 * domain->h_rate[i];
-  }
+  set_box_rate(memory.last_strain_rate, cell_matrix());
   advance_clock();
   measure();
+  // sigma_n0 of r_u and of the cyclic amplitude: the normal stress when the test began
+  if (has_plane && std::isnan(initial_normal_stress)) initial_normal_stress = stress(plane.normal);
+  if (mode == Mode::CYCLIC_SHEAR) {
+    try {
+      cyclic_programme().require_valid();
+    } catch (std::exception &e) {
+      error->all(FLERR, "fix cell/servo: {} (sigma_n0 = {:.4g} when the test began)", e.what(),
+                 initial_normal_stress);
+    }
+  }
   compute_outputs();
   compute_particle_outputs();
   choose_rate_cap();
@@ -820,14 +627,6 @@ void FixCellServo::setup(int)
       (comm->me != 0 || csv.last_step() < update->ntimestep);
   MPI_Bcast(&first_row, 1, MPI_INT, 0, world);    // (extra columns evaluate on every rank)
   if (first_row) write_csv_row();
-}
-
-std::string FixCellServo::csv_header() const
-{
-  std::string header = "step";
-  for (int k : CSV_COLUMNS) header += std::string(",") + OUTPUT_NAMES[k];
-  for (const auto &e : extra_columns) header += "," + e.first;
-  return header;
 }
 
 // a new test starts its record; a test continued from a restart file or from the fix this
@@ -858,44 +657,6 @@ void FixCellServo::advance_clock()
   clock_step = update->ntimestep;
 }
 
-/* ----------------------------------------------------------------------
-   what the servo needs every step: stress (compression positive) from the pair virial,
-   affine stiffness and contact statistics from the pair tallies
-------------------------------------------------------------------------- */
-
-void FixCellServo::measure()
-{
-  if (measured_step == update->ntimestep) return;
-  pressure->compute_vector();
-  pressure->addstep(update->ntimestep + 1);
-  for (int k = 0; k < 3; ++k) stress[k] = pressure->vector[k];
-
-  pair->refresh_cell_tallies();
-  CellTallies total;
-  MPI_Allreduce(const_cast<double *>(pair->cell_tallies().sum), total.sum, CellTallies::SIZE, MPI_DOUBLE, MPI_SUM,
-                world);
-  for (int k = 0; k < 6; ++k) stiffness_sums[k] = total.sum[CellTallies::STIFFNESS + k];
-  contacts = total.sum[CellTallies::CONTACTS];
-  sliding = total.sum[CellTallies::SLIDING];
-  force_sum = total.sum[CellTallies::FORCE];
-  measured_step = update->ntimestep;
-}
-
-double FixCellServo::current_strain(int axis) const
-{
-  return -std::log(domain->prd[axis] / reference_length[axis]);
-}
-
-tycore::CellMeasurement FixCellServo::cell_measurement() const
-{
-  tycore::CellMeasurement cell;
-  const double volume = domain->xprd * domain->yprd * domain->zprd;
-  cell.stress = Eigen::Vector3d(stress[0], stress[1], stress[2]);
-  cell.stiffness = tycore::affine_stiffness(stiffness_sums, volume);
-  for (int k = 0; k < 3; ++k) cell.strain(k) = current_strain(k);
-  return cell;
-}
-
 /* ---------------------------------------------------------------------- */
 
 void FixCellServo::end_of_step()
@@ -918,20 +679,18 @@ void FixCellServo::end_of_step()
     if (!until_met) {
       if (comm->me == 0)
         utils::logmesg(lmp, "fix cell/servo: {} = {:.6g} reached the target {:.6g} at step {}: "
-                       "the run stops\n", OUTPUT_NAMES[until_output], output[until_output],
+                       "the run stops\n", output_name(until_output), output[until_output],
                        until_value, update->ntimestep);
       timer->force_timeout();
       until_met = 1;
     }
   }
 
-  const tycore::CellMeasurement cell = cell_measurement();
-  tycore::ServoCommand command;
+  after_step();
+  const tycore::CellMeasurementOf<6> cell = cell_measurement();
+  tycore::ServoCommandOf<6> command;
   try {
-    command = mode == Mode::PATH
-        ? tycore::path_servo_step(path, path_speed, target_p, cell, settings, update->dt, memory,
-                                  plane_strain)
-        : tycore::servo_step(current_control(), cell, settings, update->dt, memory);
+    command = servo_command(cell);
   } catch (std::exception &e) {
     error->all(FLERR, "fix cell/servo: {}", e.what());
   }
@@ -939,7 +698,7 @@ void FixCellServo::end_of_step()
   if (equilibrium_every > 0 && update->ntimestep % equilibrium_every == 0) {
     compute_particle_outputs();
     tycore::EquilibriumSample sample;
-    sample.stress = cell.stress;
+    sample.stress = cell.stress.head<3>();
     sample.target_stress = Eigen::Vector3d::Constant(target_p);
     sample.unbalanced_force_ratio = output[UNBALANCED];
     sample.kinetic_energy_ratio = output[KINETIC_RATIO];
@@ -974,7 +733,6 @@ void FixCellServo::end_of_step()
                      prescribed_rate());
   }
 
-  const double rate[3] = {command.strain_rate(0), command.strain_rate(1), command.strain_rate(2)};
   const double fastest = command.strain_rate.cwiseAbs().maxCoeff();
   if (fastest * update->dt > tycore::MAX_STRAIN_PER_STEP)
     error->all(FLERR, "fix cell/servo: at step {} the strain rate {:.4g} 1/s strains the cell by "
@@ -982,154 +740,15 @@ void FixCellServo::end_of_step()
                "<= {:.4g} 1/s (or a smaller timestep)", update->ntimestep,
                fastest, fastest * update->dt, tycore::MAX_STRAIN_PER_STEP,
                tycore::MAX_STRAIN_PER_STEP / update->dt);
-  const double volume = domain->xprd * domain->yprd * domain->zprd;
-  // boundary work V sigma : deps over this step (contact stress; docs/theory.md §5.3)
-  for (int k = 0; k < 3; ++k) boundary_work += volume * stress[k] * rate[k] * update->dt;
+  const double volume = cell_volume();
+  // boundary work V sigma : deps over this step (contact stress; docs/theory.md §5.3; Voigt6
+  // with engineering shears, so that sigma : deps = sum_I sigma_I deps_I)
+  const int components = domain->triclinic ? 6 : 3;
+  for (int k = 0; k < components; ++k)
+    boundary_work += volume * stress(k) * command.strain_rate(k) * update->dt;
   // the cell deforms at the next step's post_integrate, before its forces: the positions
   // written at the end of a step are those its forces were computed at, so a restart (or a
   // new run) recomputes the same forces in setup and continues the trajectory exactly
-}
-
-void FixCellServo::post_integrate()
-{
-  const double rate[3] = {memory.last_strain_rate(0), memory.last_strain_rate(1),
-                          memory.last_strain_rate(2)};
-  change_box(rate);
-}
-
-/* ----------------------------------------------------------------------
-   L_i <- L_i exp(-eps_dot_i dt) about the fixed box centre, atoms remapped affinely
-------------------------------------------------------------------------- */
-
-void FixCellServo::change_box(const double rate[3])
-{
-  double **x = atom->x;
-  const int nlocal = atom->nlocal;
-  for (int i = 0; i < nlocal; ++i) domain->x2lamda(x[i], x[i]);
-
-  const double dt = update->dt;
-  for (int k = 0; k < 3; ++k) {
-    const double length = domain->prd[k] * std::exp(-rate[k] * dt);
-    if (length < 2.0 * neighbor->cutneighmax)
-      error->all(FLERR, "fix cell/servo: cell edge {} = {:.4g} has shrunk below twice the "
-                 "neighbor cutoff ({:.4g}); use a larger specimen or a smaller skin",
-                 tycore::axis_name(k), length, 2.0 * neighbor->cutneighmax);
-    const double centre = 0.5 * (domain->boxlo[k] + domain->boxhi[k]);
-    domain->boxlo[k] = centre - 0.5 * length;
-    domain->boxhi[k] = centre + 0.5 * length;
-    domain->h_rate[k] = -rate[k] * length;    // L_kk = h_rate/h = -eps_dot_k
-    domain->h_ratelo[k] = -0.5 * domain->h_rate[k];
-  }
-  domain->set_global_box();
-  domain->set_local_box();
-  for (int i = 0; i < nlocal; ++i) domain->lamda2x(x[i], x[i]);
-}
-
-/* ---------------------------------------------------------------------- */
-
-void FixCellServo::compute_outputs()
-{
-  const double volume = domain->xprd * domain->yprd * domain->zprd;
-  const Eigen::Vector3d eps(current_strain(0), current_strain(1), current_strain(2));
-  const Eigen::Vector3d sig(stress[0], stress[1], stress[2]);
-  output[EPS1] = eps(0), output[EPS2] = eps(1), output[EPS3] = eps(2);
-  output[EPS_V] = tycore::volumetric_strain(eps);
-  output[EPS_Q] = tycore::deviatoric_strain(eps);
-  output[EPS_D13] = tycore::strain_difference_13(eps);
-  output[SIG1] = sig(0), output[SIG2] = sig(1), output[SIG3] = sig(2);
-  output[P] = tycore::mean_stress(sig);
-  output[Q] = tycore::deviatoric_stress(sig);
-  output[B] = tycore::b_value(sig);
-  const Eigen::Vector2d pi_stress = tycore::pi_coordinates(sig);
-  const Eigen::Vector2d pi_strain = tycore::pi_coordinates(eps);
-  output[LODE_DEG] = tycore::lode_angle_deg(pi_stress);
-  output[ETA_LD] = sig.minCoeff() > 0.0 ? tycore::lade_duncan_eta(sig) : NaN;
-  output[SINPHI] = sig.maxCoeff() + sig.minCoeff() > 0.0 ? tycore::mobilised_sinphi(sig) : NaN;
-  output[SOLID_FRACTION] = solid_volume / volume;
-  output[VOID_RATIO] = volume / solid_volume - 1.0;
-
-  output[SLIDING_FRACTION] = contacts > 0.0 ? sliding / contacts : 0.0;
-
-  const Eigen::Vector3d rate = memory.last_strain_rate;
-  // I = eps_dot_q d sqrt(rho/p), eps_dot_q = sqrt(2/3 e':e')   (docs/theory.md §4.2)
-  const double shear_rate = std::sqrt(2.0 / 3.0) * tycore::deviator(rate).norm();
-  output[INERTIAL_NUMBER] =
-      output[P] > 0.0 ? shear_rate * mean_diameter * std::sqrt(mean_density / output[P]) : NaN;
-  output[PI_X] = pi_stress.x(), output[PI_Y] = pi_stress.y();
-  output[PI_EX] = pi_strain.x(), output[PI_EY] = pi_strain.y();
-
-  // progress: to the 'until' target, else along the path, else through the current run;
-  // ETA in wall-clock seconds
-  const bigint done_steps = update->ntimestep - step_start;
-  const double wall = MPI_Wtime() - wall_start;
-  const double wall_per_step = done_steps > 0 ? wall / done_steps : NaN;
-  if (until_output >= 0) {
-    output[TIME] = elapsed_time;
-    output[BOUNDARY_WORK] = boundary_work;
-    if (std::isnan(until_start)) until_start = output[until_output];
-    output[PROGRESS] = tycore::progress_towards(until_start, output[until_output], until_value);
-    const double gained = output[PROGRESS] - progress_at_setup;
-    output[ETA_SECONDS] = gained > 0.0 ? wall / gained * (1.0 - output[PROGRESS]) : NaN;
-  } else if (mode == Mode::PATH) {
-    output[PROGRESS] = path.progress(memory.path_length).fraction;
-    output[ETA_SECONDS] =
-        path.remaining_time(memory.path_length, path_speed) / update->dt * wall_per_step;
-  } else {
-    const bigint span = update->endstep - update->beginstep;
-    output[PROGRESS] = span > 0 ? double(update->ntimestep - update->beginstep) / span : 1.0;
-    output[ETA_SECONDS] = double(update->endstep - update->ntimestep) * wall_per_step;
-  }
-  output[EQUILIBRIUM] = equilibrium_reached;
-  output[RATE1] = rate(0), output[RATE2] = rate(1), output[RATE3] = rate(2);
-  output[BOUNDARY_WORK] = boundary_work;
-  output[VOLUME] = volume;
-  output[TIME] = elapsed_time;
-  output_step = update->ntimestep;
-  // the state the test began in (a test restored from a restart file does not know it)
-  if (std::isnan(origin[TIME]) && !restored) std::copy(output, output + N_OUTPUT, origin);
-}
-
-/* ----------------------------------------------------------------------
-   per-particle statistics (a pass over the atoms and a reduction): only on the steps that
-   output or test them, not on every servo step
-------------------------------------------------------------------------- */
-
-bool FixCellServo::is_particle_output(int n)
-{
-  return n == Z || n == ZM || n == UNBALANCED || n == P_KINETIC || n == KINETIC_RATIO;
-}
-
-void FixCellServo::compute_particle_outputs()
-{
-  if (particle_step == update->ntimestep) return;
-  // Z, Zm, unbalanced force, kinetic stress and the kinetic energy of the load-bearing
-  // particles (plugin/core/cell_statistics.hpp)
-  const double *count = pair->contact_count();
-  tycore::ParticleSums local, total;
-  for (int i = 0; i < atom->nlocal; ++i)
-    local.add(count ? std::lround(count[i]) : 0, atom->f[i], atom->rmass[i], atom->v[i]);
-  MPI_Allreduce(local.sum, total.sum, tycore::ParticleSums::size, MPI_DOUBLE, MPI_SUM, world);
-  const double volume = domain->xprd * domain->yprd * domain->zprd;
-  // the kinetic ratio relative to the target p (iso), else to the measured one
-  const tycore::ParticleStatistics st = tycore::particle_statistics(
-      total, contacts, force_sum, volume, target_p > 0.0 ? target_p : output[P]);
-  output[Z] = st.Z;
-  output[ZM] = st.Zm;
-  output[UNBALANCED] = st.unbalanced;
-  for (int k = 0; k < 3; ++k) kinetic_stress[k] = st.kinetic_stress[k];
-  output[P_KINETIC] = st.p_kinetic;
-  output[KINETIC_RATIO] = st.kinetic_ratio;
-  particle_step = update->ntimestep;
-}
-
-double FixCellServo::compute_vector(int n)
-{
-  if (output_step != update->ntimestep) {
-    measure();
-    compute_outputs();
-  }
-  if (is_particle_output(n)) compute_particle_outputs();
-  return output[n];
 }
 
 void FixCellServo::write_csv_row()
@@ -1143,7 +762,7 @@ void FixCellServo::write_csv_row()
   }
   if (comm->me != 0 || !csv.is_open()) return;
   std::vector<double> row;
-  for (int k : CSV_COLUMNS) row.push_back(output[k]);
+  for (int k : csv_columns()) row.push_back(output[k]);
   row.insert(row.end(), extra.begin(), extra.end());
   try {
     csv.write_row(update->ntimestep, row);
@@ -1157,18 +776,20 @@ void FixCellServo::write_csv_row()
    equilibrium state, boundary work
 ------------------------------------------------------------------------- */
 
-// [tag, version, size, mode, programme path (n, ...), reference cell (3), servo memory,
-//  equilibrium state, equilibrium reached, boundary work, elapsed time, clock step,
-//  followed path (n, ...)]
+// [tag, version, size, mode, programme path (n, ...), cumulative strain (reference edges 3,
+//  shears 3), servo memory (6 components), equilibrium state, equilibrium reached, boundary
+//  work, elapsed time, clock step, until start, sigma_n0, cyclic state, followed path (n, ...)]
 std::vector<double> FixCellServo::restart_record() const
 {
   std::vector<double> list{RESTART_TAG, RESTART_VERSION, 0.0, double(static_cast<int>(mode))};
   list.push_back(double(programme_path.size()));
   list.insert(list.end(), programme_path.begin(), programme_path.end());
-  for (double L : reference_length) list.push_back(L);
-  double m[tycore::ServoMemory::size];
+  double c[tycore::CumulativeStrain::size];
+  strain.to_array(c);
+  list.insert(list.end(), c, c + tycore::CumulativeStrain::size);
+  double m[tycore::ServoMemoryOf<6>::size];
   memory.to_array(m);
-  list.insert(list.end(), m, m + tycore::ServoMemory::size);
+  list.insert(list.end(), m, m + tycore::ServoMemoryOf<6>::size);
   double e[tycore::EquilibriumState::size];
   equilibrium.to_array(e);
   list.insert(list.end(), e, e + tycore::EquilibriumState::size);
@@ -1177,6 +798,10 @@ std::vector<double> FixCellServo::restart_record() const
   list.push_back(elapsed_time);
   list.push_back(double(clock_step));
   list.push_back(until_start);
+  list.push_back(initial_normal_stress);
+  double cy[tycore::CyclicSimpleShear::State::size];
+  cyclic.to_array(cy);
+  list.insert(list.end(), cy, cy + tycore::CyclicSimpleShear::State::size);
   const std::vector<double> followed = mode == Mode::PATH ? path.to_array() : std::vector<double>{};
   list.push_back(double(followed.size()));
   list.insert(list.end(), followed.begin(), followed.end());
@@ -1205,10 +830,6 @@ void FixCellServo::restart(char *buf)
     return;
   }
   const double *list = reinterpret_cast<double *>(buf);
-  if (list[0] == OLD_RESTART_TAG)
-    error->all(FLERR, "fix cell/servo: the restart file holds a record of an earlier build of "
-               "fix cell/servo (unversioned); it cannot be continued by this one: rerun the "
-               "stage that wrote it, or define the fix under a new ID");
   if (list[0] != RESTART_TAG)
     error->all(FLERR, "fix cell/servo: the restart file's record for fix {} is not a cell/servo "
                "record; define the fix under a new ID", id);
@@ -1242,9 +863,10 @@ void FixCellServo::restart(char *buf)
                id, size, fixed + 1 + static_cast<std::size_t>(list[fixed]));
   int k = 5;
   k += static_cast<int>(n_programme);
-  for (double &L : reference_length) L = list[k++];
-  memory = tycore::ServoMemory::from_array(list + k);
-  k += tycore::ServoMemory::size;
+  strain = tycore::CumulativeStrain::from_array(list + k);
+  k += tycore::CumulativeStrain::size;
+  memory = tycore::ServoMemoryOf<6>::from_array(list + k);
+  k += tycore::ServoMemoryOf<6>::size;
   equilibrium = tycore::EquilibriumState::from_array(list + k);
   k += tycore::EquilibriumState::size;
   equilibrium_reached = static_cast<int>(list[k++]);
@@ -1252,6 +874,9 @@ void FixCellServo::restart(char *buf)
   elapsed_time = list[k++];
   clock_step = static_cast<bigint>(list[k++]);
   until_start = list[k++];
+  initial_normal_stress = list[k++];
+  cyclic = tycore::CyclicSimpleShear::State::from_array(list + k);
+  k += tycore::CyclicSimpleShear::State::size;
   if (static_cast<int>(list[k++]) > 0) path = tycore::PiPath::from_array(list + k);
   restored = 1;
 }

@@ -1,7 +1,14 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   fix cell/servo: a stress-controlled, deformable, orthogonal periodic cell that follows
-   principal strain-rate programmes and Pi-plane strain paths at a servo-controlled mean
-   stress (paper sections 2-5; docs/theory.md §5, §6). See docs/fix_cell_servo.md.
+   fix cell/servo: a stress-controlled, deformable periodic cell: principal strain-rate
+   programmes and Pi-plane strain paths at a servo-controlled mean stress on an orthogonal or
+   triclinic box (paper sections 2-5; docs/theory.md §5, §6), and on a triclinic box any mix of
+   stress and strain-rate control of all six components: simple shear, constant-volume and
+   cyclic simple shear, undrained triaxial tests, principal stress rotation (docs/theory.md
+   §10-13). See docs/fix_cell_servo.md.
+   Files: fix_cell_servo.cpp (set-up, the step, restart), fix_cell_servo_modes.cpp (the test
+   programmes), fix_cell_servo_cell.cpp (the cell: measurement, deformation, tilt flips),
+   fix_cell_servo_outputs.cpp (outputs), fix_cell_servo_input.cpp (checks that need the run),
+   fix_cell_servo_record.cpp (the record's checks).
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_FIX_CELL_SERVO_H
@@ -9,7 +16,10 @@
 
 #include "fix.h"
 
+#include "cell_control.hpp"
+#include "cell_kinematics.hpp"
 #include "cell_servo.hpp"
+#include "cell_stiffness.hpp"
 #include "csv_record.hpp"
 
 #include <cstdio>
@@ -29,9 +39,11 @@ class FixCellServo : public Fix {
   void init() override;
   void setup(int) override;
   void post_integrate() override;
+  void pre_exchange() override;
   void end_of_step() override;
   void post_run() override;
   double compute_vector(int) override;
+  double compute_array(int, int) override;
   void write_restart(FILE *) override;
   void restart(char *) override;
 
@@ -42,16 +54,23 @@ class FixCellServo : public Fix {
     PI_X, PI_Y, PI_EX, PI_EY,    // the CSV columns end here
     PROGRESS, ETA_SECONDS, EQUILIBRIUM, RATE1, RATE2, RATE3, BOUNDARY_WORK, P_KINETIC, VOLUME,
     TIME, EQ_STRESS_OK, EQ_UNBALANCED_OK, EQ_KINETIC_OK, EQ_COORDINATION_OK, KINETIC_RATIO,
+    // the six-component cell (docs/fix_cell_servo.md, "Outputs of a triclinic cell")
+    SIG_XY, SIG_XZ, SIG_YZ, GAMMA_XY, GAMMA_XZ, GAMMA_YZ, RATE_XY, RATE_XZ, RATE_YZ,
+    SIG_MAJOR, SIG_INTER, SIG_MINOR,
+    // the plane of a simple-shear or rotation test
+    GAMMA, TAU, SIG_N, TAU_RATIO, STRESS_ANGLE, RATE_ANGLE, NONCOAXIALITY,
+    // constant-volume (undrained) tests
+    R_U, CYCLES, N_L_RU, N_L_GAMMA,
     N_OUTPUT
   };
-  static constexpr int N_CSV = PI_EY + 1;
   // what a redefined fix (same ID) takes over from the one it replaces (docs/fix_cell_servo.md)
   struct Continuation {
-    double reference_length[3];
+    tycore::CumulativeStrain strain;
     double elapsed_time;
     bigint clock_step;
     double boundary_work;
-    double last_strain_rate[3];
+    tycore::Vector6d last_strain_rate;
+    double initial_normal_stress;
     std::string csv_path;
     tycore::FileIdentity csv_identity;    // which file that record is (made by then)
     double origin[N_OUTPUT];              // the outputs when the test began
@@ -59,7 +78,10 @@ class FixCellServo : public Fix {
   static const char *output_name(int i);    // name of output i (0-based)
 
  protected:
-  enum class Mode { ISO, AXES, AXISYM, CONSTANT_B, DEVIATORIC, PATH };
+  enum class Mode {
+    ISO, AXES, AXISYM, CONSTANT_B, DEVIATORIC, PATH,           // principal programmes
+    SHEAR, SHEAR_CV, CYCLIC_SHEAR, UNDRAINED, ROTATION          // the six-component cell
+  };
   Mode mode;
 
   // control programme
@@ -73,11 +95,24 @@ class FixCellServo : public Fix {
     std::string variable;
     int ivar;
     std::string what;              // the argument, for error messages
+    bool positive = true;          // a target stress must be compressive (not a shear's)
   };
-  AxisInput axis_input[3];
+  AxisInput axis_input[6];        // axes: xx yy zz xy xz yz (Voigt6; shears engineering,
+                                   // compression positive as the servo's)
   AxisInput major_input;           // axisym, constant_b: the major rate, number or variable
   double major_rate_now = 0.0;     // its value at the last evaluation
   double major_strain_rate();
+  // simple shear (shear, shear_cv, cyclic_shear) and principal stress rotation
+  tycore::ShearPlane plane;
+  bool has_plane = false;          // the test has a plane: gamma, tau, angles are output
+  double shear_rate = 0.0;         // gamma_dot [1/s]
+  double normal_target = 0.0;      // shear: sigma_n [Pa]
+  double cyclic_stress_ratio = 0.0;            // cyclic_shear: CSR
+  tycore::LiquefactionCriteria liquefaction;   // cyclic_shear: r_u and double amplitude
+  tycore::CyclicSimpleShear::State cyclic;     // cyclic_shear state (restart)
+  double initial_normal_stress;                // sigma_n0 of r_u, when the test began (restart)
+  tycore::PrincipalStressRotation stress_rotation;    // rotation
+  tycore::CyclicSimpleShear cyclic_programme() const;
   tycore::PiPath path;
   double path_speed;               // Pi-plane speed |de/dt| [1/s]
   std::string path_kind;           // circle, triangle, polygon (built after the keywords) or empty
@@ -96,10 +131,10 @@ class FixCellServo : public Fix {
   int equilibrium_reached;
 
   // state (written to restart files)
-  double reference_length[3];      // cell edges when the test started (strain reference)
+  tycore::CumulativeStrain strain; // reference edges and cumulative shears (docs/theory.md §10.4)
   double elapsed_time;             // simulated time since the test started [s]
   bigint clock_step;               // step up to which elapsed_time is counted
-  tycore::ServoMemory memory;
+  tycore::ServoMemoryOf<6> memory;
   double boundary_work;            // int V sigma:deps, compression positive [J]
   int restored;                    // 1 if the state came from a restart file
   int continued;                   // 1 if it came from the fix this one redefines
@@ -108,7 +143,8 @@ class FixCellServo : public Fix {
   double origin[N_OUTPUT];         // the outputs when the test began (NaN: not known)
 
   // measurements of the last step
-  double stress[3], kinetic_stress[3], stiffness_sums[6];
+  tycore::Vector6d stress;         // contact stress, compression positive (Voigt6) [Pa]
+  double stiffness_sums[tycore::AffineStiffnessSums::size];   // V C (cell_stiffness.hpp)
   double contacts, sliding, force_sum;
   bigint measured_step;
   double output[N_OUTPUT];
@@ -146,6 +182,8 @@ class FixCellServo : public Fix {
   int until_met = 0;
   bool until_direction_checked = false;
   double until_run_start = std::numeric_limits<double>::quiet_NaN();   // NAME at this run's setup
+  double finite_number(const char *text, const std::string &what);
+  int positive_integer(const char *text, const std::string &what);
   // checks of the programme (fix_cell_servo_input.cpp)
   double number_in(const char *text, const std::string &what, double lo, double hi,
                    bool open_low, const char *unit = "");
@@ -156,16 +194,32 @@ class FixCellServo : public Fix {
   static constexpr double MIN_STRAIN_PER_STEP = 1e-15;
   static constexpr double UNTIL_DIRECTION_FRACTION = 0.1;    // (the servo's first steps move a strain by ~1e-5 either way)
 
+  // the programmes (fix_cell_servo_modes.cpp)
   void parse_mode(int narg, char **arg, int &iarg);
+  void parse_principal_mode(const std::string &name, int narg, char **arg, int &iarg);
+  void parse_axes(int narg, char **arg, int &iarg);
+  void parse_cell_mode(const std::string &name, int narg, char **arg, int &iarg);
+  bool needs_triclinic() const;    // the programme moves or holds a shear component
+  void require_controllable();
   void parse_keywords(int narg, char **arg, int iarg);
   AxisInput parse_value(const char *text, tycore::AxisControl control, const std::string &what);
   double evaluate(AxisInput &in);
-  tycore::MixedControl current_control();
+  tycore::MixedControl6 current_control();
+  tycore::ServoCommandOf<6> servo_command(const tycore::CellMeasurementOf<6> &cell);
+  void after_step();               // a programme's state after the step (cyclic reversals)
 
+  // the cell (fix_cell_servo_cell.cpp)
   void measure();
-  tycore::CellMeasurement cell_measurement() const;
-  void change_box(const double strain_rate[3]);
+  tycore::CellMeasurementOf<6> cell_measurement() const;
+  Eigen::Matrix3d cell_matrix() const;
+  double cell_volume() const;
+  void change_box(const tycore::Vector6d &strain_rate);
+  void set_box_rate(const tycore::Vector6d &strain_rate, const Eigen::Matrix3d &h);
+  tycore::TiltFlip pending_flip;   // found after a step's deformation, made in pre_exchange
+  class Irregular *irregular;
   void compute_outputs();
+  void compute_cell_outputs();     // the six-component outputs (fix_cell_servo_outputs.cpp)
+  std::vector<int> csv_columns() const;
   void compute_particle_outputs();
   static bool is_particle_output(int);
   void write_csv_row();
@@ -187,6 +241,7 @@ class FixCellServo : public Fix {
   void delete_named_variables();
   static constexpr int SATURATION_WARN_STEPS = 1000;
   double current_strain(int axis) const;
+  Eigen::Vector3d principal_strain() const;
 };
 
 }    // namespace LAMMPS_NS

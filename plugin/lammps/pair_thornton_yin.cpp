@@ -573,7 +573,10 @@ void PairThorntonYin::check_box_rate()
       // L <- L exp(-eps_dot dt), h_rate = -eps_dot L_new, so h_old = h exp(-L dt)) or at its
       // start (fix deform trate: h_rate = rate h_old, h = h_old exp(L dt)). Exact at any rate
       // for the three; tilts are only changed linearly
-      const bool explained = agrees(from_rate) ||
+      // a tilt flip (fix deform 'flip yes', fix cell/servo) moves a tilt by a box length in
+      // one step, which no rate does: the cell is the same (docs/theory.md §10.3)
+      const bool flipped = k >= 3 && std::fabs(change) > 0.25 * MIN(h[0], h[1]);
+      const bool explained = flipped || agrees(from_rate) ||
           (k < 3 && h[k] > 0.0 && agrees(-h[k] * std::expm1(-from_rate / h[k]))) ||
           (k < 3 && box_h[k] > 0.0 && agrees(box_h[k] * std::expm1(from_rate / box_h[k])));
       if (!explained && scale > 1e-12 * std::fabs(h[k])) {

@@ -40,6 +40,10 @@ CHOICES = {
     "prep_protocol": ("damped", "two_stage"),
     # the contact law of the shearing stage (common/pair.in)
     "law": ("thornton_yin", "granular", "gran_hertz_history"),
+    # the tests of the six-component cell (simple_shear.in, cyclic_simple_shear.in, undrained.in)
+    "drainage": ("drained", "constant_volume"),
+    "shear_plane": ("xz", "xy", "yz"),
+    "direction": ("compression", "extension"),
 }
 
 # -var distribution: a candidate of tylmp.specimen or a user's distribution string, checked by
@@ -69,6 +73,8 @@ NUMBERS = {
     "settle": (True, 0, "the steps of isotropic settling at the shearing mu and Gamma"),
     "gamma": (False, 0.0, "the interface energy during shear, J/m2"),
     "prep_gamma": (False, 0.0, "the interface energy during the preparation, J/m2"),
+    "sigma_n": (False, 0.0, "the normal stress of simple shear, Pa", True),
+    "csr": (False, 0.0, "the cyclic stress ratio tau_cyc/sigma_n0", True),
 }
 
 # fragments whose text (comments and blank lines dropped) is part of the specimen key: the
