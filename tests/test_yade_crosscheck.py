@@ -196,3 +196,39 @@ def test_yade_simple_shear_kinematics_stress_and_servo(tmp_path):
     # the servo: sigma_zz within 0.5 % of 100 kPa past the first 1000 steps
     late = t["step"] >= 1000
     assert np.max(np.abs(t["sig_n"][late] - 1e5)) < 500
+
+
+# Agreement of the engines on the quick specimen (seed 1, gamma_dot = 2e-4 1/s, to gamma =
+# 10 %) within the largest difference measured between two runs of one engine that differ in
+# nothing the engines could disagree on: the other specimen (seed 2), the timestep + 0.1 %
+# (LAMMPS), the rate halved (both engines); docs/comparison.md, "Simple shear against YADE":
+# peak tau/sigma_n (averaged over gamma windows of 0.5 %) 0.0085 (LAMMPS, rate halved), the
+# gamma of that peak 1.23 % (YADE, seed 2), eps_v at gamma = 10 % 0.25 % (LAMMPS, seed 2).
+# Measured engine differences of this pair: +0.0022, +0.46 %, -0.006 %.
+SHEAR_TOLERANCE = {"tau_ratio_max": 0.0085, "gamma_at_tau_ratio_max_pct": 1.23,
+                   "eps_v_at_gamma_end_pct": 0.25}
+
+
+@needs_yade
+def test_simple_shear_agrees_with_yade(tmp_path, bench):
+    prefix = tmp_path / "lammps"
+    proc = subprocess.run(
+        ["nice", "lmp", "-in", "bench/yade_simple_shear.in", "-log", "none", "-nocite",
+         "-var", "data", QUICK, "-var", "rate", str(SHEAR_RATE), "-var", "out", str(prefix)],
+        cwd=REPO, capture_output=True, text=True, timeout=900)
+    assert proc.returncode == 0 and "ERROR" not in proc.stdout, proc.stdout[-3000:]
+    yade_csv, _ = run_yade_shear(tmp_path, "yade")
+    compare = bench("yade_shear_compare")
+    ours, ours_c = compare.responses(f"{prefix}.csv")
+    yade, yade_c = compare.responses(yade_csv)
+    for out in (ours, yade):
+        assert out["gamma_end_pct"] == pytest.approx(10, abs=0.01)
+        assert out["peak_inside_record"]
+        # both servos hold sigma_n within 0.5 %
+        assert 99.5 < out["sig_n_past_0.5pct_min_kPa"] <= out["sig_n_past_0.5pct_max_kPa"] < 100.5
+    for key, tol in SHEAR_TOLERANCE.items():
+        assert abs(yade[key] - ours[key]) <= tol, (key, ours[key], yade[key], tol)
+    # the dilatancy all along, not only at the end: eps_v within the same bound at every gamma
+    g = np.linspace(0.0, 0.1, 201)
+    curve = {k: np.interp(g, c["gamma"], c["eps_v"]) * 100 for k, c in (("ours", ours_c), ("yade", yade_c))}
+    assert np.max(np.abs(curve["yade"] - curve["ours"])) <= SHEAR_TOLERANCE["eps_v_at_gamma_end_pct"]
