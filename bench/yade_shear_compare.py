@@ -11,10 +11,12 @@ Per run: the peak of tau/sigma_n averaged over gamma windows of 0.5 % (and of th
 themselves), the gamma where it occurs and the gamma range where the average stays within 1 %
 of it (the peak of a dense specimen is broad), eps_v (compression positive) at
 gamma = --gamma-end or, for a run that stops short, at the largest gamma it reached (the key
-eps_v_at_gamma_end_pct, with gamma_eps_v_pct saying where it was read), the largest dilatancy
+eps_v_at_gamma_end_pct, with gamma_eps_v_pct saying where it was read), tau/sigma_n averaged
+over gamma from 2 % to that gamma (tau_ratio_mean_from_2pct), the largest dilatancy
 -d eps_v/d gamma (over intervals of 0.5 % of gamma), and the range of sigma_n past gamma = 0.5 %;
 every other run's differences from --ref. Writes OUT.json, OUT_curves.csv (run, gamma,
-tau_ratio, eps_v, sig_n) and OUT.png (tau/sigma_n, eps_v, sigma_n against gamma).
+tau_ratio, eps_v, sig_n) and OUT.png (tau/sigma_n, eps_v, sigma_n against gamma; a run
+labelled yade... dashed, in the colour of the run labelled ours... with the same suffix).
 """
 import argparse
 import csv
@@ -34,6 +36,7 @@ NEEDED = ("step", "gamma", "tau", "sig_n", "tau_ratio", "eps_v")
 DILATANCY_STEP = 0.005        # intervals of gamma for -d eps_v / d gamma
 WITHIN = 0.01                 # the peak's plateau: tau/sigma_n within 1 % of its maximum
 SMOOTH, FINE = 0.005, 1e-5    # the window in gamma of the averaged tau/sigma_n, its grid
+MEAN_FROM = 0.02              # tau/sigma_n is averaged from this gamma to the end of reading
 
 
 def responses(path, gamma_end=0.10):
@@ -61,6 +64,11 @@ def responses(path, gamma_end=0.10):
            "tau_ratio_max_row": float(r[row]), "gamma_at_tau_ratio_max_row_pct": float(g[row] * 100),
            "gamma_eps_v_pct": g_read * 100,
            "eps_v_at_gamma_end_pct": metrics.value_at(g, ev, g_read) * 100}
+    # the level past the peak's rise: tau/sigma_n averaged uniformly in gamma over 2 % to the
+    # gamma where eps_v is read (a record that stops before 2 % has none)
+    if g_read > MEAN_FROM:
+        span = np.linspace(MEAN_FROM, g_read, 2001)
+        out["tau_ratio_mean_from_2pct"] = float(np.trapz(np.interp(span, g, r), span) / (g_read - MEAN_FROM))
     past = g > 0.005
     if np.any(past):
         out["sig_n_past_0.5pct_min_kPa"] = float(np.min(sn[past]) / 1e3)
@@ -88,11 +96,17 @@ def plot(curves, png, title):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(1, 3, figsize=(13, 4))
-    for k, (label, c) in enumerate(curves.items()):
-        x, col = 100 * c["gamma"], f"C{k}"
-        ax[0].plot(x, c["tau_ratio"], lw=0.8, color=col, label=label)
-        ax[1].plot(x, 100 * c["eps_v"], lw=0.8, color=col, label=label)
-        ax[2].plot(x, c["sig_n"] / 1e3, lw=0.8, color=col, label=label)
+    # a YADE run (label starting 'yade') dashed, in the colour of the run of ours whose label
+    # it repeats with 'ours' for 'yade'
+    colours = {}
+    for label, c in curves.items():
+        key = "ours" + label[4:] if label.startswith("yade") else label
+        col = colours.setdefault(key, f"C{len(colours)}")
+        style = dict(lw=0.8, color=col, label=label, ls="--" if label.startswith("yade") else "-")
+        x = 100 * c["gamma"]
+        ax[0].plot(x, c["tau_ratio"], **style)
+        ax[1].plot(x, 100 * c["eps_v"], **style)
+        ax[2].plot(x, c["sig_n"] / 1e3, **style)
     ax[0].set_ylabel("τ/σn")
     ax[1].set_ylabel("ε_v (%), compression > 0")
     ax[2].set_ylabel("σn (kPa)")
