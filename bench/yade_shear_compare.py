@@ -5,7 +5,7 @@ xz) and YADE runs of bench/yade_simple_shear.py, each a record with the columns 
 sig_n, tau_ratio and eps_v.
 
     /usr/bin/python3 bench/yade_shear_compare.py --ref LABEL=CSV --other LABEL=CSV [--other ...]
-        [--gamma-end 0.10] [--out bench/results/yade_simple_shear]
+        [--pair A,B ...] [--gamma-end 0.10] [--out bench/results/yade_simple_shear]
 
 Per run: the peak of tau/sigma_n averaged over gamma windows of 0.5 % (and of the rows
 themselves), the gamma where it occurs and the gamma range where the average stays within 1 %
@@ -14,7 +14,8 @@ gamma = --gamma-end or, for a run that stops short, at the largest gamma it reac
 eps_v_at_gamma_end_pct, with gamma_eps_v_pct saying where it was read), tau/sigma_n averaged
 over gamma from 2 % to that gamma (tau_ratio_mean_from_2pct), the largest dilatancy
 -d eps_v/d gamma (over intervals of 0.5 % of gamma), and the range of sigma_n past gamma = 0.5 %;
-every other run's differences from --ref. Writes OUT.json, OUT_curves.csv (run, gamma,
+every other run's differences from --ref, and for each --pair A,B the differences of A from B
+with the largest |eps_v(A) - eps_v(B)| over the gamma both reached. Writes OUT.json, OUT_curves.csv (run, gamma,
 tau_ratio, eps_v, sig_n) and OUT.png (tau/sigma_n, eps_v, sigma_n against gamma; a run
 labelled yade... dashed, in the colour of the run labelled ours... with the same suffix).
 """
@@ -91,6 +92,16 @@ def differences(ref, other):
     return out
 
 
+def pair_differences(results, curves, a, b):
+    """Run a minus run b: every response, and the largest |eps_v(a) - eps_v(b)| over the gamma
+    both reached (on a grid of 0.01 %)."""
+    out = {k: v["diff"] for k, v in differences(results[b], results[a]).items()}
+    g = np.arange(0.0, min(curves[a]["gamma"][-1], curves[b]["gamma"][-1]), 1e-4)
+    dev = np.interp(g, curves[a]["gamma"], curves[a]["eps_v"]) - np.interp(g, curves[b]["gamma"], curves[b]["eps_v"])
+    out["eps_v_max_abs_diff_pct"] = float(np.max(np.abs(dev)) * 100)
+    return out
+
+
 def plot(curves, png, title):
     import matplotlib
     matplotlib.use("Agg")
@@ -125,6 +136,8 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--ref", required=True, help="LABEL=CSV of the reference run (ours)")
     ap.add_argument("--other", action="append", required=True, help="LABEL=CSV (repeatable)")
+    ap.add_argument("--pair", action="append", default=[],
+                    help="A,B: the differences of run A from run B (labels; repeatable)")
     ap.add_argument("--gamma-end", type=float, default=0.10, help="gamma where eps_v is read")
     ap.add_argument("--title", default="simple shear at constant σn, Γ = 0, μ = 0.3, no damping")
     ap.add_argument("--out", default=os.path.join(REPO, "bench", "results", "yade_simple_shear"))
@@ -143,6 +156,11 @@ def main(argv=None):
     summary = {"reference": ref, "gamma_end": a.gamma_end, "runs": results,
                "differences_from_reference": {k: differences(results[ref], results[k])
                                               for k in labels[1:]}}
+    pairs = [p.split(",") for p in a.pair]
+    for p in pairs:
+        if len(p) != 2 or any(x not in results for x in p):
+            ap.error(f"--pair A,B names two runs of {labels}, got {','.join(p)!r}")
+    summary["pairs"] = {f"{x} - {y}": pair_differences(results, curves, x, y) for x, y in pairs}
     write_result(a.out + ".json", summary)
     tmp = a.out + "_curves.csv.tmp"
     with open(tmp, "w", newline="", encoding="utf-8") as fh:
@@ -153,6 +171,10 @@ def main(argv=None):
                 w.writerow([label] + [repr(float(v)) for v in row])
     os.replace(tmp, a.out + "_curves.csv")
     plot(curves, a.out + ".png", a.title)
+    shown = ("tau_ratio_max", "gamma_at_tau_ratio_max_pct", "tau_ratio_mean_from_2pct",
+             "eps_v_at_gamma_end_pct", "eps_v_max_abs_diff_pct")
+    for name, d in summary["pairs"].items():
+        print(name.ljust(32) + "".join(f"  {k} {d[k]:+.4g}" for k in shown if k in d))
     keys = [k for k in results[ref] if k != "file"]
     print("response".ljust(36) + "".join(lbl.rjust(16) for lbl in labels))
     for k in keys:
