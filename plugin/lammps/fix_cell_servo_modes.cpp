@@ -217,6 +217,11 @@ void FixCellServo::parse_axes(int narg, char **arg, int &iarg)
     given[k] = true;
     iarg += 3;
   }
+  if (iarg < narg && (strcmp(arg[iarg], "yx") == 0 || strcmp(arg[iarg], "zx") == 0
+                      || strcmp(arg[iarg], "zy") == 0))
+    error->all(FLERR, "fix cell/servo axes: component {}: LAMMPS's triclinic box cannot deform "
+               "it (its tilts are xy, xz and yz: the edge along the second axis tilts towards "
+               "the first); use {}{}", arg[iarg], arg[iarg][1], arg[iarg][0]);
   for (int k = 0; k < 3; ++k)
     if (!given[k])
       error->all(FLERR, "fix cell/servo axes: axis {} has no control: give it 'stress VALUE' "
