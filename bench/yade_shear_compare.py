@@ -9,7 +9,8 @@ sig_n, tau_ratio and eps_v.
 
 Per run: the peak of tau/sigma_n averaged over gamma windows of 0.5 % (and of the rows
 themselves), the gamma where it occurs and the gamma range where the average stays within 1 %
-of it (the peak of a dense specimen is broad), eps_v (compression positive) at
+of it (the peak of a dense specimen is broad), the gamma where the average first comes within
+2 % of its peak (the peak's onset, gamma_at_98pct_of_peak_pct), eps_v (compression positive) at
 gamma = --gamma-end or, for a run that stops short, at the largest gamma it reached (the key
 eps_v_at_gamma_end_pct, with gamma_eps_v_pct saying where it was read), tau/sigma_n averaged
 over gamma from 2 % to that gamma (tau_ratio_mean_from_2pct), the largest dilatancy
@@ -37,6 +38,7 @@ NEEDED = ("step", "gamma", "tau", "sig_n", "tau_ratio", "eps_v")
 DILATANCY_STEP = 0.005        # intervals of gamma for -d eps_v / d gamma
 WITHIN = 0.01                 # the peak's plateau: tau/sigma_n within 1 % of its maximum
 SMOOTH, FINE = 0.005, 1e-5    # the window in gamma of the averaged tau/sigma_n, its grid
+ONSET = 0.02                  # the peak's onset: the average within 2 % of its maximum
 MEAN_FROM = 0.02              # tau/sigma_n is averaged from this gamma to the end of reading
 
 
@@ -62,6 +64,10 @@ def responses(path, gamma_end=0.10):
            "peak_inside_record": bool(i < len(smooth) - 1),
            "gamma_within_1pct_of_peak_from_pct": float(fine[near[0]] * 100),
            "gamma_within_1pct_of_peak_to_pct": float(fine[near[-1]] * 100),
+           # the onset of the peak: where the average first comes within ONSET of it (the
+           # maximum itself may sit on either end of a plateau: two near-equal maxima at 2 and
+           # 9.4 % in one 500-sphere record)
+           "gamma_at_98pct_of_peak_pct": float(fine[np.argmax(smooth >= (1 - ONSET) * smooth[i])] * 100),
            "tau_ratio_max_row": float(r[row]), "gamma_at_tau_ratio_max_row_pct": float(g[row] * 100),
            "gamma_eps_v_pct": g_read * 100,
            "eps_v_at_gamma_end_pct": metrics.value_at(g, ev, g_read) * 100}
@@ -171,7 +177,8 @@ def main(argv=None):
                 w.writerow([label] + [repr(float(v)) for v in row])
     os.replace(tmp, a.out + "_curves.csv")
     plot(curves, a.out + ".png", a.title)
-    shown = ("tau_ratio_max", "gamma_at_tau_ratio_max_pct", "tau_ratio_mean_from_2pct",
+    shown = ("tau_ratio_max", "gamma_at_tau_ratio_max_pct", "gamma_at_98pct_of_peak_pct",
+             "tau_ratio_mean_from_2pct",
              "eps_v_at_gamma_end_pct", "eps_v_max_abs_diff_pct")
     for name, d in summary["pairs"].items():
         print(name.ljust(32) + "".join(f"  {k} {d[k]:+.4g}" for k in shown if k in d))

@@ -148,6 +148,8 @@ def test_shear_compare_reads_the_responses_of_a_known_record(tmp_path, bench):
     # gamma = 2.25 - 0.1414 = 2.1086 %; on the falling side (slope -2) to gamma = 5.25 %
     assert out["gamma_within_1pct_of_peak_from_pct"] == pytest.approx(2.1086, abs=2e-3)
     assert out["gamma_within_1pct_of_peak_to_pct"] == pytest.approx(5.25, abs=2e-3)
+    # the onset, the average >= 0.49: deficit 0.01 at u = 0.2 %, gamma = 2.25 - 0.2 = 2.05 %
+    assert out["gamma_at_98pct_of_peak_pct"] == pytest.approx(2.05, abs=2e-3)
     assert out["eps_v_at_gamma_end_pct"] == pytest.approx(-2.0, rel=1e-9)
     # mean over 2-10 %: (3 % x 0.5 + 5 % x (0.5 - 0.05)) / 8 % = 0.46875
     assert out["tau_ratio_mean_from_2pct"] == pytest.approx(0.46875, rel=1e-6)
@@ -204,13 +206,14 @@ def test_yade_simple_shear_kinematics_stress_and_servo(tmp_path):
 # 10 %) within the largest difference measured between two runs of one engine that differ in
 # nothing the engines could disagree on: the other specimen (seed 2), the timestep + 0.1 %
 # (LAMMPS), the rate halved (both engines); docs/comparison.md, "Simple shear against YADE"
-# (bench/results/yade_simple_shear.json): the peak of tau/sigma_n (averaged over gamma
-# windows of 0.5 %) 0.0085 (LAMMPS, rate halved), the gamma of that peak 1.23 % (YADE, seed
-# 2), tau/sigma_n averaged over gamma = 2-10 % 0.0155 (YADE, seed 2), eps_v at gamma = 10 %
-# 0.25 % (LAMMPS, seed 2). The engines' differences on this pair: +0.0022, +0.45 %, -0.0024,
-# -0.006 %.
-SHEAR_TOLERANCE = {"tau_ratio_max": 0.0085, "gamma_at_tau_ratio_max_pct": 1.23,
-                   "tau_ratio_mean_from_2pct": 0.0155, "eps_v_at_gamma_end_pct": 0.25}
+# (bench/results/yade_simple_shear.json, "pairs"): the peak of tau/sigma_n (averaged over
+# gamma windows of 0.5 %) 0.0078 (LAMMPS, rate halved), the gamma of the peak's onset (the
+# average within 2 % of the peak; the gamma of the maximum itself jumps between near-equal
+# maxima, 6.7 % between the seeds) 0.59 % (LAMMPS, rate halved), tau/sigma_n averaged over
+# gamma = 2-10 % 0.0232 (LAMMPS, seed 2), eps_v at gamma = 10 % 0.333 % (LAMMPS, seed 2).
+# The engines' differences on this pair: +0.0045, +0.20 %, +0.0028, -0.062 %.
+SHEAR_TOLERANCE = {"tau_ratio_max": 0.0078, "gamma_at_98pct_of_peak_pct": 0.59,
+                   "tau_ratio_mean_from_2pct": 0.0232, "eps_v_at_gamma_end_pct": 0.333}
 
 
 @needs_yade
