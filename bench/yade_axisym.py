@@ -299,4 +299,6 @@ def main():
         write_json(args.check, result)
 
 
-main()
+# bench/yade_simple_shear.py executes this file for its scene under another __name__
+if __name__ == "__main__":
+    main()
