@@ -28,9 +28,9 @@ import sys
 import numpy as np
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(REPO, "analysis"))
-from tyanalysis import metrics  # noqa: E402
-from tyanalysis.io import read_servo_csv  # noqa: E402
+sys.path.insert(0, os.path.join(REPO, "python"))
+from tylmp.analysis import metrics  # noqa: E402
+from tylmp.analysis.io import read_servo_csv  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from provenance import write_result  # noqa: E402
 

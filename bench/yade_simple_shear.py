@@ -53,8 +53,8 @@ from yade import utils
 # yade -x runs the script with execfile: __file__ is yade's own, sys.argv[0] the script
 BENCH = os.path.dirname(os.path.abspath(sys.argv[0]))
 REPO = os.path.dirname(BENCH)
-sys.path.insert(0, os.path.join(REPO, "analysis"))
-from tyanalysis.io import write_json  # noqa: E402
+sys.path.insert(0, os.path.join(REPO, "python"))
+from tylmp.analysis.io import write_json  # noqa: E402
 
 # the axisymmetric scene's definitions (material, timestep, scene, contact rows, affine
 # stiffness): one scene for both YADE tests; its main() runs only when it is the script

@@ -58,6 +58,13 @@ if [ -n "$missing" ]; then
   echo "setup: installing$missing"
   $SUDO apt-get install -y -qq $missing >/dev/null
 fi
+# YADE, the independent engine of the cross-checks (tests/test_yade_crosscheck.py,
+# bench/yade_*.py), without its recommended GUI packages
+if ! dpkg-query -W -f='${Status}' yade 2>/dev/null | grep -q "install ok installed" &&
+    apt-cache show yade >/dev/null 2>&1; then
+  echo "setup: installing yade"
+  $SUDO apt-get install -y -qq --no-install-recommends yade >/dev/null
+fi
 [ "${1:-}" = "--packages" ] && exit 0
 
 # configure once (the build re-runs CMake itself when CMakeLists.txt or cmake/ change)

@@ -129,7 +129,7 @@ def run_yade_shear(tmp_path, name, *args):
 def test_shear_compare_reads_the_responses_of_a_known_record(tmp_path, bench):
     # tau/sigma_n rising linearly to 0.5 at gamma = 2 %, flat to 5 %, then falling by 2 per
     # unit gamma; eps_v = -0.2 gamma (dilatancy 0.2); sigma_n = 100 kPa past 0.5 %
-    from tyanalysis.io import write_servo_csv
+    from tylmp.analysis.io import write_servo_csv
     g = np.arange(1201) / 10000.0                   # 0 to 12 %, every 0.01 %
     r = np.where(g < 0.02, 25 * g, np.where(g <= 0.05, 0.5, 0.5 - 2 * (g - 0.05)))
     sn = np.where(g > 0.005, 1e5, 9e4)
