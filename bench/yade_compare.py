@@ -24,6 +24,7 @@ import numpy as np
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO, "python"))
 from tylmp.analysis import metrics  # noqa: E402
+from tylmp.analysis.figures import save_figure  # noqa: E402
 from tylmp.analysis.io import read_servo_csv  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from provenance import write_result  # noqa: E402
@@ -108,10 +109,7 @@ def plot(curves, png):
             a.set_xlabel("ε1 − ε3 (%)")
     fig.suptitle("Dense paper specimen, axisymmetric compression, p = 100 kPa, Γ = 0, μ = 0.3, "
                  "ε̇1 = 5e-5 1/s, no damping", fontsize=9)
-    fig.tight_layout()
-    tmp = png + ".tmp.png"
-    fig.savefig(tmp, dpi=120)
-    os.replace(tmp, png)
+    save_figure(fig, png, dpi=120)
 
 
 def main(argv=None):

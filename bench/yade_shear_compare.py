@@ -30,6 +30,7 @@ import numpy as np
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO, "python"))
 from tylmp.analysis import metrics  # noqa: E402
+from tylmp.analysis.figures import save_figure  # noqa: E402
 from tylmp.analysis.io import read_servo_csv  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from provenance import write_result  # noqa: E402
@@ -132,10 +133,7 @@ def plot(curves, png, title):
         a.grid(alpha=0.3)
         a.legend(fontsize=7)
     fig.suptitle(title, fontsize=9)
-    fig.tight_layout()
-    tmp = png + ".tmp.png"
-    fig.savefig(tmp, dpi=110)
-    os.replace(tmp, png)
+    save_figure(fig, png, dpi=110)
 
 
 def main(argv=None):

@@ -79,7 +79,7 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
     elapsed_time(0.0), clock_step(0), boundary_work(0.0), restored(0), continued(0),
     continue_previous(1), contacts(0.0), sliding(0.0), force_sum(0.0),
     measured_step(-1), output_step(-1), particle_step(-1), mean_diameter(0.0), mean_density(0.0),
-    solid_volume(0.0), irregular(nullptr), pressure(nullptr), pair(nullptr), csv_every(0),
+    solid_volume(0.0), pressure(nullptr), pair(nullptr), csv_every(0),
     wall_start(0.0), step_start(0), saturated_steps(0), saturated_error(0.0),
     saturation_warned(false), cap_warning(true), named_variables(false)
 {

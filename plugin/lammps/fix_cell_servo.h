@@ -220,7 +220,7 @@ class FixCellServo : public Fix {
   void change_box(const tycore::Vector6d &strain_rate);
   void set_box_rate(const tycore::Vector6d &strain_rate, const Eigen::Matrix3d &h);
   tycore::TiltFlip pending_flip;   // found after a step's deformation, made in pre_exchange
-  class Irregular *irregular;
+  class Irregular *irregular = nullptr;
   void compute_outputs();
   void compute_cell_outputs();     // the six-component outputs (fix_cell_servo_outputs.cpp)
   std::vector<int> csv_columns() const;
