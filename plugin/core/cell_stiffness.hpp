@@ -26,6 +26,7 @@ namespace tycore {
 struct AffineStiffnessSums {
   static constexpr int size = 21;
   static constexpr int principal_size = 6;
+  static constexpr int shear_size = size - principal_size;
   std::array<double, size> sum{};
 
   static constexpr int index(int I, int J)
@@ -68,6 +69,20 @@ struct AffineStiffnessSums {
     Matrix6d c;
     c.topLeftCorner<3, 3>() =
         affine_stiffness_contribution(branch, normal_stiffness, tangential_stiffness);
+    double shear[shear_size];
+    shear_entries(branch, normal_stiffness, tangential_stiffness, shear);
+    for (int I = 0; I < 6; ++I)
+      for (int J = std::max(I, 3); J < 6; ++J)
+        c(I, J) = c(J, I) = shear[index(I, J) - principal_size];
+    return c;
+  }
+
+  // one contact's share of the 15 entries with a shear component (J >= 3), in the order of the
+  // sums (entries[k] is sum[principal_size + k]); branch = x2 - x1 (either sign). The pair
+  // styles' tallies (plugin/lammps/cell_tally.h) add exactly these when a cell has shears
+  static void shear_entries(const Eigen::Vector3d& branch, double normal_stiffness,
+                            double tangential_stiffness, double entries[shear_size])
+  {
     const double l2 = branch.squaredNorm();
     const Eigen::Vector3d& b = branch;
     for (int I = 0; I < 6; ++I)
@@ -77,9 +92,9 @@ struct AffineStiffnessSums {
         const double nnnn = b(i) * b(j) * b(k) * b(l) / l2;   // l^2 n_i n_j n_k n_l
         const double delta_nn = 0.25 * ((i == k) * b(j) * b(l) + (j == k) * b(i) * b(l)
                                         + (i == l) * b(j) * b(k) + (j == l) * b(i) * b(k));
-        c(I, J) = c(J, I) = normal_stiffness * nnnn + tangential_stiffness * (delta_nn - nnnn);
+        entries[index(I, J) - principal_size] =
+            normal_stiffness * nnnn + tangential_stiffness * (delta_nn - nnnn);
       }
-    return c;
   }
 };
 

@@ -81,6 +81,10 @@ struct ContactBatch {
   // k_T (d_ab n_a^2 - n_a^2 n_b^2)], ab = xx yy zz xy xz yz (docs/theory.md §6.1), and |F|
   alignas(64) double affine_stiffness[6][batch_lanes];
   alignas(64) double force_magnitude[batch_lanes];
+  // with BatchParameters::tally: the k_N and k_T of that tally, for the entries with a shear
+  // component (tycore::AffineStiffnessSums::shear_entries, cell_stiffness.hpp)
+  alignas(64) double normal_stiffness[batch_lanes];
+  alignas(64) double tangential_stiffness[batch_lanes];
   alignas(64) double energy[batch_lanes];          // with BatchParameters::energy: stored
                                                    // elastic energy (contact_stored_energy)
   alignas(64) double slides[batch_lanes];          // 1: at the Coulomb limit in this force
@@ -314,6 +318,8 @@ template <bool Adhesive, bool Damped, bool Tally>
       b.affine_stiffness[m][i] = gone ? 0.0 : entry;
     }
     b.force_magnitude[i] = gone ? 0.0 : std::sqrt(fx * fx + fy * fy + fz * fz);
+    b.normal_stiffness[i] = gone ? 0.0 : k_N;
+    b.tangential_stiffness[i] = gone ? 0.0 : k_T;
   }
 }
 

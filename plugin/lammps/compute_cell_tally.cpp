@@ -4,12 +4,14 @@
    counts once: a pair with a ghost partner is seen by both ranks without newton_pair and
    counts half on each. Its normal force comes from the pair's single() (the force on atom i
    along the branch vector, damping included), its normal stiffness from
-   tycore::hertz_normal_stiffness, its tangential stiffness is left out (docs/theory.md §6.5).
+   tycore::hertz_normal_stiffness, its tangential stiffness is left out (docs/theory.md §6.5);
+   with shears asked for, the 15 entries with a shear component of §11.1 too.
 ------------------------------------------------------------------------- */
 
 #include "compute_cell_tally.h"
 
 #include "cell_servo.hpp"
+#include "cell_stiffness.hpp"
 #include "contact_stiffness_estimate.hpp"
 #include "lammps_compat.h"
 
@@ -41,8 +43,9 @@ void ComputeCellTally::init() {}
 
 // fix cell/servo asks for the tallies in its init(), after the computes' init(): the pair is
 // checked here, each run, and the warning given once
-void ComputeCellTally::request_cell_tallies(bool /*with_shear*/)
+void ComputeCellTally::request_cell_tallies(bool shears)
 {
+  with_shear = shears;
   Pair *pair = force->pair;
   if (!pair)
     error->all(FLERR, "fix cell/servo needs a pair style: the servo's stress and stiffness "
@@ -107,10 +110,17 @@ void ComputeCellTally::refresh_cell_tallies()
       const double normal_force = fpair * r;    // compression positive
       const bool j_owned = j < nlocal || newton_pair;
       const double share = j_owned ? 1.0 : 0.5;
-      const Eigen::Matrix3d c = tycore::affine_stiffness_contribution(
-          branch, tycore::hertz_normal_stiffness(normal_force, radsum - r));
+      const double k_N = tycore::hertz_normal_stiffness(normal_force, radsum - r);
+      const Eigen::Matrix3d c = tycore::affine_stiffness_contribution(branch, k_N);
       const double virial_order[6] = {c(0, 0), c(1, 1), c(2, 2), c(0, 1), c(0, 2), c(1, 2)};
       for (int k = 0; k < 6; ++k) tallies.sum[CellTallies::STIFFNESS + k] += share * virial_order[k];
+      if (with_shear) {    // a cell with shears: the 15 entries with a shear component
+        using Stiffness = tycore::AffineStiffnessSums;
+        double shear[Stiffness::shear_size];
+        Stiffness::shear_entries(branch, k_N, 0.0, shear);
+        for (int k = 0; k < Stiffness::shear_size; ++k)
+          tallies.sum[CellTallies::STIFFNESS + Stiffness::principal_size + k] += share * shear[k];
+      }
       tallies.sum[CellTallies::CONTACTS] += share;
       tallies.sum[CellTallies::FORCE] += share * std::fabs(normal_force);
       count[i] += 1.0;

@@ -2,7 +2,8 @@
    compute ID all CELL_TALLY (internal; fix cell/servo creates it): the servo's contact tallies
    (cell_tally.h) for a granular pair style other than thornton/yin, from the contacts of that
    pair's last force evaluation: the contact force from the pair's single(), the normal
-   stiffness estimated from force and overlap (docs/theory.md §6.5), contacts per atom.
+   stiffness estimated from force and overlap (docs/theory.md §6.5; all 21 entries of §11.1
+   when the servo controls shears), contacts per atom.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_COMPUTE_CELL_TALLY_H
@@ -30,6 +31,7 @@ class ComputeCellTally : public Compute, public CellTallySource {
  private:
   bool warned = false;    // the warning of request_cell_tallies, once
   bool tallied = false;
+  bool with_shear = false;    // the 15 stiffness entries with a shear component too
   CellTallies tallies{};
   double *count = nullptr;    // contacts per atom, ghosts summed into their owners
   int nmax = 0;

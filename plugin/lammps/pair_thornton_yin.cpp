@@ -8,6 +8,7 @@
 #include "tylmp_numeric.h"
 #include "tylmp_citations.h"
 
+#include "cell_stiffness.hpp"
 #include "contact_geometry.hpp"
 #include "contact_kernel.hpp"
 #include "law_domain.hpp"
@@ -548,7 +549,8 @@ double PairThorntonYin::affine_velocity_gradient(double L[3][3]) const
    The affine contact velocity is built from domain->h_rate (affine_velocity_gradient).
    A fix that changes the box without setting h_rate (in LAMMPS 2021: fix deform 'volume'
    dimensions, barostats) silently removes part of it, so compare h_rate dt with the box
-   change since the previous step and warn once if they disagree.
+   change since the previous step (less the jumps of a tilt flip) and warn once if they
+   disagree.
 ------------------------------------------------------------------------- */
 
 void PairThorntonYin::check_box_rate()
@@ -561,8 +563,22 @@ void PairThorntonYin::check_box_rate()
   box_from_setup = update->setupflag;
   if (!update->setupflag && !domain->deform_vremap && !box_rate_warned && comparable) {
     static const char *const component[6] = {"xx", "yy", "zz", "yz", "xz", "xy"};
+    // a tilt flip (fix deform flip yes) replaced the box h by h M, M unit upper-triangular with
+    // integer flip counts: the same lattice of images, every image's affine velocity unchanged
+    // (docs/theory.md §10.3). Its jumps are no change of the box: take them out
+    double flip[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    if (domain->triclinic) {
+      double before[6];    // the box of the last step advanced by the rate, before any flip
+      for (int k = 0; k < 6; ++k) before[k] = box_h[k] + domain->h_rate[k] * update->dt;
+      const double p = std::nearbyint((h[3] - before[3]) / h[1]);                  // yz by ly
+      const double m = std::nearbyint((h[5] - before[5]) / h[0]);                  // xy by lx
+      const double n = std::nearbyint((h[4] - before[4] - p * before[5]) / h[0]);  // xz by lx
+      flip[3] = p * h[1];
+      flip[4] = n * h[0] + p * before[5];
+      flip[5] = m * h[0];
+    }
     for (int k = 0; k < 6; ++k) {
-      const double change = h[k] - box_h[k];
+      const double change = h[k] - box_h[k] - flip[k];
       const double from_rate = domain->h_rate[k] * update->dt;
       const double scale = std::fabs(change) + std::fabs(from_rate);
       const auto agrees = [&](double expected) {
@@ -828,9 +844,17 @@ void PairThorntonYin::run_batch(Batch &bt, bool step, Sums &sums)
     if (evflag)
       ev_tally_xyz(i, j, nlocal, newton_pair, bt.p.energy ? b.energy[l] : 0.0, 0.0, fx, fy, fz,
                    bt.del[0][l], bt.del[1][l], bt.del[2][l]);
-    if (tally_cell) {    // the servo's sums (docs/theory.md §6.1), each contact once
+    if (tally_cell) {    // the servo's sums (docs/theory.md §6.1, §11.1), each contact once
       for (int k = 0; k < 6; ++k)
         tallies.sum[CellTallies::STIFFNESS + k] += share * b.affine_stiffness[k][l];
+      if (tally_cell == 2) {    // a cell with shears: the 15 entries with a shear component
+        using Stiffness = tycore::AffineStiffnessSums;
+        double shear[Stiffness::shear_size];
+        Stiffness::shear_entries(Eigen::Vector3d(bt.del[0][l], bt.del[1][l], bt.del[2][l]),
+                                 b.normal_stiffness[l], b.tangential_stiffness[l], shear);
+        for (int k = 0; k < Stiffness::shear_size; ++k)
+          tallies.sum[CellTallies::STIFFNESS + Stiffness::principal_size + k] += share * shear[k];
+      }
       tallies.sum[CellTallies::CONTACTS] += share;
       tallies.sum[CellTallies::SLIDING] += share * b.slides[l];
       tallies.sum[CellTallies::FORCE] += share * b.force_magnitude[l];

@@ -11,6 +11,7 @@
 //  * the setup pass's entry forces_without_step (forces with the history kept) against the
 //    JKR force, the damping formulas and the Coulomb limit;
 //  * the lane-wide cube root against jkr::fast_cbrt (bit for bit) and std::cbrt.
+#include "cell_stiffness.hpp"
 #include "contact_batch.hpp"
 #include "contact_kernel.hpp"
 #include "contact_types.hpp"
@@ -340,12 +341,83 @@ TEST_P(BatchLaw, DampingTalliesAndEnergyAsTheirFormulas)
         ASSERT_EQ(b->moment[d][i], scalar->moment[d][i]);
       }
       for (int m = 0; m < 6; ++m) ASSERT_EQ(b->affine_stiffness[m][i], scalar->affine_stiffness[m][i]);
+      ASSERT_EQ(b->normal_stiffness[i], scalar->normal_stiffness[i]);
+      ASSERT_EQ(b->tangential_stiffness[i], scalar->tangential_stiffness[i]);
       const tycore::ContactHistory v = tycore::stored_history(*b, i);
       for (int m = 0; m < tycore::history_size; ++m) ASSERT_EQ((&v.T[0])[m], (&g.T[0])[m]);
       h[i] = g;
     }
   }
   EXPECT_GT(micro_slip_lanes, 1000);
+}
+
+// A cell with shears (docs/theory.md §11.1): the pair tallies a contact's 21 affine-stiffness
+// entries as the batch's 6 principal ones and AffineStiffnessSums::shear_entries from the
+// batch's k_N and k_T lanes (pair_thornton_yin.cpp, compute_cell_tally.cpp). These are
+// AffineStiffnessSums::add_contact's for the contact: the shear entries to the bit, the
+// principal ones to round-off (the same formula in another order of operations); and k_N, k_T
+// are those of the law, dP/d(delta) and 8G* a_T, where the contact was not peeling. Each lane
+// has its own branch length and its normal from the path; the steps and the setup pass.
+TEST_P(BatchLaw, ShearedCellTallyIsTheAffineStiffnessSums)
+{
+  const Isa isa = GetParam();
+  const std::vector<unsigned> seeds = six_paths_and_ten_more(51);
+  const int n = static_cast<int>(seeds.size());
+  std::vector<RandomPath> paths;
+  paths.reserve(n);
+  for (unsigned seed : seeds) paths.emplace_back(0.3, 0.6, seed);
+  const tycore::PairCoefficients& c = paths[0].c;
+  const tycore::PairConstants k = tycore::pair_constants(c);
+  tycore::BatchParameters p;
+  p.dt = kDt;
+  p.tally = true;
+  auto b = std::make_unique<ContactBatch>();
+  std::vector<tycore::ContactHistory> h(n);
+  for (int i = 0; i < n; ++i) h[i] = paths[i].first_touch();
+  using Sums = tycore::AffineStiffnessSums;
+  int checked = 0;
+  for (int step = 0; step < 400; ++step) {
+    std::vector<Eigen::Vector3d> branch(n);
+    for (int i = 0; i < n; ++i) {
+      const contact_paths::Step s = paths[i].next();
+      set_lane(*b, i, s, paths[i].R, h[i]);
+      branch[i] = (2e-4 * (1.0 + 0.05 * i) - s.delta) * s.n;    // x_i - x_j, along n
+      b->rsq[i] = branch[i].squaredNorm();
+    }
+    const bool setup = step % 50 == 7;    // now and then the setup pass (k_T not the law's)
+    if (setup) tycore::forces_without_step<true, false>(*b, n, k, p);
+    else tycore::advance_batch<true, false>(*b, n, k, p, isa);
+    for (int i = 0; i < n; ++i) {
+      SCOPED_TRACE(::testing::Message() << tycore::isa_name(isa) << " lane " << i << " step "
+                                        << step << (setup ? " (setup)" : ""));
+      if (b->broken[i] != 0.0) {
+        h[i] = tycore::stored_history(*b, i);
+        continue;
+      }
+      const double k_N = b->normal_stiffness[i], k_T = b->tangential_stiffness[i];
+      const double a = b->contact_radius[i], P = b->P[i], R = b->R[i];
+      ASSERT_NEAR(k_N, tycore::jkr::normal_stiffness(a, R, c.E_star, c.Gamma),
+                  1e-12 * std::abs(k_N));
+      if (h[i].peeling == 0.0 || setup) {
+        const double a_T = tycore::micro_slip_radius(R, c.E_star, P + 2.0 * paths[i].Pc);
+        ASSERT_NEAR(k_T, 8.0 * c.G_star * a_T, 1e-12 * k_T);
+      }
+      // the pair's 21 entries of this contact
+      Sums pair;
+      for (int m = 0; m < Sums::principal_size; ++m) pair.sum[m] = b->affine_stiffness[m][i];
+      Sums::shear_entries(branch[i], k_N, k_T, &pair.sum[Sums::principal_size]);
+      Sums expected;
+      expected.add_contact(branch[i], k_N, k_T);
+      const double scale = b->rsq[i] * (std::abs(k_N) + k_T);
+      for (int m = 0; m < Sums::principal_size; ++m)
+        ASSERT_NEAR(pair.sum[m], expected.sum[m], 1e-14 * scale) << "entry " << m;
+      for (int m = Sums::principal_size; m < Sums::size; ++m)
+        ASSERT_EQ(pair.sum[m], expected.sum[m]) << "entry " << m;
+      ++checked;
+      if (!setup) h[i] = tycore::stored_history(*b, i);
+    }
+  }
+  EXPECT_GT(checked, 4000);
 }
 
 // First touch (JKR snap-on: begin_contact at the closed-form radius, docs/theory.md §1.3) and
