@@ -371,13 +371,15 @@ def rotation(table, label, out, alpha, psi, principal, commanded=None, about=Non
     """Principal stress rotation: the non-coaxiality ψ = θσ − θε̇ against the rotation angle
     α (the major stress direction, unwrapped), and the principal stresses against α."""
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(12, 4.8))
-    a1.plot(alpha, psi, lw=0.9, label=label)
+    # points, not a line: the measured angle steps back and forth with the servo's error
+    a1.plot(alpha, psi, ".", ms=3, label=label)
     a1.axhline(0.0, color="0.6", lw=0.6)
     a1.set(xlabel="rotation angle α of σ1 [°]", ylabel="non-coaxiality ψ = θσ − θε̇ [°]",
            title="Non-coaxiality")
     a1.set_ylim(-90, 90)
-    for k, name in enumerate(("σ1 (major)", "σ2 (intermediate)", "σ3 (minor)")):
-        a2.plot(alpha, principal[:, k] * KPA, ls=record_style(k), label=name)
+    for k, (name, marker) in enumerate(zip(("σ1 (major)", "σ2 (intermediate)", "σ3 (minor)"),
+                                           ".xs")):
+        a2.plot(alpha, principal[:, k] * KPA, marker, ms=3, mfc="none", label=name)
     if commanded is not None:
         for k in range(3):
             a2.axhline(commanded[k] * KPA, color="0.5", lw=0.6, ls=":")
