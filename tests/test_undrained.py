@@ -26,7 +26,7 @@ import os
 import numpy as np
 import pytest
 
-from test_decks import _env, _lmp_cmd, cli, read_csv, run_deck, specimens  # noqa: F401
+from test_decks import cli, read_csv, run_deck, specimens  # noqa: F401
 
 STRAIN = 0.04           # |eps1| at the end of the CI runs
 # sigma2 = sigma3: the servo removes the fraction g = 0.25 of an error per step and the
