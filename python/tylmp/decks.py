@@ -75,6 +75,19 @@ NUMBERS = {
     "prep_gamma": (False, 0.0, "the interface energy during the preparation, J/m2"),
     "sigma_n": (False, 0.0, "the normal stress of simple shear, Pa", True),
     "csr": (False, 0.0, "the cyclic stress ratio tau_cyc/sigma_n0", True),
+    # principal stress rotation (rotation.in)
+    "rotation_p": (False, 0.0, "the mean stress p held during the rotation, Pa", True),
+    "rotation_dev": (False, 0.0, "the deviator stress sigma1 - sigma3 held during the rotation, "
+                                 "Pa"),
+    "servo_gain": (False, 0.0, "the fraction of the stress error the servo removes per step",
+                   True),
+    "rotation_b": (False, 0.0, "the intermediate principal stress ratio b = (sigma2 - "
+                               "sigma3)/(sigma1 - sigma3) held during the rotation (0 to 1)"),
+    "rotation_rate": (False, 0.0, "the rotation rate of the major principal stress, degree/s",
+                      True),
+    "rotation_turn": (False, 0.0, "the total rotation of the major principal stress, degrees",
+                      True),
+    "ramp": (False, 0.0, "the deviator strain rate of the ramp to (p, q, b), 1/s", True),
 }
 
 # fragments whose text (comments and blank lines dropped) is part of the specimen key: the

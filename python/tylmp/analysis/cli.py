@@ -14,6 +14,7 @@ from . import invariants as inv
 from . import io, metrics, paper
 from . import micromechanics as micro
 from . import fidelity, reproduce
+from . import principal
 
 
 def _g(x):
@@ -248,6 +249,49 @@ def cmd_pq(a):
     _wrote(figures.p_q(tables, labels, a.out, M, about=_about(a)))
 
 
+def cmd_undrained(a):
+    """Undrained triaxial records against the drained critical state (docs/theory.md §13)."""
+    tables = _read_all(a.files)
+    labels = _labels(a.files, a.labels)
+    drained = _read_all(a.drained) if a.drained else []
+    drained_labels = _labels(a.drained, None) if a.drained else []
+    csl = principal.critical_state_line(drained) if drained else None
+    if csl:
+        _kv("drained critical state", [("M", csl["M"]), ("p_kPa", csl["p_ref"] * 1e-3),
+                                       ("e_cs", csl["e_ref"]), ("lambda", csl["lam"])])
+    for t, lab in zip(tables, labels):
+        s = principal.undrained_summary(t)
+        pairs = [("p_start_kPa", s["p_start"] * 1e-3), ("p_end_kPa", s["p_end"] * 1e-3),
+                 ("q_end_kPa", s["q_end"] * 1e-3), ("q_over_p_end", s["q_over_p_end"]),
+                 ("e", s["e_end"]), ("eps_v_max_abs", s["eps_v_max_abs"]),
+                 ("max_sig2_minus_sig3_over_p", s["lateral_diff_over_p_max"])]
+        if csl:
+            pairs.append(("e_minus_e_cs", s["e_end"] - csl["e_ref"]))
+        _kv(lab, pairs)
+    _wrote(figures.undrained(tables, labels, a.out, drained, drained_labels, csl,
+                             about=_about(a)))
+
+
+def cmd_rotation(a):
+    """Principal stress rotation: non-coaxiality and principal stresses against the angle."""
+    t = _read_all(a.files)[0]
+    label = _labels(a.files[:1], a.labels)[0]
+    i, j = principal.plane_indices(a.plane)
+    sigma = principal.stress_tensor(t)
+    values = principal.principal_values(sigma)
+    alpha = principal.unwrapped_angle_deg(principal.major_angle_deg(sigma, i, j))
+    psi = principal.noncoaxiality_deg(t, a.plane)
+    s = principal.rotation_summary(t, a.plane)
+    _kv(label, [(k, v) for k, v in s.items()])
+    commanded = None
+    if a.target:
+        p, dev, b = a.target
+        s1 = p + (2.0 - b) * dev / 3.0
+        s3 = p - (1.0 + b) * dev / 3.0
+        commanded = (s1, s3 + b * (s1 - s3), s3)
+    _wrote(figures.rotation(t, label, a.out, alpha, psi, values, commanded, about=_about(a)))
+
+
 def cmd_prestrain(a):
     """q at the pre-strain amplitude under each deviatoric strain measure (docs/fidelity.md)."""
     q_paper = compare.PAPER["prestrain_q_kPa"][0]
@@ -426,6 +470,17 @@ def build_parser():
     files_cmd("cyclic", cmd_cyclic, "cyclic axisymmetric test: q and εv against ε1 − ε3")
     files_cmd("pq", cmd_pq, "q = √(3J2) against p with the critical-state line q = M p (M: "
               "mean q/p of the last 10 %% of the rows)")
+    p = files_cmd("undrained", cmd_undrained, "undrained (constant-volume) triaxial test: "
+                  "p–q with the drained critical-state line, and e–log p")
+    p.add_argument("--drained", nargs="+", help="drained records (inputs/axisym.in) whose last "
+                   "10 %% of rows give the critical state")
+    p = files_cmd("rotation", cmd_rotation, "principal stress rotation: non-coaxiality and "
+                  "principal stresses against the rotation angle of σ1 (first file)")
+    p.add_argument("--plane", choices=("xz", "xy", "yz"), default="xz",
+                   help="the rotation plane of the test (xz)")
+    p.add_argument("--target", type=float, nargs=3, metavar=("P", "D", "B"),
+                   help="the held p and deviator stress σ1 − σ3 [Pa] and b (fix cell/servo "
+                        "rotation's P Q B), drawn as the principal-stress targets")
     p = files_cmd("friction", cmd_friction, "Fig. 3: sinφ_max and sinφ_cv against μ")
     p.add_argument("--mu", type=float, nargs="+", help="μ of each file (default: from names like mu0.3)")
     p = files_cmd("radial", cmd_radial, "Figs 4-6: radial b tests, peak states on the Π plane")

@@ -321,6 +321,78 @@ def p_q(tables, labels, out, M, about=None):
     return save_figure(fig, out)
 
 
+def undrained(tables, labels, out, drained=(), drained_labels=(), csl=None, about=None):
+    """Undrained (constant-volume) triaxial records: the stress path in the p–q plane with the
+    drained critical-state line q = M p, and the path in e–log p with the drained records and
+    their critical states (csl: principal.critical_state_line of the drained records)."""
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(12, 5))
+    pmax = 0.0
+    for k, (t, lab) in enumerate(zip(drained, drained_labels)):
+        style = dict(color="0.6", lw=0.9, ls=record_style(k), label=f"drained: {lab}")
+        a1.plot(np.asarray(t["p"]) * KPA, np.asarray(t["q"]) * KPA, **style)
+        a2.plot(np.asarray(t["p"]) * KPA, t["void_ratio"], **style)
+    for k, (t, lab) in enumerate(zip(tables, labels)):
+        p = np.asarray(t["p"]) * KPA
+        a1.plot(p, np.asarray(t["q"]) * KPA, ls=record_style(k), label=lab)
+        a2.plot(p, t["void_ratio"], ls=record_style(k), label=lab)
+        a2.plot(p[-1:], np.asarray(t["void_ratio"])[-1:], "o", ms=5, color=a2.lines[-1].get_color())
+        pmax = max(pmax, float(np.nanmax(p)))
+    if csl is not None:
+        ps = np.array([0.0, 1.1 * pmax])
+        a1.plot(ps, csl["M"] * ps, color="k", lw=0.9, ls=(0, (6, 2, 1, 2)),
+                label=f"drained critical state q = M p, M = {csl['M']:.3f}")
+        for s in csl["states"]:
+            a2.plot([s["p"] * KPA], [s["e"]], "s", **dict(PAPER_STYLE, color="k"))
+        a2.plot([], [], "s", **dict(PAPER_STYLE, color="k"),
+                label="drained critical states (mean of the last 10 %)")
+        lo, hi = a2.get_xlim()
+        if csl["lam"] is not None:
+            pl = np.geomspace(max(lo, 1e-6), hi, 50)
+            a2.plot(pl, csl["e_ref"] - csl["lam"] * np.log(pl / (csl["p_ref"] * KPA)), color="k",
+                    lw=0.9, ls=(0, (6, 2, 1, 2)), label=f"critical-state line, λ = {csl['lam']:.3g}")
+        else:
+            a2.axhline(csl["e_ref"], color="k", lw=0.9, ls=(0, (6, 2, 1, 2)),
+                       label=f"e_cs = {csl['e_ref']:.3f} at p = {csl['p_ref'] * KPA:.0f} kPa "
+                             "(one p: slope not given by the drained tests)")
+    a1.set(xlabel="mean stress p [kPa]", ylabel="q = √(3J2) [kPa]",
+           title="Undrained stress path, p–q plane")
+    a1.set_xlim(left=0)
+    a1.set_ylim(bottom=0)
+    a2.set_xscale("log")
+    a2.set(xlabel="mean stress p [kPa] (log)", ylabel="void ratio e", title="e–log p")
+    for a in (a1, a2):
+        a.grid(alpha=0.3, which="both")
+        legend(a, fontsize=7)
+    caption(fig, tables, about)
+    return save_figure(fig, out)
+
+
+def rotation(table, label, out, alpha, psi, principal, commanded=None, about=None):
+    """Principal stress rotation: the non-coaxiality ψ = θσ − θε̇ against the rotation angle
+    α (the major stress direction, unwrapped), and the principal stresses against α."""
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(12, 4.8))
+    # points, not a line: the measured angle steps back and forth with the servo's error
+    a1.plot(alpha, psi, ".", ms=3, label=label)
+    a1.axhline(0.0, color="0.6", lw=0.6)
+    a1.set(xlabel="rotation angle α of σ1 [°]", ylabel="non-coaxiality ψ = θσ − θε̇ [°]",
+           title="Non-coaxiality")
+    a1.set_ylim(-90, 90)
+    for k, (name, marker) in enumerate(zip(("σ1 (major)", "σ2 (intermediate)", "σ3 (minor)"),
+                                           ".xs")):
+        a2.plot(alpha, principal[:, k] * KPA, marker, ms=3, mfc="none", label=name)
+    if commanded is not None:
+        for k in range(3):
+            a2.axhline(commanded[k] * KPA, color="0.5", lw=0.6, ls=":")
+        a2.plot([], [], color="0.5", lw=0.6, ls=":", label="targets")
+    a2.set(xlabel="rotation angle α of σ1 [°]", ylabel="principal stress [kPa]",
+           title="Principal stresses")
+    for a in (a1, a2):
+        a.grid(alpha=0.3)
+        legend(a, fontsize=7)
+    caption(fig, [table], about)
+    return save_figure(fig, out)
+
+
 def two_spheres(overlap, force, out, curves=(), xlabel="overlap", ylabel="normal force"):
     """Normal force against overlap (µm, mN); `curves` = list of (label, overlap, force)."""
     fig, ax = plt.subplots(figsize=(6, 4.5))
