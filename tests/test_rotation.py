@@ -90,7 +90,7 @@ def test_noncoaxiality_equals_recomputation(record):
     assert np.max(np.abs(wrap(t["rate_angle"][ok] - theta_r[ok]))) < 1e-4
     assert np.max(np.abs(wrap(t["noncoaxiality"][ok] - psi[ok]))) < 1e-4
     # and the analysis package's own recomputation agrees
-    from tyanalysis import io, principal
+    from tylmp.analysis import io, principal
     table = io.Table(t)
     assert np.max(np.abs(wrap(principal.noncoaxiality_deg(table, "xz")[ok] - psi[ok]))) < 1e-9
 

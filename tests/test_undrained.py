@@ -131,7 +131,7 @@ def test_loose_undrained_ends_on_drained_critical_state_line(tmp_path_factory, s
     The dense specimen (e0 = 0.526, 0.12 below the drained e_cs) is not asserted: at constant
     volume it could reach the critical state only by compressing the grains, and its p grows
     a hundredfold by eps1 = 4 % (docs/validation.md)."""
-    from tyanalysis import io, principal
+    from tylmp.analysis import io, principal
     drained = []
     for s in ("dense", "loose"):
         work, _ = run_deck(tmp_path_factory, specimens, "axisym",
