@@ -75,6 +75,9 @@ NUMBERS = {
     "prep_gamma": (False, 0.0, "the interface energy during the preparation, J/m2"),
     "sigma_n": (False, 0.0, "the normal stress of simple shear, Pa", True),
     "csr": (False, 0.0, "the cyclic stress ratio tau_cyc/sigma_n0", True),
+    "ru_limit": (False, 0.0, "the liquefaction criterion on r_u (at most 1)", True, 1.0 + 1e-12),
+    "da_limit": (False, 0.0, "the liquefaction criterion on the double amplitude gamma", True),
+    "gamma_max": (False, 0.0, "the |gamma| at which a cyclic test ends", True),
 }
 
 # fragments whose text (comments and blank lines dropped) is part of the specimen key: the
