@@ -468,3 +468,26 @@ def test_one_and_two_ranks_agree_over_a_short_run(flipped):
     diff = stress_difference(t, ref, rows)
     print("2 ranks against 1: difference first above", first_above(diff), "steps")
     assert np.max(diff[:TWO_RANK_STEPS + 1]) < 1e-9
+
+
+def test_analysis_of_a_hand_made_cyclic_record():
+    """tyanalysis.shear on a record written by hand: three half cycles of 4 rows, the count
+    growing at the rows after the reversals; the double amplitude is measured from gamma at the
+    last row of the half cycle before, and r_u's first crossing gives its half cycle's N."""
+    from tyanalysis import io, shear
+    gamma = [0.0, 0.01, 0.02, 0.03, 0.02, 0.0, -0.01, -0.02, -0.01, 0.0, 0.02, 0.04]
+    cycles = [0.5] * 4 + [1.0] * 4 + [1.5] * 4
+    r_u = [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.96, 0.9, 0.97, 0.99]
+    t = io.Table({"time": np.arange(12.0), "gamma": gamma, "cycles": cycles, "r_u": r_u,
+                  "tau": np.zeros(12), "sig_n": np.ones(12), "tau_ratio": np.zeros(12)})
+    assert shear.kind(t) == "cyclic"
+    assert list(shear.half_cycle_starts(t)) == [4, 8]
+    # |gamma - gamma_rev|: 0.03 at row 3 (< 0.0375), 0.04 at row 6 (gamma_rev = 0.03), and
+    # with the limit 0.06 first at row 11 (0.04 - (-0.02), gamma_rev = gamma of row 7)
+    assert shear.liquefaction_rows(t) == (8, 6)
+    assert shear.liquefaction_from_record(t) == (1.5, 1.0)
+    assert shear.liquefaction_from_record(t, ru_limit=0.45, da_limit=0.06) == (1.0, 1.5)
+    n = shear.continuous_cycles(t)
+    assert n[0] == 0.0 and n[4] == 0.5 and n[8] == 1.0 and n[-1] == 1.5
+    assert np.all(np.diff(n) > 0)
+    assert shear.shear_rate(t) == pytest.approx(0.01)
