@@ -139,6 +139,20 @@ def test_decks_run_from_any_directory(tmp_path_factory, specimens, deck, variabl
     assert rc != 0 and "ERROR: -var shear_plane zx" in out
 
 
+@pytest.mark.parametrize("name,value,message", [
+    ("csr", "0", "must be above 0; csr is the cyclic stress ratio"),
+    ("ru_limit", "1.5", "must be below 1; ru_limit is the liquefaction criterion on r_u"),
+    ("da_limit", "nan", "not a finite number; da_limit is the liquefaction criterion"),
+    ("gamma_max", "-1", "must be above 0; gamma_max is the |gamma| at which a cyclic test ends"),
+    ("drainage", "undrained", "unknown value; drainage is one of drained, constant_volume")])
+def test_cyclic_deck_bad_option_is_an_error(tmp_path, name, value, message):
+    os.symlink(os.path.join(REPO, "inputs"), tmp_path / "inputs")
+    rc, out = test_decks._run("inputs/cyclic_simple_shear.in", tmp_path, {name: value})
+    assert rc != 0
+    assert f"ERROR: -var {name} {value}: {message}" in out
+    assert not (tmp_path / "tylmp_specimens").exists()      # nothing prepared
+
+
 # ---------------------------------------------------------------------------------------------
 # cyclic constant-volume simple shear (inputs/cyclic_simple_shear.in)
 
