@@ -4,8 +4,9 @@ docs/theory.md §10-13) on the decks' quick 500-sphere specimens:
   drained        inputs/simple_shear.in on the dense and the loose specimen: sigma_n held,
                  the dense specimen stronger and dilating, the loose one weaker and dilating
                  less; `tyanalysis shear` draws both
-  constant volume  the volume constant to 1e-9 relative over a cyclic test, and r_u recomputed
-                 from the record's own sigma_n
+  constant volume  the volume constant to 1e-9 relative (simple_shear.in -var drainage
+                 constant_volume and over a cyclic test), and r_u recomputed from the record's
+                 own sigma_n
   cyclic         inputs/cyclic_simple_shear.in with a row every step: the reversals at
                  tau = +-CSR sigma_n0, the cycle count and N_L by both criteria recomputed by an
                  independent state machine; a small amplitude does not liquefy within the
@@ -14,31 +15,26 @@ docs/theory.md §10-13) on the decks' quick 500-sphere specimens:
   tilt flips     gamma counts across flips, the stress of a flipped cell equals that of the
                  unflipped one, a restart written right after a flip resumes the run, and 1 and
                  2 ranks agree over a short run
+  decks          both run by absolute path from any directory; bad options are errors
+  analysis       tyanalysis.shear on a hand-made record
 
 The decks run as a user runs them (lmp -in inputs/NAME.in from a directory holding inputs/),
-with the specimens prepared once per session (tests/test_decks.py's fixture). LAMMPS 29 Sep
-2021 for every test; the deck tests also on 4 Feb 2025 (scripts/lammps2025.sh).
+with the specimens prepared once per session (tests/test_decks.py's fixture); the flip and
+objectivity tests run decks of their own from the dense specimen. About 1.5-3 minutes
+(2 cores); every test passes on LAMMPS 29 Sep 2021 and on 4 Feb 2025 (scripts/lammps2025.sh).
 """
 import os
 import re
-import subprocess
 
 import numpy as np
 import pytest
 
 import test_decks
-from test_decks import RUNTIMES, cli, read_csv, run_deck, specimens  # noqa: F401 (fixture)
+from test_decks import cli, read_csv, run_deck, specimens  # noqa: F401 (fixture)
 from lmprun import LOAD_TYLMP, run_ok
 
 REPO = test_decks.REPO
 SIGMA_N = 1e5
-VERSION_2021 = "29 Sep 2021"
-
-
-def lammps_version():
-    out = subprocess.run(["lmp", "-h"], capture_output=True, text=True).stdout
-    m = re.search(r"Large-scale Atomic/Molecular Massively Parallel Simulator - (.+)", out)
-    return m.group(1).strip() if m else ""
 
 
 # ---------------------------------------------------------------------------------------------
