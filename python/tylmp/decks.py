@@ -88,6 +88,10 @@ NUMBERS = {
     "rotation_turn": (False, 0.0, "the total rotation of the major principal stress, degrees",
                       True),
     "ramp": (False, 0.0, "the deviator strain rate of the ramp to (p, q, b), 1/s", True),
+    # cyclic simple shear (cyclic_simple_shear.in)
+    "ru_limit": (False, 0.0, "the liquefaction criterion on r_u (at most 1)", True, 1.0 + 1e-12),
+    "da_limit": (False, 0.0, "the liquefaction criterion on the double amplitude gamma", True),
+    "gamma_max": (False, 0.0, "the |gamma| at which a cyclic test ends", True),
 }
 
 # fragments whose text (comments and blank lines dropped) is part of the specimen key: the

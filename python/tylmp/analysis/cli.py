@@ -98,6 +98,41 @@ def cmd_cyclic(a):
     _wrote(figures.cyclic(tables, labels, a.out, about=_about(a)))
 
 
+def cmd_shear(a):
+    from . import shear
+    tables = _read_all(a.files)
+    labels = _labels(a.files, a.labels)
+    for t, lab in zip(tables, labels):
+        tau_peak, gamma_peak = shear.peak(t)
+        pairs = [("kind", shear.kind(t)), ("tau_ratio_peak", tau_peak),
+                 ("gamma_at_peak_pct", gamma_peak * 100), ("gamma_end_pct", float(t["gamma"][-1]) * 100),
+                 ("tau_ratio_end", float(t["tau_ratio"][-1])),
+                 ("sig_n_end_kPa", float(t["sig_n"][-1]) / 1e3)]
+        if shear.kind(t) == "drained":
+            pairs.append(("eps_v_end_pct", float(t["eps_v"][-1]) * 100))
+        else:
+            pairs.append(("r_u_end", float(t["r_u"][-1])))
+        _kv(lab, pairs)
+    _wrote(figures.shear(tables, labels, a.out, about=_about(a)))
+
+
+def cmd_cyclic_shear(a):
+    from . import shear
+    tables = _read_all(a.files)
+    labels = _labels(a.files, a.labels)
+    for t, lab in zip(tables, labels):
+        if shear.kind(t) != "cyclic":
+            raise ValueError(f"{t.path}: not a cyclic simple-shear record (no column 'cycles')")
+        fix_ru, fix_da = shear.liquefaction_reported(t)
+        rec_ru, rec_da = shear.liquefaction_from_record(t, a.ru_limit, a.da_limit)
+        _kv(lab, [("CSR", shear.cyclic_stress_ratio(t)), ("cycles", float(t["cycles"][-1])),
+                  ("r_u_max", float(np.max(t["r_u"]))),
+                  ("N_L_ru", fix_ru), ("N_L_gamma", fix_da),
+                  ("N_L_ru_record", rec_ru), ("N_L_gamma_record", rec_da)])
+    _wrote(figures.cyclic_shear(tables, labels, a.out, about=_about(a),
+                                limits=(a.ru_limit, a.da_limit)))
+
+
 def _mu_of(path):
     m = re.search(r"mu[_=-]?([0-9]+(?:\.[0-9]+)?)", os.path.basename(path))
     return float(m.group(1)) if m else None
@@ -468,6 +503,16 @@ def build_parser():
 
     files_cmd("axisym", cmd_axisym, "Figs 1-2: deviator stress, void ratio and volumetric strain vs ε1 − ε3")
     files_cmd("cyclic", cmd_cyclic, "cyclic axisymmetric test: q and εv against ε1 − ε3")
+    files_cmd("shear", cmd_shear, "simple shear: τ/σn and εv against γ (drained), or τ/σn "
+              "against γ, the stress path σn–τ and r_u against γ (constant volume)")
+    p = files_cmd("cyclic-shear", cmd_cyclic_shear, "cyclic constant-volume simple shear: r_u "
+              "against the number of cycles and the τ–γ loops, N_L by r_u ≥ 0.95 and by "
+              "double-amplitude γ ≥ 3.75 %% (the fix's, and recomputed from the record's rows: "
+              "N_L_ru_record, N_L_gamma_record)")
+    p.add_argument("--ru-limit", type=float, default=0.95,
+                   help="the r_u criterion of the test (the deck's -var ru_limit; 0.95)")
+    p.add_argument("--da-limit", type=float, default=0.0375,
+                   help="the double-amplitude γ criterion (the deck's -var da_limit; 0.0375)")
     files_cmd("pq", cmd_pq, "q = √(3J2) against p with the critical-state line q = M p (M: "
               "mean q/p of the last 10 %% of the rows)")
     p = files_cmd("undrained", cmd_undrained, "undrained (constant-volume) triaxial test: "

@@ -441,3 +441,105 @@ def micromechanics(x, xlabel, values, out, label=""):
     if label:
         fig.suptitle(label)
     return save_figure(fig, out)
+
+
+def shear_about_text(tables, n=None, specimen=None):
+    """The caption of a simple-shear figure: number of spheres, specimen and shear rates."""
+    from . import shear
+    rates = sorted({f"{shear.shear_rate(t):.2g}" for t in tables})
+    what = [f"N = {n} spheres" if n else "N not given (--n)",
+            f"specimen {specimen}" if specimen else "specimen not given (--specimen)",
+            f"shear rate |γ̇| = {', '.join(rates)} 1/s"]
+    return "; ".join(what)
+
+
+def _shear_caption(fig, tables, about):
+    fig.text(0.5, 0.003, shear_about_text(tables, *(about or (None, None))), ha="center",
+             va="bottom", fontsize=8, color="0.25")
+
+
+def _zero_lines(ax):
+    ax.axhline(0, color="0.8", lw=0.6, zorder=0)
+    ax.axvline(0, color="0.8", lw=0.6, zorder=0)
+    ax.grid(alpha=0.3)
+
+
+def shear(tables, labels, out, about=None):
+    """Monotonic simple shear (docs/theory.md §13): τ/σn against γ and, for drained records,
+    εv against γ; for constant-volume records the stress path σn–τ and r_u against γ. The
+    panels follow the first record's kind; records of the other kind are drawn where their
+    columns allow."""
+    from . import shear as sh
+    kinds = [sh.kind(t) for t in tables]
+    drained = kinds[0] == "drained"
+    if drained:
+        fig, (a1, a2) = plt.subplots(1, 2, figsize=(10, 4))
+        a3 = None
+    else:
+        fig, (a1, a2, a3) = plt.subplots(1, 3, figsize=(14, 4))
+    eps_v = []
+    for k, (t, lab) in enumerate(zip(tables, labels)):
+        ls = record_style(k)
+        g = t["gamma"] * PCT
+        a1.plot(g, t["tau_ratio"], lw=0.9, ls=ls, color="k", label=lab)
+        if drained:
+            a2.plot(g, t["eps_v"] * PCT, lw=0.9, ls=ls, color="k", label=lab)
+            eps_v.append(t["eps_v"] * PCT)
+        else:
+            a2.plot(t["sig_n"] * KPA, t["tau"] * KPA, lw=0.9, ls=ls, color="k", label=lab)
+            if "r_u" in t:
+                a3.plot(g, t["r_u"], lw=0.9, ls=ls, color="k", label=lab)
+    a1.set(xlabel="shear strain γ [%]", ylabel="stress ratio τ/σn",
+           title="Simple shear: " + ("drained (σn held)" if drained else "constant volume"))
+    if drained:
+        eps_v_limits(a2, np.concatenate(eps_v) if eps_v else [])
+        a2.set(xlabel="shear strain γ [%]", ylabel="volumetric strain εv [%] (compression +)",
+               title="Volumetric strain (εv < 0: dilation)")
+    else:
+        a2.set(xlabel="normal stress σn [kPa]", ylabel="shear stress τ [kPa]",
+               title="Stress path")
+        a2.set_xlim(left=0)
+        a3.set(xlabel="shear strain γ [%]", ylabel="r_u = 1 − σn/σn0",
+               title="Normal-stress ratio (pore pressure)")
+    for a in (a1, a2, a3):
+        if a is not None:
+            _zero_lines(a)
+            legend(a, fontsize=8)
+    _shear_caption(fig, tables, about)
+    return save_figure(fig, out)
+
+
+def cyclic_shear(tables, labels, out, about=None, n_l=None, limits=None):
+    """Cyclic constant-volume simple shear: r_u against the cycle count N (continuous within a
+    half cycle, shear.continuous_cycles) and the τ–γ loops, with N_L by r_u (circle) and by
+    double-amplitude γ (square) marked on both panels at the first row where
+    each criterion holds, labelled with the N_L of n_l (per record (N_L_ru, N_L_gamma); default
+    the fix's columns); limits = (r_u limit, double-amplitude limit), default 0.95 and 0.0375."""
+    from . import shear as sh
+    ru_limit, da_limit = limits or (sh.RU_LIMIT, sh.DA_LIMIT)
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4.3))
+    for k, (t, lab) in enumerate(zip(tables, labels)):
+        ls = record_style(k)
+        n = sh.continuous_cycles(t)
+        a1.plot(n, t["r_u"], lw=0.9, ls=ls, color="k", label=lab)
+        a2.plot(t["gamma"] * PCT, t["tau"] * KPA, lw=0.7, ls=ls, color="k", label=lab)
+        marks = n_l[k] if n_l else sh.liquefaction_reported(t)
+        rows = sh.liquefaction_rows(t, ru_limit, da_limit)
+        for value, r, marker, what in zip(marks, rows, ("o", "s"),
+                                          (f"N_L (r_u ≥ {ru_limit:g})",
+                                           f"N_L (double amplitude γ ≥ {da_limit * PCT:g} %)")):
+            if not value > 0 or r is None:
+                continue
+            style = dict(marker=marker, mfc="white", mec="k", ms=8, mew=1.3, ls="none",
+                         label=f"{what} = {value:g}")
+            a1.plot(n[r], t["r_u"][r], **style)
+            a2.plot(t["gamma"][r] * PCT, t["tau"][r] * KPA, **style)
+    a1.axhline(ru_limit, color="0.5", lw=0.7, ls=":")
+    a1.set(xlabel="number of cycles N", ylabel="r_u = 1 − σn/σn0",
+           title="Cyclic simple shear at constant volume")
+    a2.set(xlabel="shear strain γ [%]", ylabel="shear stress τ [kPa]", title="Stress–strain loops")
+    for a in (a1, a2):
+        _zero_lines(a)
+        legend(a, fontsize=8)
+    _shear_caption(fig, tables, about)
+    return save_figure(fig, out)
