@@ -296,7 +296,7 @@ def from_restart(restart, before=""):
 def permuted_data(path, source, perm):
     """A data file of the spheres of `source` with the axes permuted: new axis k is the old
     axis perm[k] (positions relative to the box's lower corner; velocities zero)."""
-    from tyanalysis import io
+    from tylmp.analysis import io
     from tylmp import specimen
     lo, hi, ids, diameters, positions = io.read_sphere_data(source)
     assert np.array_equal(ids, np.arange(1, len(ids) + 1))
@@ -484,7 +484,7 @@ def test_analysis_of_a_hand_made_cyclic_record():
     """tyanalysis.shear on a record written by hand: three half cycles of 4 rows, the count
     growing at the rows after the reversals; the double amplitude is measured from gamma at the
     last row of the half cycle before, and r_u's first crossing gives its half cycle's N."""
-    from tyanalysis import io, shear
+    from tylmp.analysis import io, shear
     gamma = [0.0, 0.01, 0.02, 0.03, 0.02, 0.0, -0.01, -0.02, -0.01, 0.0, 0.02, 0.04]
     cycles = [0.5] * 4 + [1.0] * 4 + [1.5] * 4
     r_u = [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.96, 0.9, 0.97, 0.99]

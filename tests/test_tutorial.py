@@ -101,7 +101,7 @@ def test_tutorial_simple_shear_reuses_the_specimen_and_holds_sigma_n(walked):
     with open(work / "steel_shear.png", "rb") as fh:
         assert fh.read(8) == b"\x89PNG\r\n\x1a\n"
     assert "steel_shear: kind=drained" in out[4]
-    from tyanalysis import io
+    from tylmp.analysis import io
     t = io.read_servo_csv(str(work / "steel_shear.csv"))
     assert t["gamma"][-1] >= 0.05
     after = t["gamma"] > 0.005
