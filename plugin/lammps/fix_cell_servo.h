@@ -202,6 +202,7 @@ class FixCellServo : public Fix {
   void parse_mode(int narg, char **arg, int &iarg);
   void parse_principal_mode(const std::string &name, int narg, char **arg, int &iarg);
   void parse_axes(int narg, char **arg, int &iarg);
+  void parse_axial_rate(const std::string &name, const char *text);
   void parse_cell_mode(const std::string &name, int narg, char **arg, int &iarg);
   bool needs_triclinic() const;    // the programme moves or holds a shear component
   void require_controllable();

@@ -86,6 +86,16 @@ FixCellServo::AxisInput FixCellServo::parse_value(const char *text, tycore::Axis
   return in;
 }
 
+// the axial strain rate of axisym and undrained: a number (non-zero) or a variable
+void FixCellServo::parse_axial_rate(const std::string &name, const char *text)
+{
+  major_input = parse_value(text, tycore::AxisControl::STRAIN_RATE, name + " axial strain rate");
+  major_rate = major_input.value;
+  if (major_input.variable.empty() && major_rate == 0.0)
+    error->all(FLERR, "fix cell/servo {}: axial strain rate must be non-zero (> 0 compression, "
+               "< 0 extension)", name);
+}
+
 void FixCellServo::parse_mode(int narg, char **arg, int &iarg)
 {
   const std::string name = arg[iarg++];
@@ -134,12 +144,7 @@ void FixCellServo::parse_principal_mode(const std::string &name, int narg, char 
     mode = Mode::AXISYM;
     need(3);
     major_axis = axis_arg();
-    major_input = parse_value(arg[iarg++], tycore::AxisControl::STRAIN_RATE,
-                              "axisym axial strain rate");
-    major_rate = major_input.value;
-    if (major_input.variable.empty() && major_rate == 0.0)
-      error->all(FLERR, "fix cell/servo axisym: axial strain rate must be non-zero (> 0 "
-                 "compression, < 0 extension)");
+    parse_axial_rate(name, arg[iarg++]);
     target_p = stress_arg("mean stress p");
   } else if (name == "constant_b") {
     mode = Mode::CONSTANT_B;
@@ -283,12 +288,7 @@ void FixCellServo::parse_cell_mode(const std::string &name, int narg, char **arg
     if (major_axis < 0)
       error->all(FLERR, "fix cell/servo undrained: axis '{}' is not x, y or z", arg[iarg]);
     ++iarg;
-    major_input = parse_value(arg[iarg++], tycore::AxisControl::STRAIN_RATE,
-                              "undrained axial strain rate");
-    major_rate = major_input.value;
-    if (major_input.variable.empty() && major_rate == 0.0)
-      error->all(FLERR, "fix cell/servo undrained: axial strain rate must be non-zero (> 0 "
-                 "compression, < 0 extension)");
+    parse_axial_rate(name, arg[iarg++]);
   } else {    // rotation
     mode = Mode::ROTATION;
     need(5);

@@ -84,18 +84,19 @@ def strain_rate(table):
     return float(np.median(de[ok] / dt[ok])) if np.any(ok) else float("nan")
 
 
-def about_text(tables, n=None, specimen=None):
-    """What the figure shows: number of spheres, specimen and the records' strain rates."""
-    rates = sorted({f"{strain_rate(t):.2g}" for t in tables})
+def about_text(tables, n=None, specimen=None, rate=None, rate_name="deviatoric strain rate ε̇_q"):
+    """What the figure shows: number of spheres, specimen and the records' strain rates (by
+    default the deviatoric strain rate; a simple-shear figure gives its shear rate)."""
+    rates = sorted({f"{(rate or strain_rate)(t):.2g}" for t in tables})
     what = [f"N = {n} spheres" if n else "N not given (--n)",
             f"specimen {specimen}" if specimen else "specimen not given (--specimen)",
-            f"deviatoric strain rate ε̇_q = {', '.join(rates)} 1/s"]
+            f"{rate_name} = {', '.join(rates)} 1/s"]
     return "; ".join(what)
 
 
-def caption(fig, tables, about):
+def caption(fig, tables, about, **rate):
     """Write the about_text line under the figure (about = (n, specimen))."""
-    fig.text(0.5, 0.003, about_text(tables, *(about or (None, None))), ha="center",
+    fig.text(0.5, 0.003, about_text(tables, *(about or (None, None)), **rate), ha="center",
              va="bottom", fontsize=8, color="0.25")
 
 
@@ -443,19 +444,9 @@ def micromechanics(x, xlabel, values, out, label=""):
     return save_figure(fig, out)
 
 
-def shear_about_text(tables, n=None, specimen=None):
-    """The caption of a simple-shear figure: number of spheres, specimen and shear rates."""
-    from . import shear
-    rates = sorted({f"{shear.shear_rate(t):.2g}" for t in tables})
-    what = [f"N = {n} spheres" if n else "N not given (--n)",
-            f"specimen {specimen}" if specimen else "specimen not given (--specimen)",
-            f"shear rate |γ̇| = {', '.join(rates)} 1/s"]
-    return "; ".join(what)
-
-
 def _shear_caption(fig, tables, about):
-    fig.text(0.5, 0.003, shear_about_text(tables, *(about or (None, None))), ha="center",
-             va="bottom", fontsize=8, color="0.25")
+    from . import shear
+    caption(fig, tables, about, rate=shear.shear_rate, rate_name="shear rate |γ̇|")
 
 
 def _zero_lines(ax):
