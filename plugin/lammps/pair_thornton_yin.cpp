@@ -20,7 +20,6 @@
 #include "domain.h"
 #include "error.h"
 #include "fix.h"
-#include "fix_dummy.h"
 #include "fix_neigh_history.h"
 #include "force.h"
 #include "math_const.h"
@@ -117,7 +116,7 @@ PairThorntonYin::PairThorntonYin(LAMMPS *lmp) : PairWithHistory(lmp)
 
   // placeholder keeps the history fix at the position of the pair_style command
   fix_history = nullptr;
-  fix_dummy = (FixDummy *) modify->add_fix(std::string(FIX_DUMMY_ID) + " all DUMMY");
+  modify->add_fix(std::string(FIX_DUMMY_ID) + " all DUMMY");
 }
 
 /* ---------------------------------------------------------------------- */

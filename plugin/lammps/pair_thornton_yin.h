@@ -88,7 +88,6 @@ class PairThorntonYin : public tylmp_compat::PairWithHistory, public CellTallySo
   tycore::Isa isa;                               // build of the batch law (settings)
   double *maxrad_type;                           // largest radius per type (init_style)
 
-  class FixDummy *fix_dummy;
   class FixNeighHistory *fix_history;
   int neighprev;
   double dt;
