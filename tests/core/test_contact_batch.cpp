@@ -250,16 +250,23 @@ TEST_P(BatchLaw, FrictionlessStepReleasesTheStoredEnergy)
   }
 }
 
+// the six named paths and ten random ones of a frictional adhesive pair (mu 0.3, Gamma 0.6)
+std::vector<RandomPath> frictional_adhesive_paths(unsigned first_seed)
+{
+  const std::vector<unsigned> seeds = six_paths_and_ten_more(first_seed);
+  std::vector<RandomPath> paths;
+  paths.reserve(seeds.size());
+  for (unsigned seed : seeds) paths.emplace_back(0.3, 0.6, seed);
+  return paths;
+}
+
 // Damping, tallies and energy on the adhesive paths, with relative velocities: the scalar
 // build against the formulas, every vector build against the scalar build to the bit.
 TEST_P(BatchLaw, DampingTalliesAndEnergyAsTheirFormulas)
 {
   const Isa isa = GetParam();
-  const std::vector<unsigned> seeds = six_paths_and_ten_more(31);
-  const int n = static_cast<int>(seeds.size());
-  std::vector<RandomPath> paths;
-  paths.reserve(n);
-  for (unsigned seed : seeds) paths.emplace_back(0.3, 0.6, seed);
+  std::vector<RandomPath> paths = frictional_adhesive_paths(31);
+  const int n = static_cast<int>(paths.size());
   const tycore::PairCoefficients& c = paths[0].c;
   const tycore::PairConstants k = tycore::pair_constants(c);
   tycore::BatchParameters p;
@@ -361,11 +368,8 @@ TEST_P(BatchLaw, DampingTalliesAndEnergyAsTheirFormulas)
 TEST_P(BatchLaw, ShearedCellTallyIsTheAffineStiffnessSums)
 {
   const Isa isa = GetParam();
-  const std::vector<unsigned> seeds = six_paths_and_ten_more(51);
-  const int n = static_cast<int>(seeds.size());
-  std::vector<RandomPath> paths;
-  paths.reserve(n);
-  for (unsigned seed : seeds) paths.emplace_back(0.3, 0.6, seed);
+  std::vector<RandomPath> paths = frictional_adhesive_paths(51);
+  const int n = static_cast<int>(paths.size());
   const tycore::PairCoefficients& c = paths[0].c;
   const tycore::PairConstants k = tycore::pair_constants(c);
   tycore::BatchParameters p;
