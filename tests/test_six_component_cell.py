@@ -16,7 +16,9 @@ def test_principal_programme_on_a_triclinic_cell_is_the_orthogonal_test(specimen
     orthogonal test to round-off. (The triclinic box bins and wraps atoms in its own
     coordinates, which changes the order of the force sums; that round-off grows chaotically,
     here from 2e-15 of eps2 at step 30 to 1e-12 at step 40 and 1.5e-6 at step 300, so the
-    comparison stops at step 60.)"""
+    comparison stops at step 60; under LAMMPS 4 Feb 2025 eps3 jumped from 1e-14 to 2.3e-11 (1.9e-8
+    of its largest value) between steps 30 and 35 and then fell back, so the bound is 1e-7 of
+    each quantity's largest value.)"""
     fix = f"fix c all cell/servo axisym x 1e-3 {P0} csv c.csv 5"
     ortho, tri = tmp_path / "ortho", tmp_path / "tri"
     ortho.mkdir(), tri.mkdir()
@@ -29,7 +31,7 @@ def test_principal_programme_on_a_triclinic_cell_is_the_orthogonal_test(specimen
     assert np.array_equal(a["step"], b["step"])
     for k in ("eps1", "eps2", "eps3", "sig1", "sig2", "sig3", "p", "q", "volume"):
         scale = np.abs(a[k]).max()
-        assert np.abs(a[k] - b[k]).max() <= 1e-8 * scale, k    # (the record has 12 digits)
+        assert np.abs(a[k] - b[k]).max() <= 1e-7 * scale, k
     # the principal values of the full stress bracket the axis stresses (a symmetric tensor's
     # diagonal lies within its eigenvalues), and p is the mean of either
     assert np.all(b["sig_major"] >= np.maximum(b["sig1"], np.maximum(b["sig2"], b["sig3"])) - 1e-6)
