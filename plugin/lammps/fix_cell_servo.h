@@ -245,7 +245,6 @@ class FixCellServo : public Fix {
   void define_named_variables();
   void delete_named_variables();
   static constexpr int SATURATION_WARN_STEPS = 1000;
-  double current_strain(int axis) const;
   Eigen::Vector3d principal_strain() const;
 };
 

@@ -59,15 +59,10 @@ Eigen::Matrix3d FixCellServo::cell_matrix() const
   return tycore::cell_matrix_from_lammps(domain->h);
 }
 
-// the natural strain of axis k from the reference edge (docs/theory.md §10.4)
-double FixCellServo::current_strain(int axis) const
-{
-  return -std::log(domain->prd[axis] / strain.reference_length(axis));
-}
-
+// the natural strains of the axes from the reference edges (docs/theory.md §10.4)
 Eigen::Vector3d FixCellServo::principal_strain() const
 {
-  return {current_strain(0), current_strain(1), current_strain(2)};
+  return strain.axial(cell_matrix());
 }
 
 tycore::CellMeasurementOf<6> FixCellServo::cell_measurement() const
@@ -84,8 +79,7 @@ tycore::CellMeasurementOf<6> FixCellServo::cell_measurement() const
     cell.stiffness.rightCols<3>() = full.rightCols<3>();
     cell.stiffness.bottomRows<3>() = full.bottomRows<3>();
   }
-  cell.strain.head<3>() = principal_strain();
-  cell.strain.tail<3>() = -strain.shear;
+  cell.strain = strain.voigt(cell_matrix());
   return cell;
 }
 

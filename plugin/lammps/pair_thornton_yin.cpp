@@ -876,8 +876,9 @@ void PairThorntonYin::begin_tallies()
 {
   if (tally_cell) {
     for (double &t : tallies.sum) t = 0.0;
-    for (auto &lanes : shear_lanes)
-      for (double &t : lanes) t = 0.0;
+    if (tally_cell == 2)
+      for (auto &lanes : shear_lanes)
+        for (double &t : lanes) t = 0.0;
     if (atom->nmax > nmax_count) {
       memory->destroy(atom_contacts);
       nmax_count = atom->nmax;
