@@ -74,6 +74,9 @@ NUMBERS = {
     "gamma": (False, 0.0, "the interface energy during shear, J/m2"),
     "prep_gamma": (False, 0.0, "the interface energy during the preparation, J/m2"),
     "sigma_n": (False, 0.0, "the normal stress of simple shear, Pa", True),
+    # the mean stress of the axisymmetric and undrained tests (common/settle.in consolidates)
+    "pressure": (False, 0.0, "the mean stress p of the test, Pa", True),
+    "consolidate_steps": (True, 1, "the most steps of the consolidation to -var pressure"),
     "csr": (False, 0.0, "the cyclic stress ratio tau_cyc/sigma_n0", True),
     # principal stress rotation (rotation.in)
     "rotation_p": (False, 0.0, "the mean stress p held during the rotation, Pa", True),

@@ -293,15 +293,21 @@ def cmd_undrained(a):
     csl = principal.critical_state_line(drained) if drained else None
     if csl:
         _kv("drained critical state", [("M", csl["M"]), ("p_kPa", csl["p_ref"] * 1e-3),
-                                       ("e_cs", csl["e_ref"]), ("lambda", csl["lam"])])
+                                       ("e_cs", csl["e_ref"]), ("lambda", csl["lam"]),
+                                       ("scatter_e", csl["scatter"])])
+        for s, lab in zip(csl["states"], drained_labels):
+            _kv(lab, [("p_kPa", s["p"] * 1e-3), ("e", s["e"]), ("M", s["M"])])
     for t, lab in zip(tables, labels):
         s = principal.undrained_summary(t)
         pairs = [("p_start_kPa", s["p_start"] * 1e-3), ("p_end_kPa", s["p_end"] * 1e-3),
+                 ("p_tail_kPa", s["p_tail"] * 1e-3),
                  ("q_end_kPa", s["q_end"] * 1e-3), ("q_over_p_end", s["q_over_p_end"]),
                  ("e", s["e_end"]), ("eps_v_max_abs", s["eps_v_max_abs"]),
                  ("max_sig2_minus_sig3_over_p", s["lateral_diff_over_p_max"])]
         if csl:
-            pairs.append(("e_minus_e_cs", s["e_end"] - csl["e_ref"]))
+            # the end state against the line at its own p (p_tail: the last 10 % of the rows)
+            e_cs = float(principal.critical_void_ratio(csl, s["p_tail"]))
+            pairs += [("e_cs_at_p_tail", e_cs), ("e_minus_e_cs", s["e_end"] - e_cs)]
         _kv(lab, pairs)
     _wrote(figures.undrained(tables, labels, a.out, drained, drained_labels, csl,
                              about=_about(a)))
@@ -517,8 +523,9 @@ def build_parser():
               "mean q/p of the last 10 %% of the rows)")
     p = files_cmd("undrained", cmd_undrained, "undrained (constant-volume) triaxial test: "
                   "p–q with the drained critical-state line, and e–log p")
-    p.add_argument("--drained", nargs="+", help="drained records (inputs/axisym.in) whose last "
-                   "10 %% of rows give the critical state")
+    p.add_argument("--drained", nargs="+", help="drained records (inputs/axisym.in, at one or "
+                   "several -var pressure) whose last 10 %% of rows give the critical states "
+                   "and, from two mean stresses on, the line e = Γ − λ ln p")
     p = files_cmd("rotation", cmd_rotation, "principal stress rotation: non-coaxiality and "
                   "principal stresses against the rotation angle of σ1 (first file)")
     p.add_argument("--plane", choices=("xz", "xy", "yz"), default="xz",

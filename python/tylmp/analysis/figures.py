@@ -9,7 +9,7 @@ import numpy as np  # noqa: E402
 
 from . import invariants as inv  # noqa: E402
 from . import paper  # noqa: E402
-from .metrics import derived, dilation_rate  # noqa: E402
+from .metrics import derived, dilation_rate, tail_mean  # noqa: E402
 
 KPA = 1e-3
 PCT = 100.0
@@ -336,7 +336,9 @@ def undrained(tables, labels, out, drained=(), drained_labels=(), csl=None, abou
         p = np.asarray(t["p"]) * KPA
         a1.plot(p, np.asarray(t["q"]) * KPA, ls=record_style(k), label=lab)
         a2.plot(p, t["void_ratio"], ls=record_style(k), label=lab)
-        a2.plot(p[-1:], np.asarray(t["void_ratio"])[-1:], "o", ms=5, color=a2.lines[-1].get_color())
+        # the end state: the mean p of the last 10 % of the rows at the record's (constant) e
+        a2.plot([tail_mean(p)], np.asarray(t["void_ratio"])[-1:], "o", ms=5,
+                color=a2.lines[-1].get_color())
         pmax = max(pmax, float(np.nanmax(p)))
     if csl is not None:
         ps = np.array([0.0, 1.1 * pmax])
@@ -349,8 +351,12 @@ def undrained(tables, labels, out, drained=(), drained_labels=(), csl=None, abou
         lo, hi = a2.get_xlim()
         if csl["lam"] is not None:
             pl = np.geomspace(max(lo, 1e-6), hi, 50)
+            scatter = ("" if csl.get("scatter") is None
+                       else f", scatter of e {csl['scatter']:.2g}")
             a2.plot(pl, csl["e_ref"] - csl["lam"] * np.log(pl / (csl["p_ref"] * KPA)), color="k",
-                    lw=0.9, ls=(0, (6, 2, 1, 2)), label=f"critical-state line, λ = {csl['lam']:.3g}")
+                    lw=0.9, ls=(0, (6, 2, 1, 2)),
+                    label=f"drained critical-state line e = Γ − λ ln p, λ = {csl['lam']:.3g}"
+                          f"{scatter}")
         else:
             a2.axhline(csl["e_ref"], color="k", lw=0.9, ls=(0, (6, 2, 1, 2)),
                        label=f"e_cs = {csl['e_ref']:.3f} at p = {csl['p_ref'] * KPA:.0f} kPa "

@@ -104,30 +104,45 @@ def critical_state(table):
 
 def critical_state_line(tables):
     """The drained records' critical states and the line through them in e–ln p:
-    e = e_ref - lam ln(p/p_ref). With one mean stress only (the decks' drained tests all run at
-    p = 100 kPa) the slope is not determined by them: lam is None and the line is the level
-    e_ref (the mean of their void ratios) at p_ref."""
+    e = e_ref - lam ln(p/p_ref), p_ref the geometric mean of their p (least squares in e).
+    With one mean stress only (the decks' drained tests at their default p = 100 kPa) the
+    slope is not determined by them: lam is None and the line is the level e_ref (the mean of
+    their void ratios) at p_ref. scatter: the standard deviation of the points' e about the
+    line (n - 2 degrees of freedom; None with fewer than three points on a line, or one p)."""
     states = [critical_state(t) for t in tables]
     p = np.array([s["p"] for s in states])
     e = np.array([s["e"] for s in states])
     M = float(np.mean([s["M"] for s in states]))
     p_ref = float(np.exp(np.mean(np.log(p))))
+    scatter = None
     if np.ptp(np.log(p)) > 0.1:
         lam, e_ref = np.polyfit(-np.log(p / p_ref), e, 1)
         lam = float(lam)
+        if len(e) > 2:
+            residual = e - (e_ref - lam * np.log(p / p_ref))
+            scatter = float(np.sqrt(np.sum(residual ** 2) / (len(e) - 2)))
     else:
         lam, e_ref = None, float(np.mean(e))
-    return {"M": M, "p_ref": p_ref, "e_ref": float(e_ref), "lam": lam, "states": states}
+    return {"M": M, "p_ref": p_ref, "e_ref": float(e_ref), "lam": lam, "scatter": scatter,
+            "states": states}
+
+
+def critical_void_ratio(csl, p):
+    """e on the critical-state line csl (critical_state_line) at mean stress p [Pa]."""
+    if csl["lam"] is None:
+        return csl["e_ref"] + 0.0 * np.asarray(p, float)
+    return csl["e_ref"] - csl["lam"] * np.log(np.asarray(p, float) / csl["p_ref"])
 
 
 def undrained_summary(table):
-    """Key numbers of an undrained record: start and end p, q, q/p, void ratio, the largest
-    |eps_v| and the largest |sig2 - sig3| relative to p (the lateral stresses along y and z)."""
+    """Key numbers of an undrained record: start and end p (last row; p_tail, the mean over the
+    last 10 % of the rows, the end state's p), q, q/p, void ratio, the largest |eps_v| and the
+    largest |sig2 - sig3| relative to p (the lateral stresses along y and z)."""
     p, q = np.asarray(table["p"], float), np.asarray(table["q"], float)
     e = np.asarray(table["void_ratio"], float)
     lateral = np.abs(np.asarray(table["sig2"], float) - np.asarray(table["sig3"], float))
-    return {"p_start": float(p[0]), "p_end": float(p[-1]), "q_end": float(q[-1]),
-            "q_over_p_end": float(metrics.tail_mean(q / p)),
+    return {"p_start": float(p[0]), "p_end": float(p[-1]), "p_tail": metrics.tail_mean(p),
+            "q_end": float(q[-1]), "q_over_p_end": float(metrics.tail_mean(q / p)),
             "p_min": float(p.min()), "p_max": float(p.max()),
             "e_start": float(e[0]), "e_end": float(e[-1]),
             "eps_v_max_abs": float(np.max(np.abs(table["eps_v"]))),
