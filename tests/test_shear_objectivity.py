@@ -101,7 +101,9 @@ def departure(t, ref, label):
         above = np.flatnonzero(diff > level)
         crossings[level] = ref["gamma"][above[0]] if above.size else np.inf
     print(f"{label} against xz: |delta(tau/sigma_n)|/max first above "
-          + ", ".join(f"{level:g} at gamma = {g * 100:.3g} %" for level, g in crossings.items()))
+          + ", ".join(f"{level:g} at gamma = {g * 100:.3g} %" if np.isfinite(g)
+                      else f"{level:g} not by gamma = {GAMMA_END * 100:g} %"
+                      for level, g in crossings.items()))
     return crossings[BOUND], n, diff
 
 
