@@ -44,6 +44,7 @@ CHOICES = {
     "drainage": ("drained", "constant_volume"),
     "shear_plane": ("xz", "xy", "yz"),
     "direction": ("compression", "extension"),
+    "after_liquefaction": ("continue", "stop"),
 }
 
 # -var distribution: a candidate of tylmp.specimen or a user's distribution string, checked by

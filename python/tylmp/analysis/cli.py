@@ -512,9 +512,9 @@ def build_parser():
     files_cmd("shear", cmd_shear, "simple shear: τ/σn and εv against γ (drained), or τ/σn "
               "against γ, the stress path σn–τ and r_u against γ (constant volume)")
     p = files_cmd("cyclic-shear", cmd_cyclic_shear, "cyclic constant-volume simple shear: r_u "
-              "against the number of cycles and the τ–γ loops, N_L by r_u ≥ 0.95 and by "
-              "double-amplitude γ ≥ 3.75 %% (the fix's, and recomputed from the record's rows: "
-              "N_L_ru_record, N_L_gamma_record)")
+              "against the number of cycles, the τ–γ loops and the stress path σn–τ, N_L by "
+              "r_u ≥ 0.95 and by double-amplitude γ ≥ 3.75 %% (the fix's, and recomputed from "
+              "the record's rows: N_L_ru_record, N_L_gamma_record)")
     p.add_argument("--ru-limit", type=float, default=0.95,
                    help="the r_u criterion of the test (the deck's -var ru_limit; 0.95)")
     p.add_argument("--da-limit", type=float, default=0.0375,

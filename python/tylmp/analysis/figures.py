@@ -508,18 +508,23 @@ def shear(tables, labels, out, about=None):
 
 def cyclic_shear(tables, labels, out, about=None, n_l=None, limits=None):
     """Cyclic constant-volume simple shear: r_u against the cycle count N (continuous within a
-    half cycle, shear.continuous_cycles) and the τ–γ loops, with N_L by r_u (circle) and by
-    double-amplitude γ (square) marked on both panels at the first row where
-    each criterion holds, labelled with the N_L of n_l (per record (N_L_ru, N_L_gamma); default
-    the fix's columns); limits = (r_u limit, double-amplitude limit), default 0.95 and 0.0375."""
+    half cycle, shear.continuous_cycles), the τ–γ loops and the stress path τ against σn, with
+    N_L by r_u (circle) and by double-amplitude γ (square) marked on every panel at the first
+    row where each criterion holds, labelled with the N_L of n_l (per record (N_L_ru,
+    N_L_gamma); default the fix's columns); limits = (r_u limit, double-amplitude limit),
+    default 0.95 and 0.0375. The path panel draws ±τ_cyc = ±CSR·σn0 as dotted lines."""
     from . import shear as sh
     ru_limit, da_limit = limits or (sh.RU_LIMIT, sh.DA_LIMIT)
-    fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4.3))
+    fig, (a1, a2, a3) = plt.subplots(1, 3, figsize=(15.5, 4.3))
     for k, (t, lab) in enumerate(zip(tables, labels)):
         ls = record_style(k)
         n = sh.continuous_cycles(t)
         a1.plot(n, t["r_u"], lw=0.9, ls=ls, color="k", label=lab)
         a2.plot(t["gamma"] * PCT, t["tau"] * KPA, lw=0.7, ls=ls, color="k", label=lab)
+        a3.plot(t["sig_n"] * KPA, t["tau"] * KPA, lw=0.7, ls=ls, color="k", label=lab)
+        amplitude = sh.cyclic_stress_ratio(t) * t["sig_n"][0] * KPA
+        for sign in ((1, -1) if np.isfinite(amplitude) else ()):
+            a3.axhline(sign * amplitude, color="0.5", lw=0.7, ls=":")
         marks = n_l[k] if n_l else sh.liquefaction_reported(t)
         rows = sh.liquefaction_rows(t, ru_limit, da_limit)
         for value, r, marker, what in zip(marks, rows, ("o", "s"),
@@ -531,11 +536,14 @@ def cyclic_shear(tables, labels, out, about=None, n_l=None, limits=None):
                          label=f"{what} = {value:g}")
             a1.plot(n[r], t["r_u"][r], **style)
             a2.plot(t["gamma"][r] * PCT, t["tau"][r] * KPA, **style)
+            a3.plot(t["sig_n"][r] * KPA, t["tau"][r] * KPA, **style)
     a1.axhline(ru_limit, color="0.5", lw=0.7, ls=":")
     a1.set(xlabel="number of cycles N", ylabel="r_u = 1 − σn/σn0",
            title="Cyclic simple shear at constant volume")
     a2.set(xlabel="shear strain γ [%]", ylabel="shear stress τ [kPa]", title="Stress–strain loops")
-    for a in (a1, a2):
+    a3.set(xlabel="normal stress σn [kPa]", ylabel="shear stress τ [kPa]", title="Stress path")
+    a3.set_xlim(left=0.0)
+    for a in (a1, a2, a3):
         _zero_lines(a)
         legend(a, fontsize=8)
     _shear_caption(fig, tables, about)
