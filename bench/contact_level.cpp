@@ -10,8 +10,9 @@
 // Part 1 - the JKR inversion delta -> a (docs/theory.md §1.4), glass pair E = 70 GPa, nu = 0.3
 // (E* = E/(2(1-nu^2))), R* = 0.065 mm (two 0.26 mm spheres), Gamma = 0.6 J/m^2, variants
 //   closed       jkr::contact_radius          closed form of the quartic (§1.4a)
-//   warm         jkr::contact_radius_warm     Newton in sqrt(a) from the previous step's radius
-//                                             (what evaluate_contact / pair thornton/yin use)
+//   warm         contact_radius_warm          Newton in sqrt(a) from the previous step's radius
+//                                             (below; what pair thornton/yin used before its
+//                                             law's Halley iteration)
 //   newton_warm  jkr::contact_radius_newton   safeguarded Newton in a, previous radius as guess
 //   newton_cold  jkr::contact_radius_newton   safeguarded Newton from the bracket midpoint
 // on three overlap paths:
@@ -42,7 +43,7 @@
 // spheres in absolute coordinates. Normal force from the core: Gamma = 0, Hertz via
 // jkr::contact_radius / jkr::normal_force; Gamma = 0.6, JKR as pair thornton/yin does it:
 // contact made at the first step with delta >= 0 (snap-on, closed form for a), a by
-// jkr::contact_radius_warm from the previous step's radius, contact broken at the first step
+// contact_radius_warm from the previous step's radius, contact broken at the first step
 // with delta < jkr::break_overlap (force 0 from that step on). The run ends once the contact has
 // broken. Each case is run for --phases start phases (the overlap at first touch is
 // V dt (1 - phi), phi = (k + 1/2)/phases) and the errors are averaged (mean of |error|) and
@@ -127,6 +128,42 @@ std::string fmt(const char* f, double x)
 // Part 1: the JKR inversion
 // ------------------------------------------------------------------------------------------
 
+// The warm-started Newton iteration in u = sqrt(a) that pair thornton/yin once used, kept here
+// as a variant of this benchmark (the pair's law, plugin/core/contact_law.hpp, now iterates
+// the same quartic by Halley steps):
+// stable-branch a(delta) warm-started from `guess` (the previous step's radius; <= 0: none):
+// Newton on the quartic in u = sqrt(a), f(u) = u^4/R* - c u - delta, c = 2 sqrt(pi Gamma/E*)
+// (docs/theory.md §1.4), no root or cube root per iteration. f is convex for u > 0 and increasing
+// on the stable branch, so from any start with f'(u) > 0 the iterates are >= the root after the
+// first step and decrease monotonically to it. Stop when the quadratic-convergence bound of the
+// error of the new iterate, 4 (f''/2f') step^2 = 24 u^2 step^2/(R* f'), is <= rel_tol u (a is
+// then good to 2 rel_tol + round-off). No usable guess (f' <= 0 there: below the break radius),
+// or no convergence within max_iterations (a large jump): the closed form.
+inline double contact_radius_warm(double delta, double R, double E, double Gamma, double guess,
+                                  int* iterations = nullptr, double rel_tol = 1e-14,
+                                  int max_iterations = 8)
+{
+  if (iterations) *iterations = 0;
+  if (Gamma == 0.0) return std::sqrt(R * std::max(delta, 0.0));
+  if (guess > 0.0) {
+    const double c = 2.0 * std::sqrt(jkr::pi * Gamma / E);
+    const double Rinv = 1.0 / R;
+    double u = std::sqrt(guess);
+    for (int k = 1; k <= max_iterations; ++k) {
+      const double u2 = u * u;
+      const double slope = 4.0 * u2 * u * Rinv - c;
+      if (!(slope > 0.0)) break;
+      const double step = (u2 * u2 * Rinv - c * u - delta) / slope;
+      u -= step;
+      if (24.0 * u2 * step * step <= rel_tol * u * R * slope) {
+        if (iterations) *iterations = k;
+        return u * u;
+      }
+    }
+  }
+  return jkr::contact_radius(delta, R, E, Gamma);
+}
+
 enum Variant { CLOSED = 0, WARM = 1, NEWTON_WARM = 2, NEWTON_COLD = 3, N_VARIANTS = 4 };
 const char* variant_name[N_VARIANTS] = {"closed", "warm", "newton_warm", "newton_cold"};
 
@@ -139,7 +176,7 @@ template <int V>
 inline double invert(const Inversion& c, double delta, double guess, int* it = nullptr)
 {
   if constexpr (V == CLOSED) return jkr::contact_radius(delta, c.R, c.E, c.Gamma);
-  if constexpr (V == WARM) return jkr::contact_radius_warm(delta, c.R, c.E, c.Gamma, guess, it);
+  if constexpr (V == WARM) return contact_radius_warm(delta, c.R, c.E, c.Gamma, guess, it);
   if constexpr (V == NEWTON_WARM)
     return jkr::contact_radius_newton(delta, c.R, c.E, c.Gamma, guess, it);
   if constexpr (V == NEWTON_COLD)
@@ -365,7 +402,7 @@ CollisionResult collide(const Sphere& s, double Gamma, double V, double dt, doub
     }
     ++in_contact;
     max_overlap = std::max(max_overlap, delta);
-    const double a = Gamma > 0.0 ? jkr::contact_radius_warm(delta, Rs, E_star, Gamma, radius)
+    const double a = Gamma > 0.0 ? contact_radius_warm(delta, Rs, E_star, Gamma, radius)
                                  : jkr::contact_radius(delta, Rs, E_star, Gamma);
     radius = a;
     return jkr::normal_force(a, Rs, E_star, Gamma);

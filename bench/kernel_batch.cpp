@@ -1,6 +1,6 @@
 // Kernel-level benchmark of the contact law (plugin/core/contact_law.hpp): ns per contact-step
-// of its scalar entry tycore::advance_contact called contact after contact, against the
-// reference law (rotate_history + evaluate_contact), and the batch entry tycore::advance_batch
+// of its scalar entry tycore::advance_contact called contact after contact, and the batch
+// entry tycore::advance_batch
 // (plugin/core/contact_batch.hpp) in each build this processor runs (scalar, sse2, avx2,
 // avx512), its structure-of-arrays batch filled from and written back to the contacts'
 // histories as a pair would. Pure C++, no LAMMPS, no memory traffic beyond the contacts' own
@@ -17,7 +17,6 @@
 // variant restarts from the same states; median of 201 timings of one sweep over all contacts.
 #include "contact_batch.hpp"
 #include "contact_kernel.hpp"
-#include "thornton_yin.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -86,22 +85,13 @@ void run_scene(const Scene& scene)
     return median(t);
   };
 
-  const double reference = time_sweep([&] {
-    for (int i = 0; i < kContacts; ++i) {
-      const Eigen::Vector3d nn(n[3 * i], n[3 * i + 1], n[3 * i + 2]);
-      const Eigen::Vector3d s(ds[3 * i], ds[3 * i + 1], ds[3 * i + 2]);
-      rotate_history(h[i], nn, twist[i]);
-      sink += evaluate_contact<Adhesive>(c, kR, delta[i], s, h[i], RESULT_FORCES).P;
-    }
-  });
   const double sequential = time_sweep([&] {
     double lost = 0.0;
     for (int i = 0; i < kContacts; ++i)
       sink += advance_contact<Adhesive>(k, kR, delta[i], &n[3 * i], twist[i], &ds[3 * i], h[i],
                                         lost).P;
   });
-  std::printf("%-28s reference %6.1f ns   fused, one contact at a time %6.1f ns", scene.name,
-              reference, sequential);
+  std::printf("%-28s fused, one contact at a time %6.1f ns", scene.name, sequential);
   std::printf("\n%-28s", "");
   // the batch entry: dt = 2 makes twist = spin_n and ds = -2 vt exact
   BatchParameters p;

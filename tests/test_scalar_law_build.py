@@ -1,17 +1,30 @@
 """A build without the contact law's SIMD builds: -DTYLMP_VECTOR_LAW=OFF gives what a compiler
 or architecture without them gets (plugin/core/contact_batch.hpp: TYCORE_VECTOR_BUILDS unset),
 the scalar instantiation of the law's one text (plugin/core/contact_law.hpp) alone. It must
-build, offer only the scalar build, and pass the core tests of the law: the batch entry
-against the reference law (thornton_yin.hpp) and the scalar entry on random paths through
-every branch (attached, snap-in, break, peeling, sliding, unload/reload), the setup pass, first
-touch and separation, damping and tallies against their formulas, and the cube root.
+build, offer only the scalar build, and pass the core tests of the law: the closed-form tests
+(Mindlin-Deresiewicz, Savkoor-Briggs, JKR, energy) through the scalar entry, the batch entry
+against the scalar entry on random paths through every branch (attached, snap-in, break,
+peeling, sliding, unload/reload), the setup pass, first touch and separation, damping and
+tallies against their formulas, and the cube root. And it must be the same law to the bit as
+every build of the default configuration: the digests of the outputs along those paths
+(tests/core/test_contact_batch.cpp, print_digest) equal those of the default build's
+core_tests (in TYLMP_BUILD_DIR), one per build this processor runs.
 Configured and built in a temporary directory (core_tests only, about a minute on 2 cores)."""
 import os
+import re
 import subprocess
 
-from conftest import REPO
+from conftest import BUILD, REPO
 
-LAW_TESTS = "ContactKernel*:*BatchLaw*:BatchForces*:BatchDispatch*:SimdCbrt*"
+LAW_TESTS = "Mindlin*:ThorntonYin*:JkrWarm*:*BatchLaw*:BatchForces*:BatchDispatch*:SimdCbrt*"
+DIGEST = re.compile(r"^law trajectory digest (\S+) (\S+) ([0-9a-f]{16})$", re.M)
+
+
+def run_law_tests(core_tests):
+    proc = subprocess.run([core_tests, f"--gtest_filter={LAW_TESTS}"], capture_output=True,
+                          text=True)
+    assert proc.returncode == 0 and "FAILED" not in proc.stdout, proc.stdout[-4000:]
+    return proc.stdout
 
 
 def test_core_law_tests_pass_without_simd_builds(tmp_path):
@@ -28,7 +41,15 @@ def test_core_law_tests_pass_without_simd_builds(tmp_path):
     builds = {line.split("/")[-1].split()[0] for line in listed.splitlines()
               if line.startswith("  ") and "/" in line}
     assert builds == {"scalar"}, listed
-    proc = subprocess.run([core_tests, f"--gtest_filter={LAW_TESTS}"], capture_output=True,
-                          text=True)
-    assert proc.returncode == 0 and "FAILED" not in proc.stdout, proc.stdout[-4000:]
-    assert "advance_batch uses scalar" in proc.stdout, proc.stdout[-4000:]
+    out = run_law_tests(core_tests)
+    assert "advance_batch uses scalar" in out, out[-4000:]
+
+    # the same law to the bit as every build of the default configuration
+    scalar_only = {(path, isa): digest for path, isa, digest in DIGEST.findall(out)}
+    assert {isa for _, isa in scalar_only} == {"scalar"}, out[-4000:]
+    paths = {path for path, _ in scalar_only}
+    assert paths == {"adhesive", "hertz", "frictionless", "frictionless-hertz"}, scalar_only
+    default = DIGEST.findall(run_law_tests(os.path.join(BUILD, "core_tests")))
+    assert {path for path, _, _ in default} == paths, default
+    for path, isa, digest in default:
+        assert digest == scalar_only[(path, "scalar")], (path, isa)

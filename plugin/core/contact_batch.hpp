@@ -15,8 +15,9 @@
 //    configured with -DTYLMP_VECTOR_LAW=OFF, have the scalar build alone.
 // Every build does the same arithmetic operation for operation (no fused multiply-add, the same
 // cube root bit for bit: simd_cbrt), so they agree to the last bit;
-// tests/core/test_contact_batch.cpp checks this on every ISA the machine has, and each against
-// the reference law (thornton_yin.hpp).
+// tests/core/test_contact_batch.cpp checks this on every ISA the machine has against the
+// scalar build and the scalar entry advance_contact, and tests/test_scalar_law_build.py the
+// build configured with -DTYLMP_VECTOR_LAW=OFF against this one.
 #ifndef TYCORE_CONTACT_BATCH_HPP
 #define TYCORE_CONTACT_BATCH_HPP
 
@@ -25,7 +26,6 @@
 #include "jkr.hpp"
 #include "mindlin_deresiewicz.hpp"
 #include "simd_math.hpp"
-#include "thornton_yin.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -225,7 +225,7 @@ inline void touch_or_break(ContactBatch& b, int n, const PairConstants& k)
       const double delta_break = Adhesive ? jkr::break_overlap(R, c.E_star, c.Gamma) : 0.0;
       if (delta < delta_break) {
         const ContactHistory h = stored_history(b, i);
-        double stored = tangential_energy(h);
+        double stored = h.stored_energy;
         if (Adhesive) {
           const double a_break = jkr::contact_radius(delta_break, R, c.E_star, c.Gamma);
           stored += jkr::stored_energy(a_break, R, c.E_star, c.Gamma);
@@ -300,7 +300,7 @@ template <bool Adhesive, bool Damped, bool Tally>
   b.moment[2][i] = gone ? 0.0 : nx * fs2 - ny * fs1;
   if (Tally) {
     // k_N = dP/d(delta) (jkr::normal_stiffness, docs/theory.md §1.5); k_T = 8 G* a_T(P + 2Pc),
-    // a_T the Hertz radius itself without adhesion (as evaluate_contact)
+    // a_T the Hertz radius itself without adhesion (as the law)
     const double rsq = b.rsq[i];
     const double s = std::sqrt(9.0 * jkr::pi * c.Gamma * R * R / (c.E_star * a * a * a));
     const double k_N = c.Gamma == 0.0 ? 2.0 * c.E_star * a
@@ -421,8 +421,8 @@ inline void advance_batch(ContactBatch& b, int n, const PairConstants& k, const 
 
 // The forces of contacts 0 .. n-1 without a step of their history: the setup pass of a run,
 // which recomputes the forces at unchanged positions. First touch and separation as in
-// advance_batch (touch_or_break); otherwise the history is kept: P and a at the overlap (warm
-// start from the kept radius), the kept T, damping and tallies as after a step, sliding judged
+// advance_batch (touch_or_break); otherwise the history is kept: P and a at the overlap by the
+// law (normal_contact: its iteration warm-started from the kept radius), the kept T, damping and tallies as after a step, sliding judged
 // under the mu in force now (slides_without_step, docs/theory.md §2). Nothing is dissipated
 // (dissipation, damping_dissipation and break_energy are 0): no step is taken. Scalar only,
 // once per run.
@@ -437,9 +437,9 @@ inline void forces_without_step(ContactBatch& b, int n, const PairConstants& k,
     const double R = b.R[i], delta = b.delta[i];
     double a = 0.0, P = 0.0;
     if (b.broken[i] == 0.0) {
-      a = Adhesive ? jkr::contact_radius_warm(delta, R, c.E_star, c.Gamma, h.radius)
-                   : std::sqrt(R * delta);
-      P = jkr::normal_force(a, R, c.E_star, c.Gamma);
+      const KernelResult normal = normal_contact<Adhesive>(k, R, delta, h.radius);
+      a = normal.contact_radius;
+      P = normal.P;
     }
     b.contact_radius[i] = a;
     b.P[i] = P;

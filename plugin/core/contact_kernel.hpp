@@ -2,16 +2,18 @@
 // one text (contact_law.hpp) at the lane type double: the history carried onto the new tangent
 // plane and twisted, the JKR radius (Halley rounds, the closed form where they fail), the
 // normal force and the tangential law. The batch entry (contact_batch.hpp) runs the same text
-// over the lanes of a batch; tests/core/test_contact_kernel.cpp takes every step of long random
-// contact paths (peeling, micro-slip reversals, sliding, tension, twist, a turning normal) from
-// the same state with this and with the reference (thornton_yin.hpp) and asserts the same
-// forces, memory and energies.
+// over the lanes of a batch; tests/core/test_contact_batch.cpp takes every step of long random
+// contact paths (snap-in, peeling, micro-slip reversals, sliding, tension, break, twist, a
+// turning normal) with this entry and with every build of the batch entry and asserts the same
+// bits; the tests of tests/core/test_mindlin_deresiewicz.cpp and test_thornton_yin.cpp drive
+// this entry against the closed forms of docs/theory.md.
 #ifndef TYCORE_CONTACT_KERNEL_HPP
 #define TYCORE_CONTACT_KERNEL_HPP
 
 #include "contact_law.hpp"
 #include "contact_types.hpp"
 #include "jkr.hpp"
+#include "mindlin_deresiewicz.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -61,8 +63,18 @@ inline ContactHistory history_of(const History<double>& h)
   return c;
 }
 
-// the whole law for one contact at V = double: carry, the later Halley rounds where pending,
-// the closed form where they found no radius, then the step; Rinv = 1/R
+// the JKR radius after halley_start at V = double: the later Halley rounds where pending, the
+// closed form where they found no radius
+inline void finish_radius(const PairConstants& k, double R, double Rinv, double delta,
+                          Carry<double>& w)
+{
+  for (int round = 3; round <= 6 && w.pending != 0.0; ++round)
+    halley_again(Rinv, delta, k.newton_c, round == 6, w);
+  if (w.a < 0.0) closed_form_radius(k.c, R, delta, w);
+}
+
+// the whole law for one contact at V = double: carry, the rest of the radius (finish_radius),
+// then the step; Rinv = 1/R
 template <bool Adhesive>
 inline Outputs<double> scalar_step(const PairConstants& k, double R, double Rinv, double delta,
                                    const double n[3], double twist, const double ds[3],
@@ -72,20 +84,42 @@ inline Outputs<double> scalar_step(const PairConstants& k, double R, double Rinv
   detail::twist_cos_sin(twist, c, s);
   Carry<double> w;
   carry<Adhesive>(k, n, c, s, twist != 0.0, Rinv, delta, h, w);
-  if (Adhesive) {
-    for (int round = 3; round <= 6 && w.pending != 0.0; ++round)
-      halley_again(Rinv, delta, k.newton_c, round == 6, w);
-    if (w.a < 0.0) closed_form_radius(k.c, R, delta, w);
-  }
+  if (Adhesive) finish_radius(k, R, Rinv, delta, w);
   return step<Adhesive, false>(k, R, Rinv, delta, ds, w, h);
 }
 
 }    // namespace law
 
+// The normal force and radius of the law at overlap delta without a step of the history (the
+// setup pass, forces_without_step): the law's radius (halley_start from `radius`, the previous
+// radius, <= 0: none; finish_radius) and normal_force
+template <bool Adhesive>
+inline KernelResult normal_contact(const PairConstants& k, double R, double delta, double radius)
+{
+  const double Rinv = 1.0 / R;
+  law::Carry<double> w{};
+  if (Adhesive) {
+    law::halley_start(k, Rinv, delta, radius, w);
+    law::finish_radius(k, R, Rinv, delta, w);
+  }
+  double a;
+  const double P = law::normal_force<Adhesive>(k, R, Rinv, delta, w, a);
+  return KernelResult{P, a};
+}
+
+// elastic energy stored in a contact of radius a: the JKR normal part (zero at first touch,
+// jkr::stored_energy, docs/theory.md §1.7) plus the tangential part carried in the history
+// (tangential work less frictional dissipation, §2.4)
+inline double contact_stored_energy(const PairCoefficients& c, double R, double a, double /*P*/,
+                                    const ContactHistory& h)
+{
+  return jkr::stored_energy(a, R, c.E_star, c.Gamma) + h.stored_energy;
+}
+
 // One contact, one step, after a previous step or begin_contact: the stored vectors are carried
-// onto the tangent plane of n and twisted by `twist` (rotate_history), then the normal force at
-// overlap delta and the tangential law for the increment ds (evaluate_contact with
-// RESULT_FORCES). Adds the frictional dissipation of the step to `dissipation`.
+// onto the tangent plane of n (magnitude kept) and twisted about n by the angle `twist`, then
+// the normal force at overlap delta and the tangential law for the increment ds (in the new
+// tangent plane). Adds the frictional dissipation of the step to `dissipation`.
 template <bool Adhesive>
 inline KernelResult advance_contact(const PairConstants& k, double R, double delta,
                                     const double n[3], double twist, const double ds[3],

@@ -13,8 +13,11 @@
 //    code once per instruction set (SSE2, AVX2, AVX-512 on x86-64; the baseline elsewhere).
 // The instantiations do the same arithmetic in the same order (no fused multiply-add, the same
 // cube root bit for bit: simd_cbrt), so they agree to the last bit; tests/core/
-// test_contact_batch.cpp compares every instantiation on every branch of the law, and
-// tests/core/test_contact_kernel.cpp the scalar one with the reference law (thornton_yin.hpp).
+// test_contact_batch.cpp compares every instantiation on every branch of the law (and
+// tests/test_scalar_law_build.py the build without the SIMD ones), and the closed-form tests of
+// the law (test_mindlin_deresiewicz.cpp, test_thornton_yin.cpp) drive the scalar entry. There
+// is no other copy of the law: the closed-form pieces it calls are in jkr.hpp and
+// mindlin_deresiewicz.hpp.
 // A lane type needs: + - * / and comparisons with doubles, masks combined by & | !,
 // lane_select, lane_max, lane_clamp, std::sqrt, std::abs and simd_cbrt (simd_math.hpp).
 #ifndef TYCORE_CONTACT_LAW_HPP
@@ -133,11 +136,39 @@ template <class V>
   return 4.0 * std::abs(0.25 * f2 * f2 - 4.0 * u * Rinv * f1) * step3 <= 1e-14 * u * f1 * f1;
 }
 
-// Stage 1: the stored vectors onto the tangent plane of n, twisted by (c, s) where `twisted`
-// (rotate_history; on the loading branch load_dir = T/|T| is projected once and T follows it),
-// and with adhesion the JKR radius from the previous one: two Halley steps without a test
+// The JKR radius from the previous one (`radius`; <= 0: none): two Halley steps without a test
 // between them (one suffices on some steps, and that branch mispredicts more often than not in
-// a vibrating packing), the first test, and the next step where it fails (iteration 3).
+// a vibrating packing), the first test, and the next step where it fails (iteration 3). w.a < 0
+// where no radius is found yet (pending 1: the iteration goes on, halley_again).
+template <class V>
+[[gnu::always_inline]] inline void halley_start(const PairConstants& k, V Rinv, V delta, V radius,
+                                                Carry<V>& w)
+{
+  const V zero = V(0.0);
+  const auto has_guess = radius > 0.0;
+  V u = std::sqrt(lane_select(has_guess, radius, V(1.0)));
+  V f1 = zero, f2 = zero, step = zero;
+  auto slope_positive = zero == zero;    // all lanes true
+  halley_step(u, f1, f2, step, slope_positive, Rinv, k.newton_c, delta);
+  halley_step(u, f1, f2, step, slope_positive, Rinv, k.newton_c, delta);
+  const auto go_on = has_guess & slope_positive;
+  const auto converged = go_on & halley_converged(u, f1, f2, step, Rinv);
+  w.a = lane_select(converged, u * u, V(-1.0));
+  V u_next = u, f1_next = f1, f2_next = f2, step_next = step;
+  auto slope_next = slope_positive;
+  halley_step(u_next, f1_next, f2_next, step_next, slope_next, Rinv, k.newton_c, delta);
+  const auto stepped = go_on & !converged;
+  w.u = lane_select(stepped, u_next, u);
+  w.f1 = lane_select(stepped, f1_next, f1);
+  w.f2 = lane_select(stepped, f2_next, f2);
+  w.step = lane_select(stepped, step_next, step);
+  w.pending = lane_select(stepped & slope_next, V(1.0), zero);
+}
+
+// Stage 1: the stored vectors onto the tangent plane of n (magnitude kept), twisted about n by
+// the angle whose cosine and sine are (c, s) where `twisted` (on the loading branch
+// load_dir = T/|T| is projected once and T follows it), and with adhesion the JKR radius from
+// the previous one (halley_start).
 template <bool Adhesive, class V, class M>
 [[gnu::always_inline]] inline void carry(const PairConstants& k, const V n[3], V c, V s,
                                          M twisted, V Rinv, V delta, History<V>& h, Carry<V>& w)
@@ -167,26 +198,7 @@ template <bool Adhesive, class V, class M>
   }
   w.T_magnitude = lane_select(dir_follows_T & kept, magnitude, V(-1.0));
 
-  if (Adhesive) {    // Halley from the previous radius; a < 0: not (yet) found
-    const auto has_guess = h.radius > 0.0;
-    V u = std::sqrt(lane_select(has_guess, h.radius, V(1.0)));
-    V f1 = zero, f2 = zero, step = zero;
-    auto slope_positive = zero == zero;    // all lanes true
-    halley_step(u, f1, f2, step, slope_positive, Rinv, k.newton_c, delta);
-    halley_step(u, f1, f2, step, slope_positive, Rinv, k.newton_c, delta);
-    const auto go_on = has_guess & slope_positive;
-    const auto converged = go_on & halley_converged(u, f1, f2, step, Rinv);
-    w.a = lane_select(converged, u * u, V(-1.0));
-    V u_next = u, f1_next = f1, f2_next = f2, step_next = step;
-    auto slope_next = slope_positive;
-    halley_step(u_next, f1_next, f2_next, step_next, slope_next, Rinv, k.newton_c, delta);
-    const auto stepped = go_on & !converged;
-    w.u = lane_select(stepped, u_next, u);
-    w.f1 = lane_select(stepped, f1_next, f1);
-    w.f2 = lane_select(stepped, f2_next, f2);
-    w.step = lane_select(stepped, step_next, step);
-    w.pending = lane_select(stepped & slope_next, V(1.0), zero);
-  }
+  if (Adhesive) halley_start(k, Rinv, delta, h.radius, w);
 }
 
 // A later round of the Halley iteration (rounds 3 .. 6 after carry's) where it is pending:
@@ -219,6 +231,30 @@ template <class V>
   w.u = std::sqrt(w.a);
 }
 
+// The normal force (§1.1) at overlap delta, P > 0 repulsive, and the contact radius `a`: JKR at
+// the radius of the iteration (w.a, w.u = sqrt(a)), or Hertz
+template <bool Adhesive, class V>
+[[gnu::always_inline]] inline V normal_force(const PairConstants& k, V R, V Rinv, V delta,
+                                             const Carry<V>& w, V& a)
+{
+  const PairCoefficients& c = k.c;
+  if (Adhesive) {
+    a = w.a;
+    return 4.0 * c.E_star * (a * a * a) * Rinv * (1.0 / 3.0) - k.adhesive_force * (a * w.u);
+  }
+  const V compression = lane_max(delta, V(0.0));
+  a = std::sqrt(R * compression);
+  return (4.0 / 3.0) * c.E_star * a * compression;
+}
+
+// a_T^3 = 3R*(P + 2Pc)/(4E*): the Hertz radius of the effective load P + 2Pc, cubed, whose
+// 8 G* a_T is the micro-slip stiffness k_T (§2.2; zero where P + 2Pc <= 0)
+template <class V>
+[[gnu::always_inline]] inline V micro_slip_radius_cubed(const PairConstants& k, V R, V effective_load)
+{
+  return k.cube_radius_per_load * R * lane_max(effective_load, V(0.0));
+}
+
 // Stage 2: the normal force at the radius found and the tangential law for the increment ds
 // (peeling, micro-slip, Coulomb cap, energy balance); h becomes the new history. Frictionless:
 // the material pair has mu = 0, so the outcome is known without the tangential law: T and its
@@ -237,17 +273,9 @@ template <bool Adhesive, bool Frictionless, class V>
   const V P_prev = h.P_prev;
   const auto was_sliding = h.sliding != 0.0;
 
-  // normal force (§1.1): JKR at the radius of the iteration, or Hertz
   Outputs<V> out;
-  V a, P;
-  if (Adhesive) {
-    a = w.a;
-    P = 4.0 * c.E_star * (a * a * a) * Rinv * (1.0 / 3.0) - k.adhesive_force * (a * w.u);
-  } else {
-    const V compression = lane_max(delta, zero);
-    a = std::sqrt(R * compression);
-    P = (4.0 / 3.0) * c.E_star * a * compression;
-  }
+  V a;
+  const V P = normal_force<Adhesive>(k, R, Rinv, delta, w, a);
   out.P = P;
   out.a = a;
   h.radius = a;
@@ -280,7 +308,7 @@ template <bool Adhesive, bool Frictionless, class V>
   if (Adhesive) {    // k_T = 8G* a_T, a_T^3 peeled (4E*a^3/(3R*) = P + 2Pc + sqrt(disc)) or 3R*(P + 2Pc)/(4E*)
     const V cubed = lane_select(peeled,
                                 k.cube_radius_per_load * R * (P + 2.0 * Pc + std::sqrt(before)),
-                                k.cube_radius_per_load * R * lane_max(effective_load, zero));
+                                micro_slip_radius_cubed(k, R, effective_load));
     stiffness = 8.0 * c.G_star * simd_cbrt(cubed);
   } else {
     stiffness = 8.0 * c.G_star * a;

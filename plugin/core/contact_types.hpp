@@ -1,4 +1,4 @@
-// Plain data of one Thornton-Yin contact: material pair, per-contact history, one step's result.
+// Plain data of one Thornton-Yin contact: material pair and per-contact history.
 // Symbols as in docs/theory.md §0: E*, G*, R*, Gamma (interface energy of each surface), mu.
 #ifndef TYCORE_CONTACT_TYPES_HPP
 #define TYCORE_CONTACT_TYPES_HPP
@@ -44,7 +44,7 @@ struct ContactHistory {
   double stored_energy; // tangential elastic energy = tangential work - frictional dissipation
                         // (a path quantity: the incremental law has no potential when P varies)
   double radius;        // JKR contact radius of the last evaluated step: warm start of the
-                        // delta -> a inversion (jkr::contact_radius_warm); 0 = none yet
+                        // delta -> a inversion (law::halley_start); 0 = none yet
 };
 
 constexpr int history_size = 14;
@@ -54,27 +54,6 @@ static_assert(sizeof(ContactHistory) == history_size * sizeof(double),
 // the pair seen from j: vectors flip sign, scalars stay
 constexpr double history_transfer_sign[history_size] = {-1, -1, -1, -1, -1, -1,
                                                         1,  1,  1,  1,  1,  1, 1, 1};
-
-// optional parts of ContactResult (evaluate_contact's `parts`); parts not asked for are 0
-enum ResultParts : unsigned {
-  RESULT_FORCES = 0,                  // P, contact_radius, T, tangential_energy, dissipation, flags
-  RESULT_NORMAL_ENERGY = 1u << 0,     // + normal_energy
-  RESULT_TANGENTIAL_RADIUS = 1u << 1, // + tangential_radius
-  RESULT_ALL = RESULT_NORMAL_ENERGY | RESULT_TANGENTIAL_RADIUS
-};
-
-struct ContactResult {
-  double P;                   // normal force, positive repulsive
-  double contact_radius;      // JKR radius a(delta)
-  double tangential_radius;   // radius setting k_T = 8 G* a_T
-  Eigen::Vector3d T;          // tangential force on i
-  double normal_energy;       // JKR elastic + surface energy, zero at first touch
-  double tangential_energy;   // stored tangential energy (ContactHistory::stored_energy)
-  double dissipation;         // frictional dissipation this step (micro-slip + gross sliding);
-                              // tangential work = dissipation + change of tangential_energy
-  bool sliding;
-  bool peeling;
-};
 
 }    // namespace tycore
 

@@ -137,39 +137,6 @@ inline double contact_radius_newton(double delta, double R, double E, double Gam
   return a;
 }
 
-// stable-branch a(delta) warm-started from `guess` (the previous step's radius; <= 0: none):
-// Newton on the quartic in u = sqrt(a), f(u) = u^4/R* - c u - delta, c = 2 sqrt(pi Gamma/E*)
-// (docs/theory.md §1.4), no root or cube root per iteration. f is convex for u > 0 and increasing
-// on the stable branch, so from any start with f'(u) > 0 the iterates are >= the root after the
-// first step and decrease monotonically to it. Stop when the quadratic-convergence bound of the
-// error of the new iterate, 4 (f''/2f') step^2 = 24 u^2 step^2/(R* f'), is <= rel_tol u (a is
-// then good to 2 rel_tol + round-off). No usable guess (f' <= 0 there: below the break radius),
-// or no convergence within max_iterations (a large jump): the closed form.
-inline double contact_radius_warm(double delta, double R, double E, double Gamma, double guess,
-                                  int* iterations = nullptr, double rel_tol = 1e-14,
-                                  int max_iterations = 8)
-{
-  if (iterations) *iterations = 0;
-  if (Gamma == 0.0) return std::sqrt(R * std::max(delta, 0.0));
-  if (guess > 0.0) {
-    const double c = 2.0 * std::sqrt(pi * Gamma / E);
-    const double Rinv = 1.0 / R;
-    double u = std::sqrt(guess);
-    for (int k = 1; k <= max_iterations; ++k) {
-      const double u2 = u * u;
-      const double slope = 4.0 * u2 * u * Rinv - c;
-      if (!(slope > 0.0)) break;
-      const double step = (u2 * u2 * Rinv - c * u - delta) / slope;
-      u -= step;
-      if (24.0 * u2 * step * step <= rel_tol * u * R * slope) {
-        if (iterations) *iterations = k;
-        return u * u;
-      }
-    }
-  }
-  return contact_radius(delta, R, E, Gamma);
-}
-
 // k_N = dP/d(delta) = 2E*a * 3(2 - s)/(6 - s), s = (a0/a)^(3/2)      (docs/theory.md §1.5)
 inline double normal_stiffness(double a, double R, double E, double Gamma)
 {

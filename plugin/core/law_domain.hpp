@@ -8,9 +8,9 @@
 #ifndef TYCORE_LAW_DOMAIN_HPP
 #define TYCORE_LAW_DOMAIN_HPP
 
+#include "contact_law.hpp"
 #include "contact_types.hpp"
 #include "jkr.hpp"
-#include "mindlin_deresiewicz.hpp"
 
 #include <cmath>
 
@@ -55,7 +55,8 @@ inline LawDomainFault law_domain_fault(const PairCoefficients& c, double R, doub
     bad(jkr::stored_energy(a, R, c.E_star, c.Gamma), "stored energy", delta);
     const double limit = c.mu * (P + 2.0 * Pc);
     bad(limit, "sliding limit mu (P + 2 Pc)", delta);
-    const double a_T = c.Gamma > 0.0 ? micro_slip_radius(R, c.E_star, P + 2.0 * Pc) : a;
+    const double a_T =
+        c.Gamma > 0.0 ? std::cbrt(law::micro_slip_radius_cubed(pair_constants(c), R, P + 2.0 * Pc)) : a;
     const double k_T = 8.0 * c.G_star * a_T;
     bad(k_T, "tangential stiffness 8 G* a", delta);
     if (k_T > 0.0) bad(limit * limit / (2.0 * k_T), "tangential energy at sliding", delta);

@@ -1,6 +1,6 @@
 /* ----------------------------------------------------------------------
    pair_style thornton/yin — see docs/pair_thornton_yin.md and docs/theory.md.
-   Physics: plugin/core/thornton_yin.hpp (tycore). Conventions follow pair granular:
+   Physics: plugin/core/contact_law.hpp (tycore). Conventions follow pair granular:
    del = x_i - x_j, n = del/r points from j to i, P > 0 repulsive.
 ------------------------------------------------------------------------- */
 
@@ -12,7 +12,6 @@
 #include "contact_geometry.hpp"
 #include "contact_kernel.hpp"
 #include "law_domain.hpp"
-#include "thornton_yin.hpp"
 
 #include "atom.h"
 #include "comm.h"

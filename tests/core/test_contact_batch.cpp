@@ -1,10 +1,13 @@
 // The batch entry tycore::advance_batch (contact_batch.hpp) in every build this processor runs
 // (scalar, SSE2, AVX2, AVX-512; each forced in turn, those the processor lacks not
-// instantiated):
-//  * the law: the 13 random contact paths of test_contact_kernel.cpp (contact_paths.hpp), each a
-//    lane of a batch whose other lanes follow further paths (contacts in different states in one
-//    batch), every step against the reference law at that test's tolerances, and against the
-//    scalar kernel (advance_contact) from the same state to the last bit;
+// instantiated), all instantiations of the law's one text (contact_law.hpp):
+//  * the law: random contact paths (contact_paths.hpp), one a lane of a batch whose other lanes
+//    follow further paths (contacts in different states in one batch), through snap-in,
+//    peeling, micro-slip loading / unloading / reloading, sliding, tension and break, every
+//    step of every build against the scalar build and the scalar entry advance_contact to the
+//    last bit, and each against what holds for any step of the law (Coulomb limit, energy
+//    balance); a digest of the widest build's outputs, which tests/test_scalar_law_build.py
+//    compares with the build configured with -DTYLMP_VECTOR_LAW=OFF;
 //  * the rest of the step: viscous damping, the servo's affine-stiffness tally
 //    (docs/theory.md §6.1), stored energy, first touch (§1.3) and separation (§1.2, §3.2),
 //    against their formulas, and the vector builds against the scalar build to the last bit;
@@ -18,14 +21,16 @@
 #include "jkr.hpp"
 #include "mindlin_deresiewicz.hpp"
 #include "simd_math.hpp"
-#include "thornton_yin.hpp"
 
 #include "contact_paths.hpp"
 #include "glass_pair.hpp"
 
 #include <gtest/gtest.h>
 
+#include <cinttypes>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <random>
@@ -100,65 +105,137 @@ void expect_bitwise_scalar_kernel(const tycore::PairConstants& k, const RandomPa
   ASSERT_EQ(b.moment[2][lane], nv[0] * h.T[1] - nv[1] * h.T[0]);
 }
 
-// Lane i follows the path of seeds[i] (mu, Gamma) for `steps` steps by the reference law; at
-// every step the whole batch takes the step from the reference states in build `isa`, and each
-// lane must agree with the reference law and, bit for bit, with the scalar kernel.
-void compare_batch_on_paths(Isa isa, double mu, double Gamma, const std::vector<unsigned>& seeds,
-                            int steps, std::vector<Visits>& seen)
+// every output of lane `lane` of x and y the same to the last bit
+void expect_bitwise_lane(const ContactBatch& x, const ContactBatch& y, int lane)
 {
-  const int n = static_cast<int>(seeds.size());
-  ASSERT_LE(n, batch_lanes);
-  std::vector<RandomPath> paths;
-  paths.reserve(n);
-  for (unsigned seed : seeds) paths.emplace_back(mu, Gamma, seed);
-  const tycore::PairConstants k = tycore::pair_constants(paths[0].c);
-  tycore::BatchParameters p;
-  p.dt = kDt;
-  auto b = std::make_unique<ContactBatch>();
-  std::vector<tycore::ContactHistory> ref(n), before(n);
-  std::vector<contact_paths::Step> s(n);
-  for (int i = 0; i < n; ++i) ref[i] = paths[i].first_touch();
-  seen.assign(n, Visits{});
-  int separations = 0;
-  for (int step = 0; step < steps; ++step) {
-    for (int i = 0; i < n; ++i) {
-      s[i] = paths[i].next();
-      before[i] = ref[i];
-      set_lane(*b, i, s[i], paths[i].R, ref[i]);
-    }
-    if (Gamma > 0.0) advance<true>(*b, n, k, p, isa);
-    else advance<false>(*b, n, k, p, isa);
-    for (int i = 0; i < n; ++i) {
-      SCOPED_TRACE(::testing::Message() << tycore::isa_name(isa) << " lane " << i << " seed "
-                                        << seeds[i] << " step " << step);
-      const tycore::ContactResult r = paths[i].reference_step(s[i], ref[i]);
-      if (!paths[i].adhesive && s[i].delta < 0.0) {
-        // a Hertz contact separates at delta < 0 (delta_f = 0), as in the pair, where the law
-        // alone would go on at zero force: the contact is forgotten, its stored energy lost
-        ASSERT_EQ(b->broken[i], 1.0);
-        ASSERT_EQ(b->break_energy[i], before[i].stored_energy);
-        const tycore::ContactHistory gone = tycore::stored_history(*b, i);
-        for (int m = 0; m < tycore::history_size; ++m) ASSERT_EQ((&gone.T[0])[m], 0.0);
-        for (int d = 0; d < 3; ++d) ASSERT_EQ(b->force[d][i], 0.0);
-        ++separations;
-        continue;
-      }
-      ASSERT_EQ(b->broken[i], 0.0);
-      contact_paths::expect_same_step(paths[i], r, ref[i], r.dissipation, b->P[i],
-                                      b->contact_radius[i], tycore::stored_history(*b, i),
-                                      b->dissipation[i], seen[i]);
-      if (::testing::Test::HasFatalFailure()) return;
-      expect_bitwise_scalar_kernel(k, paths[i], s[i], before[i], *b, i);
-      if (::testing::Test::HasFatalFailure()) return;
-    }
+  ASSERT_EQ(x.P[lane], y.P[lane]);
+  ASSERT_EQ(x.contact_radius[lane], y.contact_radius[lane]);
+  ASSERT_EQ(x.dissipation[lane], y.dissipation[lane]);
+  ASSERT_EQ(x.broken[lane], y.broken[lane]);
+  ASSERT_EQ(x.break_energy[lane], y.break_energy[lane]);
+  ASSERT_EQ(x.slides[lane], y.slides[lane]);
+  for (int d = 0; d < 3; ++d) {
+    ASSERT_EQ(x.force[d][lane], y.force[d][lane]);
+    ASSERT_EQ(x.moment[d][lane], y.moment[d][lane]);
   }
-  if (Gamma == 0.0) {
-    EXPECT_GT(separations, 100);
+  const tycore::ContactHistory g = tycore::stored_history(x, lane), h = tycore::stored_history(y, lane);
+  for (int m = 0; m < tycore::history_size; ++m)
+    ASSERT_EQ((&g.T[0])[m], (&h.T[0])[m]) << "history value " << m;
+}
+
+// FNV-1a over the bytes of n doubles
+void digest_add(std::uint64_t& digest, const double* x, int n)
+{
+  unsigned char bytes[sizeof(double)];
+  for (int i = 0; i < n; ++i) {
+    std::memcpy(bytes, &x[i], sizeof(double));
+    for (unsigned char c : bytes) digest = (digest ^ c) * 0x100000001b3ULL;
   }
 }
 
-// the six paths of test_contact_kernel.cpp (seeds first .. first + 5) in lanes 0-5, ten more
-// paths (seeds first + 100 ...) in lanes 6-15
+// Lane paths[i] follows path i as the pair would: out of contact while the overlap is a gap,
+// first touch (JKR snap-in) when it is back at delta >= 0, a step of the law while in contact,
+// forgotten where it breaks (below delta_f; a Hertz contact at delta < 0). The contacts in
+// contact at a step form the batch's lanes 0 .. m-1; the batch takes the step in build `isa`
+// and in the scalar build, and every lane must agree to the last bit with the scalar build,
+// with advance_contact from the same history (first touch: begin_contact at the closed-form
+// radius), and satisfy expect_law_holds. Returns the digest of the outputs in `digest`.
+void compare_batch_on_paths(Isa isa, const std::vector<RandomPath>& paths_in, int steps,
+                            std::vector<Visits>& seen, std::uint64_t* digest = nullptr)
+{
+  std::vector<RandomPath> paths = paths_in;    // a fresh copy of each path's generator
+  const int n = static_cast<int>(paths.size());
+  ASSERT_LE(n, batch_lanes);
+  const tycore::PairConstants k = tycore::pair_constants(paths[0].c);
+  const bool adhesive = paths[0].adhesive;
+  tycore::BatchParameters p;
+  p.dt = kDt;
+  auto b = std::make_unique<ContactBatch>(), scalar = std::make_unique<ContactBatch>();
+  std::vector<tycore::ContactHistory> h(n);
+  std::vector<bool> touching(n, true);
+  std::vector<contact_paths::Step> s(n);
+  std::vector<int> lane_of(n, -1);
+  for (int i = 0; i < n; ++i) h[i] = paths[i].first_touch();
+  seen.assign(n, Visits{});
+  std::uint64_t sum = 0xcbf29ce484222325ULL;
+  for (int step = 0; step < steps; ++step) {
+    int m = 0;
+    for (int i = 0; i < n; ++i) {
+      s[i] = paths[i].next();
+      lane_of[i] = -1;
+      if (!touching[i] && s[i].delta < 0.0) continue;    // a gap: no contact, no lane
+      lane_of[i] = m;
+      set_lane(*b, m, s[i], paths[i].R, touching[i] ? h[i] : tycore::ContactHistory{});
+      b->first_touch[m] = !touching[i];
+      ++m;
+    }
+    *scalar = *b;
+    if (adhesive) {
+      advance<true>(*scalar, m, k, p, Isa::scalar);
+      advance<true>(*b, m, k, p, isa);
+    } else {
+      advance<false>(*scalar, m, k, p, Isa::scalar);
+      advance<false>(*b, m, k, p, isa);
+    }
+    for (int i = 0; i < n; ++i) {
+      const int lane = lane_of[i];
+      if (lane < 0) continue;
+      SCOPED_TRACE(::testing::Message() << tycore::isa_name(isa) << " path " << i << " lane "
+                                        << lane << " step " << step);
+      expect_bitwise_lane(*b, *scalar, lane);
+      if (::testing::Test::HasFatalFailure()) return;
+      digest_add(sum, &b->P[lane], 1);
+      digest_add(sum, &b->dissipation[lane], 1);
+      digest_add(sum, &b->break_energy[lane], 1);
+      if (b->broken[lane] != 0.0) {    // forgotten: history cleared, no force
+        const tycore::ContactHistory gone = tycore::stored_history(*b, lane);
+        for (int q = 0; q < tycore::history_size; ++q) ASSERT_EQ((&gone.T[0])[q], 0.0);
+        for (int d = 0; d < 3; ++d) ASSERT_EQ(b->force[d][lane], 0.0);
+        // the energy lost: the tangential energy and, with adhesion, the JKR energy at a_f
+        const double W = adhesive ? tycore::jkr::separation_work(paths[i].R, k.c.E_star, k.c.Gamma)
+                                  : 0.0;
+        ASSERT_NEAR(b->break_energy[lane], h[i].stored_energy + W,
+                    1e-12 * (h[i].stored_energy + W));
+        ++seen[i].breaks;
+        touching[i] = false;
+        continue;
+      }
+      tycore::ContactHistory before = h[i];
+      if (!touching[i]) {    // snap-in: the history begin_contact gives at the closed-form radius
+        const double a = adhesive ? tycore::jkr::contact_radius(s[i].delta, paths[i].R, k.c.E_star, k.c.Gamma)
+                                  : std::sqrt(paths[i].R * s[i].delta);
+        tycore::begin_contact(before, tycore::jkr::normal_force(a, paths[i].R, k.c.E_star, k.c.Gamma),
+                              adhesive);
+        before.radius = a;
+        ++seen[i].snap_ins;
+      }
+      h[i] = before;
+      expect_bitwise_scalar_kernel(k, paths[i], s[i], before, *b, lane);
+      if (::testing::Test::HasFatalFailure()) return;
+      h[i] = tycore::stored_history(*b, lane);
+      digest_add(sum, &h[i].T[0], tycore::history_size);
+      contact_paths::expect_law_holds(paths[i], s[i], b->P[lane], before, h[i],
+                                      b->dissipation[lane], seen[i]);
+      if (::testing::Test::HasFatalFailure()) return;
+      touching[i] = true;
+    }
+  }
+  if (digest) *digest = sum;
+}
+
+std::vector<RandomPath> paths_of(double mu, double Gamma, const std::vector<unsigned>& seeds,
+                                 int breaking_from = batch_lanes)
+{
+  std::vector<RandomPath> paths;
+  paths.reserve(seeds.size());
+  for (int i = 0; i < static_cast<int>(seeds.size()); ++i)
+    paths.emplace_back(mu, Gamma, seeds[i], i >= breaking_from);
+  return paths;
+}
+
+// six paths (seeds first .. first + 5) in lanes 0-5, ten more (seeds first + 100 ...) in
+// lanes 6-15, of which the last four (adhesive: reaching below delta_f) break and snap in
+// again, eight times each
 std::vector<unsigned> six_paths_and_ten_more(unsigned first)
 {
   std::vector<unsigned> seeds;
@@ -166,43 +243,76 @@ std::vector<unsigned> six_paths_and_ten_more(unsigned first)
   for (unsigned s = first + 100; s < first + 110; ++s) seeds.push_back(s);
   return seeds;
 }
+constexpr int kFirstBreakingLane = 12;
+
+// the digest of a path test's outputs, for tests/test_scalar_law_build.py: equal in every build
+void print_digest(const char* test, Isa isa, std::uint64_t digest)
+{
+  std::printf("law trajectory digest %s %s %016" PRIx64 "\n", test, tycore::isa_name(isa), digest);
+}
 
 class BatchLaw : public ::testing::TestWithParam<Isa> {};
 
-TEST_P(BatchLaw, MatchesReferenceAndScalarKernelWithAdhesion)
+TEST_P(BatchLaw, EveryBuildAsTheScalarEntryWithAdhesion)
 {
   std::vector<Visits> seen;
-  compare_batch_on_paths(GetParam(), 0.3, 0.6, six_paths_and_ten_more(1), 20000, seen);
+  std::uint64_t digest = 0;
+  compare_batch_on_paths(GetParam(), paths_of(0.3, 0.6, six_paths_and_ten_more(1), kFirstBreakingLane),
+                         20000, seen, &digest);
   if (HasFatalFailure()) return;
-  for (int i = 0; i < 6; ++i) contact_paths::expect_every_branch(seen[i], true);
+  print_digest("adhesive", GetParam(), digest);
+  for (int i = 0; i < batch_lanes; ++i) {
+    SCOPED_TRACE(::testing::Message() << "path " << i);
+    contact_paths::expect_every_branch(seen[i], true);
+    if (i >= kFirstBreakingLane) {
+      EXPECT_GE(seen[i].breaks, 5);
+      EXPECT_GE(seen[i].snap_ins, 5);
+    } else {
+      EXPECT_EQ(seen[i].breaks, 0);
+    }
+  }
 }
 
-TEST_P(BatchLaw, MatchesReferenceAndScalarKernelHertzMindlin)
+TEST_P(BatchLaw, EveryBuildAsTheScalarEntryHertzMindlin)
 {
   std::vector<Visits> seen;
-  compare_batch_on_paths(GetParam(), 0.3, 0.0, six_paths_and_ten_more(11), 20000, seen);
+  std::uint64_t digest = 0;
+  compare_batch_on_paths(GetParam(), paths_of(0.3, 0.0, six_paths_and_ten_more(11)), 20000, seen,
+                         &digest);
   if (HasFatalFailure()) return;
-  for (int i = 0; i < 6; ++i) contact_paths::expect_every_branch(seen[i], false);
+  print_digest("hertz", GetParam(), digest);
+  for (int i = 0; i < batch_lanes; ++i) {
+    SCOPED_TRACE(::testing::Message() << "path " << i);
+    contact_paths::expect_every_branch(seen[i], false);
+    EXPECT_GE(seen[i].breaks, 5);    // a Hertz contact separates at delta < 0
+    EXPECT_GE(seen[i].snap_ins, 5);
+  }
 }
 
-TEST_P(BatchLaw, MatchesReferenceAndScalarKernelFrictionless)
+TEST_P(BatchLaw, EveryBuildAsTheScalarEntryFrictionless)
 {
   std::vector<unsigned> seeds = {21};
   for (unsigned s = 121; s < 128; ++s) seeds.push_back(s);    // 8 lanes, one partial register
   std::vector<Visits> seen;
-  compare_batch_on_paths(GetParam(), 0.0, 0.6, seeds, 5000, seen);
+  std::uint64_t digest = 0;
+  compare_batch_on_paths(GetParam(), paths_of(0.0, 0.6, seeds, 6), 5000, seen, &digest);
   if (HasFatalFailure()) return;
-  EXPECT_EQ(seen[0].sliding, 5000);
+  print_digest("frictionless", GetParam(), digest);
+  EXPECT_EQ(seen[0].sliding, 5000);    // mu = 0: every step slides, T = 0
+  EXPECT_GE(seen[7].breaks, 1);
 }
 
 // mu = 0 without adhesion: the dense specimen's preparation (a batch of the frictionless
 // law_stage in the vector builds)
-TEST_P(BatchLaw, MatchesReferenceAndScalarKernelFrictionlessHertz)
+TEST_P(BatchLaw, EveryBuildAsTheScalarEntryFrictionlessHertz)
 {
   std::vector<unsigned> seeds;
   for (unsigned s = 31; s < 47; ++s) seeds.push_back(s);
   std::vector<Visits> seen;
-  compare_batch_on_paths(GetParam(), 0.0, 0.0, seeds, 5000, seen);
+  std::uint64_t digest = 0;
+  compare_batch_on_paths(GetParam(), paths_of(0.0, 0.0, seeds), 5000, seen, &digest);
+  if (HasFatalFailure()) return;
+  print_digest("frictionless-hertz", GetParam(), digest);
 }
 
 // A contact whose mu has just become 0 (fix adapt) while it carries a tangential force T and a
@@ -253,11 +363,7 @@ TEST_P(BatchLaw, FrictionlessStepReleasesTheStoredEnergy)
 // the six named paths and ten random ones of a frictional adhesive pair (mu 0.3, Gamma 0.6)
 std::vector<RandomPath> frictional_adhesive_paths(unsigned first_seed)
 {
-  const std::vector<unsigned> seeds = six_paths_and_ten_more(first_seed);
-  std::vector<RandomPath> paths;
-  paths.reserve(seeds.size());
-  for (unsigned seed : seeds) paths.emplace_back(0.3, 0.6, seed);
-  return paths;
+  return paths_of(0.3, 0.6, six_paths_and_ten_more(first_seed));
 }
 
 // Damping, tallies and energy on the adhesive paths, with relative velocities: the scalar
@@ -322,7 +428,7 @@ TEST_P(BatchLaw, DampingTalliesAndEnergyAsTheirFormulas)
       // not peeling before the step (a peeled step's k_T has the Savkoor-Briggs radius)
       const double k_N = tycore::jkr::normal_stiffness(a, R, c.E_star, c.Gamma);
       const double k_T =
-          8.0 * c.G_star * tycore::micro_slip_radius(R, c.E_star, P + 2.0 * paths[i].Pc);
+          8.0 * c.G_star * std::cbrt(3.0 * R * (P + 2.0 * paths[i].Pc) / (4.0 * c.E_star));
       const int ia[6] = {0, 1, 2, 0, 0, 1}, ib[6] = {0, 1, 2, 1, 2, 2};
       if (h[i].peeling == 0.0) {
         ++micro_slip_lanes;
@@ -403,7 +509,7 @@ TEST_P(BatchLaw, ShearedCellTallyIsTheAffineStiffnessSums)
       ASSERT_NEAR(k_N, tycore::jkr::normal_stiffness(a, R, c.E_star, c.Gamma),
                   1e-12 * std::abs(k_N));
       if (h[i].peeling == 0.0 || setup) {
-        const double a_T = tycore::micro_slip_radius(R, c.E_star, P + 2.0 * paths[i].Pc);
+        const double a_T = std::cbrt(3.0 * R * (P + 2.0 * paths[i].Pc) / (4.0 * c.E_star));
         ASSERT_NEAR(k_T, 8.0 * c.G_star * a_T, 1e-12 * k_T);
       }
       // the pair's 21 entries of this contact
