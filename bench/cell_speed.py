@@ -6,13 +6,15 @@ specimen, both with pair thornton/yin (Gamma = 0.6, mu = 0.3) and fix cell/servo
 paper-scale rates of the decks (axisym: eps1_dot = 5e-5 1/s; simple shear: gamma_dot = 1e-4 1/s).
 
     /usr/bin/python3 bench/cell_speed.py [--steps 2000] [--repeats 3] [--callgrind-steps 100]
-        [--out bench/results/cell_speed]
+        [--out bench/results/cell_speed] [--keep-callgrind DIR]
 
 Two figures: (1) wall clock, the median over `repeats` alternated runs of each deck of the loop
 time per atom-step, and their ratio (meaningful on a quiet machine only); (2) instructions per
 atom-step of the whole run loop (LAMMPS_NS::Verlet::run, so pair, neighbour lists,
 communication, the fix's measurement, servo and box change, flips), counted by valgrind's
-callgrind, which does not depend on the machine's load. Writes OUT.json (provenance stamped).
+callgrind, which does not depend on the machine's load. Writes OUT.json (provenance stamped);
+with --keep-callgrind the two callgrind outputs go to DIR, callgrind.axisym and
+callgrind.simple_shear, for a per-function comparison (callgrind_annotate).
 """
 import argparse
 import os
@@ -73,8 +75,8 @@ def run(name, steps, work, prefix=()):
     return proc
 
 
-def instructions(name, steps, work):
-    out = os.path.join(work, f"callgrind.{name}")
+def instructions(name, steps, work, keep=None):
+    out = os.path.join(keep or work, f"callgrind.{name}")
     run(name, steps, work, ["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}",
                             "--toggle-collect=LAMMPS_NS::Verlet::run*"])
     summary = subprocess.run(["callgrind_annotate", out], capture_output=True, text=True).stdout
@@ -89,7 +91,10 @@ def main(argv=None):
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--callgrind-steps", type=int, default=100)
     ap.add_argument("--out", default=os.path.join(REPO, "bench", "results", "cell_speed"))
+    ap.add_argument("--keep-callgrind", metavar="DIR", default=None)
     args = ap.parse_args(argv)
+    if args.keep_callgrind:
+        os.makedirs(args.keep_callgrind, exist_ok=True)
     result = {"data": os.path.relpath(DATA, REPO), "steps": args.steps,
               "repeats": args.repeats, "callgrind_steps": args.callgrind_steps, "tests": {}}
     with tempfile.TemporaryDirectory() as work:
@@ -99,7 +104,8 @@ def main(argv=None):
                 seconds, steps, atoms = loop_seconds(run(name, args.steps, work).stdout)
                 per[name].append(seconds / (steps * atoms))
         for name in TESTS:
-            ir = instructions(name, args.callgrind_steps, work) if args.callgrind_steps else None
+            ir = (instructions(name, args.callgrind_steps, work, args.keep_callgrind)
+                  if args.callgrind_steps else None)
             result["tests"][name] = {"seconds_per_atom_step": per[name],
                                      "median_seconds_per_atom_step": statistics.median(per[name]),
                                      "instructions_per_atom_step": ir}

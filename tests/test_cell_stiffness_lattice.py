@@ -122,3 +122,23 @@ def test_fcc_lattice_stiffness_equals_closed_form(frame, tmp_path):
     p_closed = 4.0 * math.sqrt(2.0) / 3.0 * e_star * x ** 1.5 / (1.0 - x) ** 2
     assert np.max(np.abs(sig / p_closed - 1.0)) < 1e-6, (sig, p_closed)
     assert np.max(np.abs(C - expected)) / c11 < 1e-6
+
+
+def test_drained_shear_tallies_the_two_entries_its_servo_uses(tmp_path):
+    """Drained simple shear in xz holds sigma_zz alone: its servo inverts C_33 and feeds forward
+    C_35 (γ̇_xz), and only these two of the 21 sums are tallied. On the cube lattice they are
+    C11 and 0 of the closed form; every other entry of f_ID[I][J] reads NaN (not measured)."""
+    e_star = effective_modulus()
+    kappa = 2.0 * (1.0 - NU) / (2.0 - NU)
+    x = relative_overlap(P_TARGET, e_star)
+    spacing = 2.0 * R * (1.0 - x) * math.sqrt(2.0)
+    deck = lattice_deck(spacing, "").replace(
+        "fix cell all cell/servo axes x rate 0 y rate 0 z rate 0 xy rate 0 xz rate 0 yz rate 0",
+        f"fix cell all cell/servo shear xz 1e-9 {P_TARGET!r}")
+    assert "shear xz" in deck
+    _, _, _, C = parse(run_ok(deck, tmp_path))
+    c11 = closed_form(x, e_star, kappa)[0]
+    held = {(2, 2), (2, 4), (4, 2)}
+    assert abs(C[2, 2] / c11 - 1.0) < 1e-5, C[2, 2]
+    assert abs(C[2, 4]) / c11 < 1e-6 and C[4, 2] == C[2, 4]
+    assert all(np.isnan(C[i, j]) for i in range(6) for j in range(6) if (i, j) not in held)

@@ -17,21 +17,27 @@ struct CellTallies {
     STIFFNESS = 0,    // 21 entries: V C of the affine stiffness (docs/theory.md §6.1, §11.1) in
                       // the layout of tycore::AffineStiffnessSums (plugin/core/cell_stiffness.hpp):
                       // the principal block xx yy zz xy xz yz first (entries 0-5), then the 15
-                      // entries with a shear component (6-20), made only when asked for
+                      // entries with a shear component (6-20); only those asked for are made,
+                      // the others stay zero
     CONTACTS = 21,    // number of contacts (touching pairs, tensile ones included)
     SLIDING = 22,     // number of contacts at the sliding limit
     FORCE = 23,       // sum of contact force magnitudes
     SIZE = 24
   };
   double sum[SIZE];
+
+  // sets of the 21 stiffness entries, bit k for entry STIFFNESS + k
+  static constexpr unsigned PRINCIPAL_ENTRIES = 0x3Fu;
+  static constexpr unsigned ALL_ENTRIES = 0x1FFFFFu;
 };
 
 // what the servo asks of the pair
 class CellTallySource {
  public:
-  // make the tallies from the next force evaluation on (off again at the pair's init); the
-  // 15 stiffness entries with a shear component only if with_shear (else they stay zero)
-  virtual void request_cell_tallies(bool with_shear) = 0;
+  // make the tallies from the next force evaluation on (off again at the pair's init), with at
+  // least the stiffness entries of the set `entries` (CellTallies bits); returns the set made
+  // (a superset: a source offers a few sets, each with its own branch-free loop)
+  virtual unsigned request_cell_tallies(unsigned entries) = 0;
   virtual const CellTallies &cell_tallies() const = 0;
   // a source that does not make the tallies during the force evaluation (the route for other
   // pair styles, compute_cell_tally.h) makes them here, from that evaluation's contacts

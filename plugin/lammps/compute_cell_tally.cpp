@@ -43,9 +43,11 @@ void ComputeCellTally::init() {}
 
 // fix cell/servo asks for the tallies in its init(), after the computes' init(): the pair is
 // checked here, each run, and the warning given once
-void ComputeCellTally::request_cell_tallies(bool shears)
+unsigned ComputeCellTally::request_cell_tallies(unsigned entries)
 {
-  with_shear = shears;
+  // the principal block alone, or all 21 entries (the estimate walks the neighbor list once
+  // per measurement, not the pair's contact loop)
+  with_shear = (entries & ~CellTallies::PRINCIPAL_ENTRIES) != 0;
   Pair *pair = force->pair;
   if (!pair)
     error->all(FLERR, "fix cell/servo needs a pair style: the servo's stress and stiffness "
@@ -72,6 +74,7 @@ void ComputeCellTally::request_cell_tallies(bool shears)
                    "mean-field shear; pair_style thornton/yin has both",
                    force->pair_style);
   warned = true;
+  return with_shear ? CellTallies::ALL_ENTRIES : CellTallies::PRINCIPAL_ENTRIES;
 }
 
 void ComputeCellTally::refresh_cell_tallies()

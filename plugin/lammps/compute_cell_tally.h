@@ -23,7 +23,7 @@ class ComputeCellTally : public Compute, public CellTallySource {
   void unpack_reverse_comm(int, int *, double *) override;
   double memory_usage() override;
 
-  void request_cell_tallies(bool with_shear) override;
+  unsigned request_cell_tallies(unsigned entries) override;
   const CellTallies &cell_tallies() const override { return tallies; }
   const double *contact_count() const override { return tallied ? count : nullptr; }
   void refresh_cell_tallies() override;

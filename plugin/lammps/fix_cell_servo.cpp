@@ -113,6 +113,7 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
   major_input = {tycore::AxisControl::STRAIN_RATE, 0.0, "", -1, ""};
   stress.setZero();
   for (double &s : stiffness_sums) s = 0.0;
+  tallied_entries = 0;
   for (double &o : output) o = NaN;
   for (double &o : origin) o = NaN;
   for (int i = 0; i < 3; ++i) strain.reference_length(i) = domain->prd[i];
@@ -477,8 +478,8 @@ void FixCellServo::init()
     if (itally < 0) error->all(FLERR, "fix cell/servo: its contact tally compute was deleted");
     pair = dynamic_cast<CellTallySource *>(modify->compute[itally]);
   }
-  // from the setup force computation on; a triclinic cell tallies the full 6x6 stiffness
-  pair->request_cell_tallies(domain->triclinic != 0);
+  // from the setup force computation on, the stiffness entries the servo uses (at least)
+  tallied_entries = pair->request_cell_tallies(stiffness_entries());
   if (needs_triclinic() && !domain->triclinic)
     error->all(FLERR, "fix cell/servo: the box was made orthogonal, but this programme moves "
                "or holds a shear component, which needs a triclinic box");

@@ -149,6 +149,7 @@ class FixCellServo : public Fix {
   // measurements of the last step
   tycore::Vector6d stress;         // contact stress, compression positive (Voigt6) [Pa]
   double stiffness_sums[tycore::AffineStiffnessSums::size];   // V C (cell_stiffness.hpp)
+  unsigned tallied_entries;        // the entries of stiffness_sums the tallies make (cell_tally.h)
   double contacts, sliding, force_sum;
   bigint measured_step;
   double output[N_OUTPUT];
@@ -216,6 +217,7 @@ class FixCellServo : public Fix {
   // the cell (fix_cell_servo_cell.cpp)
   void measure();
   tycore::CellMeasurementOf<6> cell_measurement() const;
+  unsigned stiffness_entries() const;    // the stiffness entries the programme's servo uses
   Eigen::Matrix3d cell_matrix() const;
   double cell_volume() const;
   void change_box(const tycore::Vector6d &strain_rate);

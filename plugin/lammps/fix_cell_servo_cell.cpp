@@ -84,6 +84,30 @@ tycore::CellMeasurementOf<6> FixCellServo::cell_measurement() const
 }
 
 /* ----------------------------------------------------------------------
+   the stiffness entries the servo uses (model only what the programme needs): C_IJ of a held
+   stress I and a component J that the servo moves or the programme strains (the response it
+   inverts and the feed-forward, docs/theory.md §6.2, §11.2). Drained simple shear holds
+   sigma_jj alone while it strains gamma_ij: C_jj and C_j,ij, two of the 21. An orthogonal cell
+   has the principal block; the other programmes of a triclinic cell take all 21 (f_ID[I][J]).
+------------------------------------------------------------------------- */
+
+unsigned FixCellServo::stiffness_entries() const
+{
+  if (!domain->triclinic) return CellTallies::PRINCIPAL_ENTRIES;
+  if (mode != Mode::SHEAR) return CellTallies::ALL_ENTRIES;
+  const tycore::MixedControl6 c =
+      tycore::DrainedSimpleShear{plane, shear_rate, normal_target}.control();
+  unsigned entries = 0;
+  for (int k = 0; k < c.actuator_count; ++k)
+    for (int I = 0; I < 6; ++I)
+      for (int J = 0; J < 6; ++J)
+        if (c.stress_rows(k, I) != 0.0 &&
+            (c.prescribed_strain_rate(J) != 0.0 || c.actuators.row(J).any()))
+          entries |= 1u << tycore::AffineStiffnessSums::index(I, J);
+  return entries;
+}
+
+/* ----------------------------------------------------------------------
    the cell deforms at the next step's post_integrate, before its forces (see end_of_step)
 ------------------------------------------------------------------------- */
 

@@ -242,9 +242,12 @@ void FixCellServo::compute_cell_outputs()
   }
 }
 
-// the affine stiffness C_IJ (Voigt6, engineering shears) of the last measurement [Pa]
+// the affine stiffness C_IJ (Voigt6, engineering shears) of the last measurement [Pa]; NaN for
+// an entry the tallies do not make (FixCellServo::stiffness_entries)
 double FixCellServo::compute_array(int i, int j)
 {
+  if (!(tallied_entries >> tycore::AffineStiffnessSums::index(i, j) & 1u))
+    return std::numeric_limits<double>::quiet_NaN();
   if (output_step != update->ntimestep) {
     measure();
     compute_outputs();

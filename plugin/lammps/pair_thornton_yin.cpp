@@ -95,6 +95,8 @@ PairThorntonYin::PairThorntonYin(LAMMPS *lmp) : PairWithHistory(lmp)
   neighprev = 0;
   dt = 0.0;
   tally_cell = 0;
+  stiffness_set = PRINCIPAL;
+  lane_entries = 0;
   record_contacts = 0;
   record_step = -1;
   isa = tycore::best_isa();
@@ -714,6 +716,12 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
     return bt;
   };
 
+  const bool by_contact = stiffness_set <= FULL;
+  const auto run = [&](Batch &bt) {
+    if (by_contact) run_batch<ADHESIVE, DAMPED, true>(bt, step, sums);
+    else run_batch<ADHESIVE, DAMPED, false>(bt, step, sums);
+  };
+
   for (int ii = 0; ii < inum; ++ii) {
     const int i = ilist[ii];
     const double radi = radius[i];
@@ -761,16 +769,16 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
       bt.slot[l] = slot;
       bt.del[0][l] = delx, bt.del[1][l] = dely, bt.del[2][l] = delz;
       bt.share[l] = (newton_pair || j < nlocal) ? 1.0 : 0.5;
-      if (++bt.n == tycore::batch_lanes) run_batch<ADHESIVE, DAMPED>(bt, step, sums);
+      if (++bt.n == tycore::batch_lanes) run(bt);
     }
   }
   for (auto &bt : batches)
-    if (bt && bt->n) run_batch<ADHESIVE, DAMPED>(*bt, step, sums);
-  if (tally_cell == 2)
-    for (int k = 0; k < tycore::affine_shear_size; ++k)
-      for (int l = 0; l < tycore::batch_lanes; ++l)
-        tallies.sum[CellTallies::STIFFNESS + tycore::AffineStiffnessSums::principal_size + k] +=
-            shear_lanes[k][l];
+    if (bt && bt->n) run(*bt);
+  if (tally_cell)
+    for (int k = 0; k < tycore::AffineStiffnessSums::size; ++k)
+      if (lane_entries >> k & 1u)
+        for (int l = 0; l < tycore::batch_lanes; ++l)
+          tallies.sum[CellTallies::STIFFNESS + k] += stiffness_lanes[k][l];
   if (tally_cell && newton_pair) tylmp_compat::reverse_comm(comm, this);
 
   pvector[DISSIPATION_FRICTION] += sums.friction;
@@ -788,7 +796,7 @@ template void PairThorntonYin::eval<false, false>(int, int);
    then their forces, torques, history and tallies back to LAMMPS
 ------------------------------------------------------------------------- */
 
-template <bool ADHESIVE, bool DAMPED>
+template <bool ADHESIVE, bool DAMPED, bool BY_CONTACT>
 void PairThorntonYin::run_batch(Batch &bt, bool step, Sums &sums)
 {
   tycore::ContactBatch &b = bt.b;
@@ -847,8 +855,9 @@ void PairThorntonYin::run_batch(Batch &bt, bool step, Sums &sums)
       ev_tally_xyz(i, j, nlocal, newton_pair, bt.p.energy ? b.energy[l] : 0.0, 0.0, fx, fy, fz,
                    bt.del[0][l], bt.del[1][l], bt.del[2][l]);
     if (tally_cell) {    // the servo's sums (docs/theory.md §6.1, §11.1), each contact once
-      for (int k = 0; k < 6; ++k)
-        tallies.sum[CellTallies::STIFFNESS + k] += share * b.affine_stiffness[k][l];
+      if (BY_CONTACT)
+        for (int k = 0; k < 6; ++k)
+          tallies.sum[CellTallies::STIFFNESS + k] += share * b.affine_stiffness[k][l];
       tallies.sum[CellTallies::CONTACTS] += share;
       tallies.sum[CellTallies::SLIDING] += share * b.slides[l];
       tallies.sum[CellTallies::FORCE] += share * b.force_magnitude[l];
@@ -856,15 +865,95 @@ void PairThorntonYin::run_batch(Batch &bt, bool step, Sums &sums)
       if (j_owned) atom_contacts[j] += 1.0;
     }
   }
-  // a cell with shears: the 15 entries with a shear component (docs/theory.md §11.1), summed
-  // lane by lane (a broken lane has k_N = k_T = 0) and over the lanes in end_tallies
-  if (tally_cell == 2)
+  if (!tally_cell) return;
+  if (BY_CONTACT) {
+    if (stiffness_set == FULL) tally_stiffness_lanes<FULL>(bt, n);
+  } else if (stiffness_set == HELD_XY) {
+    tally_stiffness_lanes<HELD_XY>(bt, n);
+  } else if (stiffness_set == HELD_XZ) {
+    tally_stiffness_lanes<HELD_XZ>(bt, n);
+  } else {
+    tally_stiffness_lanes<HELD_YZ>(bt, n);
+  }
+}
+
+/* ----------------------------------------------------------------------
+   the servo's stiffness sums: which entries, and how they are summed
+------------------------------------------------------------------------- */
+
+namespace {
+// the sets summed per lane (bit k: entry k of tycore::AffineStiffnessSums): all 15 with a shear
+// component; or, holding sigma_n = sigma_jj of a shear plane, C_jj and C_j,ij
+constexpr unsigned bit(int I, int J) { return 1u << tycore::AffineStiffnessSums::index(I, J); }
+constexpr unsigned SHEAR_ENTRIES = CellTallies::ALL_ENTRIES & ~CellTallies::PRINCIPAL_ENTRIES;
+constexpr unsigned held_entries(int normal, int shear)
+{
+  return bit(normal, normal) | bit(normal, shear);
+}
+}    // namespace
+
+// the smallest offered set that holds `entries`: the principal block (orthogonal cells, the
+// principal programmes), a shear plane's held normal stress (drained simple shear: its servo
+// uses C_jj and the feed-forward C_j,ij alone, docs/theory.md §11.2), or all 21
+unsigned PairThorntonYin::request_cell_tallies(unsigned entries)
+{
+  tally_cell = 1;
+  struct Offer { int set; unsigned made, lanes; };
+  const Offer offers[] = {
+      {PRINCIPAL, CellTallies::PRINCIPAL_ENTRIES, 0u},
+      {HELD_XY, held_entries(1, 3), held_entries(1, 3)},
+      {HELD_XZ, held_entries(2, 4), held_entries(2, 4)},
+      {HELD_YZ, held_entries(2, 5), held_entries(2, 5)},
+      {FULL, CellTallies::ALL_ENTRIES, SHEAR_ENTRIES}};
+  for (const Offer &o : offers)
+    if ((entries & ~o.made) == 0) {
+      stiffness_set = o.set;
+      lane_entries = o.lanes;
+      return o.made;
+    }
+  stiffness_set = FULL;
+  lane_entries = SHEAR_ENTRIES;
+  return CellTallies::ALL_ENTRIES;
+}
+
+// one batch's stiffness entries of the set SET, summed lane by lane (a broken lane has
+// k_N = k_T = 0): the 15 with a shear component (docs/theory.md §11.1), or a plane's normal
+// entry C_jj (the batch law's, as the principal block) and C_j,ij. The set is fixed at compile
+// time, so the lane loop has no branch and computes no entry it does not keep.
+template <int SET> void PairThorntonYin::tally_stiffness_lanes(const Batch &bt, int n)
+{
+  constexpr int P = tycore::AffineStiffnessSums::principal_size;
+  constexpr int normal = SET == HELD_XY ? 1 : 2;    // the principal entry (virial order)
+  constexpr int shear = SET == HELD_XY ? 3 : SET == HELD_XZ ? 4 : 5;
+  constexpr int coupling = tycore::AffineStiffnessSums::index(normal, shear) - P;
+  const tycore::ContactBatch &b = bt.b;
+  if (SET == FULL) {
     for (int l = 0; l < n; ++l) {
       const double share = bt.share[l];
       tycore::affine_shear_entries(b.n[0][l], b.n[1][l], b.n[2][l], b.rsq[l],
                                    b.normal_stiffness[l], b.tangential_stiffness[l],
-                                   [&](int k, double value) { shear_lanes[k][l] += share * value; });
+                                   [&](int k, double value) {
+                                     stiffness_lanes[P + k][l] += share * value;
+                                   });
     }
+    return;
+  }
+  // two sums that alias nothing the loop reads, so that it vectorises
+  double *__restrict sum_normal = stiffness_lanes[normal];
+  double *__restrict sum_coupling = stiffness_lanes[P + coupling];
+  const double *__restrict share = bt.share;
+  const double *__restrict c_normal = b.affine_stiffness[normal];
+#pragma GCC ivdep
+  for (int l = 0; l < n; ++l) {
+    double value = 0.0;
+    tycore::affine_shear_entries(b.n[0][l], b.n[1][l], b.n[2][l], b.rsq[l],
+                                 b.normal_stiffness[l], b.tangential_stiffness[l],
+                                 [&](int k, double entry) {
+                                   if (k == coupling) value = entry;
+                                 });
+    sum_normal[l] += share[l] * c_normal[l];
+    sum_coupling[l] += share[l] * value;
+  }
 }
 
 /* ----------------------------------------------------------------------
@@ -875,9 +964,9 @@ void PairThorntonYin::begin_tallies()
 {
   if (tally_cell) {
     for (double &t : tallies.sum) t = 0.0;
-    if (tally_cell == 2)
-      for (auto &lanes : shear_lanes)
-        for (double &t : lanes) t = 0.0;
+    for (int k = 0; k < tycore::AffineStiffnessSums::size; ++k)
+      if (lane_entries >> k & 1u)
+        for (double &t : stiffness_lanes[k]) t = 0.0;
     if (atom->nmax > nmax_count) {
       memory->destroy(atom_contacts);
       nmax_count = atom->nmax;

@@ -41,7 +41,7 @@ class PairThorntonYin : public tylmp_compat::PairWithHistory, public CellTallySo
   void unpack_reverse_comm(int, int *, double *) override;
 
   // the sums for fix cell/servo (cell_tally.h)
-  void request_cell_tallies(bool with_shear) override { tally_cell = with_shear ? 2 : 1; }
+  unsigned request_cell_tallies(unsigned entries) override;
   const CellTallies &cell_tallies() const override { return tallies; }
   const double *contact_count() const override { return atom_contacts; }
 
@@ -110,10 +110,19 @@ class PairThorntonYin : public tylmp_compat::PairWithHistory, public CellTallySo
                                                 const double fs[3]);
 
   int tally_cell;
+  // which stiffness entries the tallies make, and how (request_cell_tallies): the principal
+  // block summed contact by contact; with it the 15 entries with a shear component summed
+  // per lane (FULL); or, for a programme that holds the normal stress of one shear plane
+  // (drained simple shear), only that normal entry and its coupling to the plane's shear,
+  // both summed per lane (HELD_XY, HELD_XZ, HELD_YZ)
+  enum StiffnessSet { PRINCIPAL, FULL, HELD_XY, HELD_XZ, HELD_YZ };
+  int stiffness_set;
+  unsigned lane_entries;    // the entries summed per lane (CellTallies bits)
   CellTallies tallies;
-  // a cell with shears: the 15 stiffness entries with a shear component, per batch lane
-  // (summed over the lanes into tallies after the force evaluation)
-  alignas(64) double shear_lanes[tycore::affine_shear_size][tycore::batch_lanes];
+  // per batch lane, the entries of lane_entries (summed over the lanes into tallies after the
+  // force evaluation)
+  alignas(64) double stiffness_lanes[6 + tycore::affine_shear_size][tycore::batch_lanes];
+  template <int SET> __attribute__((noinline)) void tally_stiffness_lanes(const Batch &, int n);
   double *atom_contacts;    // per atom (local after reverse communication)
   int nmax_count;
 
@@ -148,7 +157,9 @@ class PairThorntonYin : public tylmp_compat::PairWithHistory, public CellTallySo
     double friction, breaks, damping;
   };
 
-  template <bool ADHESIVE, bool DAMPED> void run_batch(Batch &, bool step, Sums &);
+  // BY_CONTACT: the principal stiffness block is summed contact by contact (stiffness_set
+  // PRINCIPAL or FULL), else per lane with the rest of its set
+  template <bool ADHESIVE, bool DAMPED, bool BY_CONTACT> void run_batch(Batch &, bool step, Sums &);
   void begin_tallies();
   template <bool ADHESIVE, bool DAMPED> void eval(int eflag, int vflag);
 };
