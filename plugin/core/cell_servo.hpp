@@ -320,39 +320,24 @@ inline void require_valid(const ServoSettings& s)
 // ---------------------------------------------------------------------------------------------
 // The control law (see the header comment; docs/theory.md §6.2)
 
-template <int N>
-ServoCommandOf<N> servo_step(const MixedControlOf<N>& control, const CellMeasurementOf<N>& cell,
-                             const ServoSettings& settings, double dt, ServoMemoryOf<N>& memory)
-{
-  if (!(dt > 0.0)) throw std::invalid_argument("servo time step must be positive");
-  const int m = control.actuator_count;
-  ServoCommandOf<N> command{control.prescribed_strain_rate, false};
-  if (m == 0) {
-    memory.last_strain_rate = command.strain_rate;
-    return command;
-  }
-  // stiffness floor so that an empty cell (C = 0) still gets a direction; the cap sets the pace
-  const double scale = std::max({cell.stiffness.cwiseAbs().maxCoeff(),
-                                 control.stress_targets.cwiseAbs().maxCoeff(),
-                                 cell.stress.cwiseAbs().maxCoeff()});
-  if (scale == 0.0) {
-    memory.last_strain_rate = command.strain_rate;
-    return command;
-  }
-  const double floor = 1e-9 * scale;
-  const MatrixN<N> C = cell.stiffness + floor * MatrixN<N>::Identity();
-  const VectorN<N> prescribed_step = control.prescribed_strain_rate * dt;
+namespace detail {
 
-  // Rate floor (docs/theory.md §6.2): an actuator that moves no held stress, because no
-  // contact carries load along it (an axis of a loose specimen that no contact crosses),
-  // would be normalised by the stiffness floor alone, and the cap, which scales the servo
-  // part as a whole, would freeze every other axis behind it. Such an actuator moves at the
-  // cap towards its target (the sign of its error times its row's weight on it), and the
-  // loaded actuators are servoed among themselves.
+// Rate floor (docs/theory.md §6.2): an actuator that moves no held stress, because no
+// contact carries load along it (an axis of a loose specimen that no contact crosses),
+// would be normalised by the stiffness floor alone, and the cap, which scales the servo
+// part as a whole, would freeze every other axis behind it. Such an actuator moves at the
+// cap towards its target (the sign of its error times its row's weight on it), and the
+// loaded actuators are servoed among themselves. Returns the floor's strain rates and marks
+// the unloaded actuators.
+template <int N>
+VectorN<N> unloaded_actuator_rates(const MixedControlOf<N>& control,
+                                   const CellMeasurementOf<N>& cell,
+                                   const ServoSettings& settings, double floor,
+                                   std::array<bool, N>& unloaded)
+{
   const MatrixN<N> raw_response = control.stress_rows * cell.stiffness * control.actuators;
   VectorN<N> floor_rate = VectorN<N>::Zero();
-  std::array<bool, N> unloaded{};
-  for (int k = 0; k < m; ++k) {
+  for (int k = 0; k < control.actuator_count; ++k) {
     unloaded[k] = raw_response.col(k).cwiseAbs().maxCoeff() <= floor;
     const double pull = control.stress_rows.row(k).dot(control.actuators.col(k)) *
         (control.stress_targets(k) - control.stress_rows.row(k).dot(cell.stress));
@@ -360,38 +345,102 @@ ServoCommandOf<N> servo_step(const MixedControlOf<N>& control, const CellMeasure
       floor_rate += (pull > 0.0 ? 1.0 : -1.0) * settings.max_strain_rate *
                     control.actuators.col(k) / control.actuators.col(k).cwiseAbs().maxCoeff();
   }
+  return floor_rate;
+}
 
-  // padded to NxN with identity on unused actuators so one fixed-size solve serves all m
-  MatrixN<N> response = MatrixN<N>::Identity();
-  response.topLeftCorner(m, m) =
+// the loaded actuators' system (A C W) u = g e - A C r_p dt + g_I S, padded to NxN with
+// identity on unused and unloaded actuators so that one fixed-size solve serves all m
+template <int N>
+struct LoadedServoSystem {
+  MatrixN<N> response = MatrixN<N>::Identity();   // A C W
+  VectorN<N> error = VectorN<N>::Zero();          // e = t - A sigma
+  VectorN<N> feed_forward = VectorN<N>::Zero();   // A C r_p dt
+  VectorN<N> held_integral;                       // S of the last step
+  double stress_error = 0.0;                      // largest |e| of the held stresses
+};
+
+// C has the stiffness floor on its diagonal
+template <int N>
+LoadedServoSystem<N> loaded_servo_system(const MixedControlOf<N>& control,
+                                         const CellMeasurementOf<N>& cell, double floor,
+                                         double dt, const VectorN<N>& integral,
+                                         const std::array<bool, N>& unloaded)
+{
+  const int m = control.actuator_count;
+  const MatrixN<N> C = cell.stiffness + floor * MatrixN<N>::Identity();
+  const VectorN<N> prescribed_step = control.prescribed_strain_rate * dt;
+  LoadedServoSystem<N> s;
+  s.response.topLeftCorner(m, m) =
       control.stress_rows.topRows(m) * C * control.actuators.leftCols(m);
-  VectorN<N> error = VectorN<N>::Zero(), feed_forward = VectorN<N>::Zero();
-  error.head(m) = control.stress_targets.head(m) - control.stress_rows.topRows(m) * cell.stress;
-  for (int k = 0; k < m; ++k)
-    command.stress_error = std::max(command.stress_error, std::abs(error(k)));
-  feed_forward.head(m) = control.stress_rows.topRows(m) * C * prescribed_step;
-  VectorN<N> held_integral = memory.integral;
+  s.error.head(m) = control.stress_targets.head(m) - control.stress_rows.topRows(m) * cell.stress;
+  for (int k = 0; k < m; ++k) s.stress_error = std::max(s.stress_error, std::abs(s.error(k)));
+  s.feed_forward.head(m) = control.stress_rows.topRows(m) * C * prescribed_step;
+  s.held_integral = integral;
   for (int k = 0; k < m; ++k)
     if (unloaded[k]) {    // out of the loaded actuators' system, like an unused one
-      response.row(k).setZero();
-      response.col(k).setZero();
-      response(k, k) = 1.0;
-      error(k) = feed_forward(k) = held_integral(k) = 0.0;
+      s.response.row(k).setZero();
+      s.response.col(k).setZero();
+      s.response(k, k) = 1.0;
+      s.error(k) = s.feed_forward(k) = s.held_integral(k) = 0.0;
     }
+  return s;
+}
 
-  const Eigen::FullPivLU<MatrixN<N>> lu(response);
+// the amplitudes u (strain per step) of the actuators: proportional, affine feed-forward and
+// integral parts; `integral` is the accumulated error S after this step (it accumulates only
+// near the target)
+template <int N>
+VectorN<N> servo_amplitudes(const LoadedServoSystem<N>& s, const MixedControlOf<N>& control,
+                            const CellMeasurementOf<N>& cell, const ServoSettings& settings,
+                            VectorN<N>& integral)
+{
+  const int m = control.actuator_count;
+  const Eigen::FullPivLU<MatrixN<N>> lu(s.response);
   if (!lu.isInvertible())
     throw std::runtime_error("servo: the free axes cannot move the held stresses "
                              "(singular response matrix)");
-  const VectorN<N> normalised_error = lu.solve(error);
+  const VectorN<N> normalised_error = lu.solve(s.error);
   const double stress_level = std::max(control.stress_targets.head(m).cwiseAbs().maxCoeff(),
                                        std::abs(mean_stress(cell.stress.template head<3>())));
-  const bool near_target = error.cwiseAbs().maxCoeff() <= settings.integral_band * stress_level;
-  const VectorN<N> integral = held_integral + (near_target ? error : VectorN<N>::Zero());
-  VectorN<N> u = settings.gain * normalised_error - lu.solve(feed_forward)
+  const bool near_target = s.error.cwiseAbs().maxCoeff() <= settings.integral_band * stress_level;
+  integral = s.held_integral + (near_target ? s.error : VectorN<N>::Zero());
+  VectorN<N> u = settings.gain * normalised_error - lu.solve(s.feed_forward)
                       + settings.integral_gain * lu.solve(integral);
   u.tail(N - m).setZero();
+  return u;
+}
 
+}    // namespace detail
+
+template <int N>
+ServoCommandOf<N> servo_step(const MixedControlOf<N>& control, const CellMeasurementOf<N>& cell,
+                             const ServoSettings& settings, double dt, ServoMemoryOf<N>& memory)
+{
+  if (!(dt > 0.0)) throw std::invalid_argument("servo time step must be positive");
+  const int m = control.actuator_count;
+  ServoCommandOf<N> command{control.prescribed_strain_rate, false};
+  // stiffness floor so that an empty cell (C = 0) still gets a direction; the cap sets the
+  // pace. Nothing held, or nothing to scale by (no stiffness, target or stress): the
+  // prescribed rates alone
+  const double scale = m == 0 ? 0.0
+                              : std::max({cell.stiffness.cwiseAbs().maxCoeff(),
+                                          control.stress_targets.cwiseAbs().maxCoeff(),
+                                          cell.stress.cwiseAbs().maxCoeff()});
+  if (scale == 0.0) {
+    memory.last_strain_rate = command.strain_rate;
+    return command;
+  }
+  const double floor = 1e-9 * scale;
+  std::array<bool, N> unloaded{};
+  const VectorN<N> floor_rate =
+      detail::unloaded_actuator_rates<N>(control, cell, settings, floor, unloaded);
+  const detail::LoadedServoSystem<N> system =
+      detail::loaded_servo_system<N>(control, cell, floor, dt, memory.integral, unloaded);
+  command.stress_error = system.stress_error;
+  VectorN<N> integral;
+  const VectorN<N> u = detail::servo_amplitudes(system, control, cell, settings, integral);
+
+  // the cap scales the servo part as a whole, and freezes the integral meanwhile
   VectorN<N> servo_rate = control.actuators * u / dt;
   const double largest = servo_rate.cwiseAbs().maxCoeff();
   if (largest > settings.max_strain_rate) {

@@ -130,8 +130,22 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
   require_controllable();
   choose_shear_gains();
 
-  // a redefinition (same ID: Modify has just deleted the fix in this slot) continues the test
-  // of the fix it replaces, unless 'continue no'
+  take_over_replaced_fix();
+  if (mode == Mode::PATH) lead_into_path();
+
+  pressure_id = std::string(id) + "_contact_stress";
+  modify->add_compute(pressure_id + " all pressure NULL pair");
+  // the contact tallies for a pair style other than thornton/yin (compute_cell_tally.h)
+  tally_id = std::string(id) + "_contact_tally";
+  modify->add_compute(tally_id + " all CELL_TALLY");
+  irregular = new Irregular(lmp);
+  if (named_variables) define_named_variables();
+}
+
+// a redefinition (same ID: Modify has just deleted the fix in this slot) continues the test
+// of the fix it replaces, unless 'continue no'
+void FixCellServo::take_over_replaced_fix()
+{
   bool replacing = false;
   for (int i = 0; i < modify->nfix; ++i)
     if (modify->fix[i] == nullptr) replacing = true;
@@ -157,26 +171,19 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) :
     }
   }
   if (previous != stash.end()) stash.erase(previous);
+}
 
-  // every path starts from the current strain (from the reference, kept by a continued test):
-  // a leg to the path's first point goes in front unless the follower can close the gap itself
-  if (mode == Mode::PATH) {
-    const Eigen::Vector2d from = tycore::pi_coordinates(principal_strain());
-    const int legs = path.segment_count();
-    path = path.starting_from(from, tycore::MIN_STEPS_PER_LEG * path_speed * update->dt);
-    if (path.segment_count() > legs && comm->me == 0)
-      utils::logmesg(lmp, "fix cell/servo: the path starts at the current strain, Pi point "
-                     "({:.6g}, {:.6g}); a leg of length {:.6g} to its first point goes first\n",
-                     from.x(), from.y(), path.segments().front().length());
-  }
-
-  pressure_id = std::string(id) + "_contact_stress";
-  modify->add_compute(pressure_id + " all pressure NULL pair");
-  // the contact tallies for a pair style other than thornton/yin (compute_cell_tally.h)
-  tally_id = std::string(id) + "_contact_tally";
-  modify->add_compute(tally_id + " all CELL_TALLY");
-  irregular = new Irregular(lmp);
-  if (named_variables) define_named_variables();
+// every path starts from the current strain (from the reference, kept by a continued test):
+// a leg to the path's first point goes in front unless the follower can close the gap itself
+void FixCellServo::lead_into_path()
+{
+  const Eigen::Vector2d from = tycore::pi_coordinates(principal_strain());
+  const int legs = path.segment_count();
+  path = path.starting_from(from, tycore::MIN_STEPS_PER_LEG * path_speed * update->dt);
+  if (path.segment_count() > legs && comm->me == 0)
+    utils::logmesg(lmp, "fix cell/servo: the path starts at the current strain, Pi point "
+                   "({:.6g}, {:.6g}); a leg of length {:.6g} to its first point goes first\n",
+                   from.x(), from.y(), path.segments().front().length());
 }
 
 // `variables yes`: an equal-style variable ID_NAME = f_ID[i] for every output, so that a deck
@@ -244,203 +251,278 @@ int FixCellServo::setmask()
 }
 
 /* ----------------------------------------------------------------------
-   MODE args: see the header of docs/fix_cell_servo.md
+   keywords: see the table of docs/fix_cell_servo.md. Each group reads the keyword at hand if
+   it is one of its own and returns how many arguments it took (0: not one of its keywords).
 ------------------------------------------------------------------------- */
+
+// the keyword at arg[iarg] and its values; the messages name the keyword
+class FixCellServo::KeywordArgs {
+ public:
+  KeywordArgs(Error *error, int narg, char **arg, int iarg) :
+      key(arg[iarg]), narg(narg), arg(arg), iarg(iarg), error(error)
+  {
+  }
+  const std::string key;
+  const int narg;
+  char **const arg;
+  const int iarg;    // the keyword's index
+
+  const char *value(int k = 1) const
+  {
+    if (iarg + k >= narg)
+      error->all(FLERR, "fix cell/servo: keyword '{}' needs a value", key);
+    return arg[iarg + k];
+  }
+  bool yes_no() const
+  {
+    const std::string v = value();
+    if (v != "yes" && v != "no")
+      error->all(FLERR, "fix cell/servo: {} must be yes or no, got '{}'", key, v);
+    return v == "yes";
+  }
+
+ private:
+  Error *error;
+};
+
+// the options of a Pi-plane path, built after the keywords (build_path)
+struct FixCellServo::PathOptions {
+  tycore::Rotation rotation = tycore::Rotation::CLOCKWISE;
+  tycore::DeviatoricStrainMeasure measure = tycore::DeviatoricStrainMeasure::STRAIN_DIFFERENCE_13;
+  bool with_prestrain = true;
+  double sweep = 360.0;
+};
 
 void FixCellServo::parse_keywords(int narg, char **arg, int iarg)
 {
   settings.max_strain_rate = 0.0;    // 0: default set in init() from the inertial number
-  auto rotation = tycore::Rotation::CLOCKWISE;
-  auto measure = tycore::DeviatoricStrainMeasure::STRAIN_DIFFERENCE_13;
-  bool with_prestrain = true;
-  double sweep = 360.0;
+  PathOptions options;
   std::set<std::string> seen;
-  // the equilibrium tolerances are fractions (of p*, of the mean contact force, of p* V, of
-  // a contact per particle)
-  auto fraction = [&](const char *text, const std::string &what) {
-    return number_in(text, what, 0.0, 1.0, true);
-  };
   while (iarg < narg) {
-    const std::string key = arg[iarg];
-    if (!seen.insert(key).second)
-      error->all(FLERR, "fix cell/servo: keyword '{}' is given twice", key);
-    auto value = [&](int k = 1) {
-      if (iarg + k >= narg)
-        error->all(FLERR, "fix cell/servo: keyword '{}' needs a value", key);
-      return arg[iarg + k];
-    };
-    auto yes_no = [&]() {
-      const std::string v = value();
-      if (v != "yes" && v != "no")
-        error->all(FLERR, "fix cell/servo: {} must be yes or no, got '{}'", key, v);
-      return v == "yes";
-    };
-    auto path_only = [&]() {
-      if (mode != Mode::PATH)
-        error->all(FLERR, "fix cell/servo: keyword '{}' applies only to circle, triangle and "
-                   "polygon paths", key);
-    };
-    if (key == "rotation") {
-      path_only();
-      const std::string v = value();
-      if (v == "cw") rotation = tycore::Rotation::CLOCKWISE;
-      else if (v == "ccw") rotation = tycore::Rotation::ANTICLOCKWISE;
-      else error->all(FLERR, "fix cell/servo: rotation must be cw or ccw, got '{}'", v);
-      iarg += 2;
-    } else if (key == "measure") {
-      path_only();
-      const std::string v = value();
-      if (v == "d13") measure = tycore::DeviatoricStrainMeasure::STRAIN_DIFFERENCE_13;
-      else if (v == "q") measure = tycore::DeviatoricStrainMeasure::EPS_Q;
-      else error->all(FLERR, "fix cell/servo: measure must be d13 or q, got '{}'", v);
-      iarg += 2;
-    } else if (key == "prestrain_leg") {
-      path_only();
-      with_prestrain = yes_no();
-      iarg += 2;
-    } else if (key == "sweep") {
-      if (path_kind != "circle")
-        error->all(FLERR, "fix cell/servo: keyword 'sweep' applies only to the circle path");
-      sweep = number_in(value(), "sweep", 0.0, 36000.0, true, " degrees (100 turns)");
-      iarg += 2;
-    } else if (key == "close") {
-      if (path_kind != "polygon")
-        error->all(FLERR, "fix cell/servo: keyword 'close' applies only to the polygon path");
-      close_polygon = yes_no();
-      iarg += 2;
-    } else if (key == "plane_strain") {
-      path_only();
-      const std::string v = value();
-      if (v == "total") plane_strain = tycore::PlaneStrain::TOTAL;
-      else if (v == "deviatoric") plane_strain = tycore::PlaneStrain::DEVIATORIC;
-      else error->all(FLERR, "fix cell/servo: plane_strain must be total or deviatoric, got '{}'", v);
-      iarg += 2;
-    } else if (key == "speed") {
-      path_speed = finite_number(value(), "speed");
-      if (!(path_speed > 0.0))
-        error->all(FLERR, "fix cell/servo: path speed must be positive, got {}", path_speed);
-      iarg += 2;
-    } else if (key == "gain") {
-      settings.gain = finite_number(value(), "gain");
-      gains_given = true;
-      iarg += 2;
-    } else if (key == "integral_gain") {
-      settings.integral_gain = finite_number(value(), "integral_gain");
-      gains_given = true;
-      iarg += 2;
-    } else if (key == "integral_band") {
-      settings.integral_band = number_in(value(), "integral_band", 0.0, 1.0, false,
-                                         " (a fraction of the stress level)");
-      iarg += 2;
-    } else if (key == "max_rate") {
-      settings.max_strain_rate = finite_number(value(), "max_rate");
-      if (!(settings.max_strain_rate > 0.0))
-        error->all(FLERR, "fix cell/servo: max_rate must be positive, got {}",
-                   settings.max_strain_rate);
-      max_rate_given = true;    // its range needs the timestep: check_rates_resolvable()
-      iarg += 2;
-    } else if (key == "max_inertial") {
-      inertial_cap = number_in(value(), "max_inertial", 0.0, 1.0, true,
-                               " (above 1 a packing flows like a gas)");
-      iarg += 2;
-    } else if (key == "csv") {
-      csv_path = value(1);
-      csv_every = positive_integer(value(2), "csv interval N");
-      iarg += 3;
-    } else if (key == "extra") {
-      // extra N name1 value1 ... : columns of the record from computes, fixes or variables
-      const int n = positive_integer(value(1), "extra column count N");
-      if (iarg + 2 + 2 * n > narg)
-        error->all(FLERR, "fix cell/servo: extra {} needs {} name-value pairs", n, n);
-      for (int k = 0; k < n; ++k) {
-        const std::string name = arg[iarg + 2 + 2 * k], ref = arg[iarg + 3 + 2 * k];
-        check_extra_name(name, ref, extra_requests);
-        if (!utils::strmatch(ref, "^[cfv]_"))
-          error->all(FLERR, "fix cell/servo {}: extra column {}: '{}' is not a c_ID, c_ID[i], "
-                     "f_ID, f_ID[i] or v_name reference", id, name, ref);
-        extra_requests.emplace_back(name, ref);
-      }
-      iarg += 2 + 2 * n;
-    } else if (key == "until") {
-      const std::string name = value(1);
-      until_value = finite_number(value(2), "until value");
-      until_output = -1;
-      for (int k : {EPS1, EPS2, EPS3, EPS_V, EPS_Q, EPS_D13, SIG1, SIG2, SIG3, P, Q, B, LODE_DEG,
-                    ETA_LD, SINPHI, VOID_RATIO, SOLID_FRACTION, PI_X, PI_Y, PI_EX, PI_EY, TIME,
-                    BOUNDARY_WORK, SIG_XY, SIG_XZ, SIG_YZ, GAMMA_XY, GAMMA_XZ, GAMMA_YZ, GAMMA,
-                    TAU, SIG_N, TAU_RATIO, R_U, CYCLES})
-        if (name == output_name(k)) until_output = k;
-      if (until_output < 0)
-        error->all(FLERR, "fix cell/servo: until: '{}' is not a strain, stress, void ratio, "
-                   "time, boundary_work, shear or cycle output of the fix (names: "
-                   "docs/fix_cell_servo.md)", name);
-      if ((until_output == GAMMA || until_output == TAU || until_output == SIG_N
-           || until_output == TAU_RATIO) && !has_plane)
-        error->all(FLERR, "fix cell/servo: until {}: this programme has no shear plane (use "
-                   "gamma_xy, gamma_xz or gamma_yz, or a shear mode)", name);
-      if ((until_output == R_U || until_output == CYCLES)
-          && !(mode == Mode::SHEAR_CV || mode == Mode::CYCLIC_SHEAR))
-        error->all(FLERR, "fix cell/servo: until {}: only the constant-volume shear modes "
-                   "report it", name);
-      iarg += 3;
-    } else if (key == "ru_limit" || key == "da_limit") {
-      if (mode != Mode::CYCLIC_SHEAR)
-        error->all(FLERR, "fix cell/servo: keyword '{}' applies only to cyclic_shear", key);
-      if (key == "ru_limit")
-        liquefaction.pore_pressure_ratio = number_in(value(), key, 0.0, 1.0, true);
-      else
-        liquefaction.double_amplitude_strain = number_in(value(), key, 0.0, 1.0, true,
-                                                         " (a double-amplitude shear strain)");
-      iarg += 2;
-    } else if (key == "angle") {
-      if (mode != Mode::ROTATION)
-        error->all(FLERR, "fix cell/servo: keyword 'angle' applies only to rotation");
-      stress_rotation.initial_angle_deg = number_in(value(), key, -360.0, 360.0, false, " degrees");
-      iarg += 2;
-    } else if (key == "cap_warning") {
-      cap_warning = yes_no();
-      iarg += 2;
-    } else if (key == "variables") {
-      named_variables = yes_no();
-      iarg += 2;
-    } else if (key == "continue") {
-      continue_previous = yes_no();
-      iarg += 2;
-    } else if (key == "equilibrium") {
-      equilibrium_every = positive_integer(value(), "equilibrium interval N");
-      iarg += 2;
-    } else if (key == "eq_stress") {
-      criteria.stress_tolerance = fraction(value(), key);
-      iarg += 2;
-    } else if (key == "eq_unbalanced") {
-      criteria.max_unbalanced_force_ratio = fraction(value(), key);
-      iarg += 2;
-    } else if (key == "eq_kinetic") {
-      criteria.max_kinetic_energy_ratio = fraction(value(), key);
-      iarg += 2;
-    } else if (key == "eq_coordination") {
-      criteria.coordination_tolerance = fraction(value(), key);
-      iarg += 2;
-    } else if (key == "eq_window") {
-      criteria.window = positive_integer(value(), "eq_window");
-      iarg += 2;
-    } else {
-      error->all(FLERR, "fix cell/servo: unknown keyword '{}'", key);
-    }
+    const KeywordArgs k(error, narg, arg, iarg);
+    if (!seen.insert(k.key).second)
+      error->all(FLERR, "fix cell/servo: keyword '{}' is given twice", k.key);
+    int used = path_keyword(k, options);
+    if (!used) used = servo_keyword(k);
+    if (!used) used = record_keyword(k);
+    if (!used) used = equilibrium_keyword(k);
+    if (!used) used = cell_mode_keyword(k);
+    if (!used) error->all(FLERR, "fix cell/servo: unknown keyword '{}'", k.key);
+    iarg += used;
   }
-  if (!path_kind.empty()) {
-    try {
-      if (path_kind == "circle")
-        path = tycore::constant_deviatoric_strain_path(prestrain, measure, rotation,
-                                                      with_prestrain, sweep);
-      else if (path_kind == "triangle")
-        path = tycore::multiaxial_plane_strain_path(prestrain, measure, rotation, with_prestrain);
-      else
-        path = tycore::PiPath::polygon(polygon_vertices, close_polygon);
-    } catch (std::exception &e) {
-      error->all(FLERR, "fix cell/servo {}: {}", path_kind, e.what());
-    }
+  build_path(options);
+  check_keyword_combinations();
+}
+
+// speed, rotation, measure, prestrain_leg, sweep, close, plane_strain
+int FixCellServo::path_keyword(const KeywordArgs &k, PathOptions &options)
+{
+  auto path_only = [&]() {
+    if (mode != Mode::PATH)
+      error->all(FLERR, "fix cell/servo: keyword '{}' applies only to circle, triangle and "
+                 "polygon paths", k.key);
+  };
+  if (k.key == "rotation") {
+    path_only();
+    const std::string v = k.value();
+    if (v == "cw") options.rotation = tycore::Rotation::CLOCKWISE;
+    else if (v == "ccw") options.rotation = tycore::Rotation::ANTICLOCKWISE;
+    else error->all(FLERR, "fix cell/servo: rotation must be cw or ccw, got '{}'", v);
+  } else if (k.key == "measure") {
+    path_only();
+    const std::string v = k.value();
+    if (v == "d13") options.measure = tycore::DeviatoricStrainMeasure::STRAIN_DIFFERENCE_13;
+    else if (v == "q") options.measure = tycore::DeviatoricStrainMeasure::EPS_Q;
+    else error->all(FLERR, "fix cell/servo: measure must be d13 or q, got '{}'", v);
+  } else if (k.key == "prestrain_leg") {
+    path_only();
+    options.with_prestrain = k.yes_no();
+  } else if (k.key == "sweep") {
+    if (path_kind != "circle")
+      error->all(FLERR, "fix cell/servo: keyword 'sweep' applies only to the circle path");
+    options.sweep = number_in(k.value(), "sweep", 0.0, 36000.0, true, " degrees (100 turns)");
+  } else if (k.key == "close") {
+    if (path_kind != "polygon")
+      error->all(FLERR, "fix cell/servo: keyword 'close' applies only to the polygon path");
+    close_polygon = k.yes_no();
+  } else if (k.key == "plane_strain") {
+    path_only();
+    const std::string v = k.value();
+    if (v == "total") plane_strain = tycore::PlaneStrain::TOTAL;
+    else if (v == "deviatoric") plane_strain = tycore::PlaneStrain::DEVIATORIC;
+    else error->all(FLERR, "fix cell/servo: plane_strain must be total or deviatoric, got '{}'", v);
+  } else if (k.key == "speed") {
+    path_speed = finite_number(k.value(), "speed");
+    if (!(path_speed > 0.0))
+      error->all(FLERR, "fix cell/servo: path speed must be positive, got {}", path_speed);
+  } else {
+    return 0;
   }
+  return 2;
+}
+
+// gain, integral_gain, integral_band, max_rate, max_inertial, cap_warning
+int FixCellServo::servo_keyword(const KeywordArgs &k)
+{
+  if (k.key == "gain") {
+    settings.gain = finite_number(k.value(), "gain");
+    gains_given = true;
+  } else if (k.key == "integral_gain") {
+    settings.integral_gain = finite_number(k.value(), "integral_gain");
+    gains_given = true;
+  } else if (k.key == "integral_band") {
+    settings.integral_band = number_in(k.value(), "integral_band", 0.0, 1.0, false,
+                                       " (a fraction of the stress level)");
+  } else if (k.key == "max_rate") {
+    settings.max_strain_rate = finite_number(k.value(), "max_rate");
+    if (!(settings.max_strain_rate > 0.0))
+      error->all(FLERR, "fix cell/servo: max_rate must be positive, got {}",
+                 settings.max_strain_rate);
+    max_rate_given = true;    // its range needs the timestep: check_rates_resolvable()
+  } else if (k.key == "max_inertial") {
+    inertial_cap = number_in(k.value(), "max_inertial", 0.0, 1.0, true,
+                             " (above 1 a packing flows like a gas)");
+  } else if (k.key == "cap_warning") {
+    cap_warning = k.yes_no();
+  } else {
+    return 0;
+  }
+  return 2;
+}
+
+// the record and the test's bounds: csv, extra, until, variables, continue
+int FixCellServo::record_keyword(const KeywordArgs &k)
+{
+  if (k.key == "csv") {
+    csv_path = k.value(1);
+    csv_every = positive_integer(k.value(2), "csv interval N");
+    return 3;
+  }
+  if (k.key == "extra") return parse_extra(k);
+  if (k.key == "until") {
+    const std::string name = k.value(1);
+    parse_until(name, k.value(2));
+    return 3;
+  }
+  if (k.key == "variables") {
+    named_variables = k.yes_no();
+    return 2;
+  }
+  if (k.key == "continue") {
+    continue_previous = k.yes_no();
+    return 2;
+  }
+  return 0;
+}
+
+// extra N name1 value1 ... : columns of the record from computes, fixes or variables
+int FixCellServo::parse_extra(const KeywordArgs &k)
+{
+  const int n = positive_integer(k.value(1), "extra column count N");
+  if (k.iarg + 2 + 2 * n > k.narg)
+    error->all(FLERR, "fix cell/servo: extra {} needs {} name-value pairs", n, n);
+  for (int j = 0; j < n; ++j) {
+    const std::string name = k.arg[k.iarg + 2 + 2 * j], ref = k.arg[k.iarg + 3 + 2 * j];
+    check_extra_name(name, ref, extra_requests);
+    if (!utils::strmatch(ref, "^[cfv]_"))
+      error->all(FLERR, "fix cell/servo {}: extra column {}: '{}' is not a c_ID, c_ID[i], "
+                 "f_ID, f_ID[i] or v_name reference", id, name, ref);
+    extra_requests.emplace_back(name, ref);
+  }
+  return 2 + 2 * n;
+}
+
+// until NAME VALUE: an output of the programme, reached from either side
+void FixCellServo::parse_until(const std::string &name, const char *target)
+{
+  until_value = finite_number(target, "until value");
+  until_output = -1;
+  for (int k : {EPS1, EPS2, EPS3, EPS_V, EPS_Q, EPS_D13, SIG1, SIG2, SIG3, P, Q, B, LODE_DEG,
+                ETA_LD, SINPHI, VOID_RATIO, SOLID_FRACTION, PI_X, PI_Y, PI_EX, PI_EY, TIME,
+                BOUNDARY_WORK, SIG_XY, SIG_XZ, SIG_YZ, GAMMA_XY, GAMMA_XZ, GAMMA_YZ, GAMMA,
+                TAU, SIG_N, TAU_RATIO, R_U, CYCLES})
+    if (name == output_name(k)) until_output = k;
+  if (until_output < 0)
+    error->all(FLERR, "fix cell/servo: until: '{}' is not a strain, stress, void ratio, "
+               "time, boundary_work, shear or cycle output of the fix (names: "
+               "docs/fix_cell_servo.md)", name);
+  if ((until_output == GAMMA || until_output == TAU || until_output == SIG_N
+       || until_output == TAU_RATIO) && !has_plane)
+    error->all(FLERR, "fix cell/servo: until {}: this programme has no shear plane (use "
+               "gamma_xy, gamma_xz or gamma_yz, or a shear mode)", name);
+  if ((until_output == R_U || until_output == CYCLES)
+      && !(mode == Mode::SHEAR_CV || mode == Mode::CYCLIC_SHEAR))
+    error->all(FLERR, "fix cell/servo: until {}: only the constant-volume shear modes "
+               "report it", name);
+}
+
+// equilibrium, eq_stress, eq_unbalanced, eq_kinetic, eq_coordination, eq_window
+int FixCellServo::equilibrium_keyword(const KeywordArgs &k)
+{
+  // the tolerances are fractions (of p*, of the mean contact force, of p* V, of a contact per
+  // particle)
+  auto fraction = [&]() { return number_in(k.value(), k.key, 0.0, 1.0, true); };
+  if (k.key == "equilibrium")
+    equilibrium_every = positive_integer(k.value(), "equilibrium interval N");
+  else if (k.key == "eq_stress")
+    criteria.stress_tolerance = fraction();
+  else if (k.key == "eq_unbalanced")
+    criteria.max_unbalanced_force_ratio = fraction();
+  else if (k.key == "eq_kinetic")
+    criteria.max_kinetic_energy_ratio = fraction();
+  else if (k.key == "eq_coordination")
+    criteria.coordination_tolerance = fraction();
+  else if (k.key == "eq_window")
+    criteria.window = positive_integer(k.value(), "eq_window");
+  else
+    return 0;
+  return 2;
+}
+
+// the options of the six-component modes: ru_limit, da_limit (cyclic_shear), angle (rotation)
+int FixCellServo::cell_mode_keyword(const KeywordArgs &k)
+{
+  if (k.key == "ru_limit" || k.key == "da_limit") {
+    if (mode != Mode::CYCLIC_SHEAR)
+      error->all(FLERR, "fix cell/servo: keyword '{}' applies only to cyclic_shear", k.key);
+    if (k.key == "ru_limit")
+      liquefaction.pore_pressure_ratio = number_in(k.value(), k.key, 0.0, 1.0, true);
+    else
+      liquefaction.double_amplitude_strain = number_in(k.value(), k.key, 0.0, 1.0, true,
+                                                       " (a double-amplitude shear strain)");
+  } else if (k.key == "angle") {
+    if (mode != Mode::ROTATION)
+      error->all(FLERR, "fix cell/servo: keyword 'angle' applies only to rotation");
+    stress_rotation.initial_angle_deg = number_in(k.value(), k.key, -360.0, 360.0, false,
+                                                  " degrees");
+  } else {
+    return 0;
+  }
+  return 2;
+}
+
+// the Pi-plane path of circle, triangle and polygon, from the mode's arguments and the keywords
+void FixCellServo::build_path(const PathOptions &options)
+{
+  if (path_kind.empty()) return;
+  try {
+    if (path_kind == "circle")
+      path = tycore::constant_deviatoric_strain_path(prestrain, options.measure,
+                                                    options.rotation, options.with_prestrain,
+                                                    options.sweep);
+    else if (path_kind == "triangle")
+      path = tycore::multiaxial_plane_strain_path(prestrain, options.measure, options.rotation,
+                                                  options.with_prestrain);
+    else
+      path = tycore::PiPath::polygon(polygon_vertices, close_polygon);
+  } catch (std::exception &e) {
+    error->all(FLERR, "fix cell/servo {}: {}", path_kind, e.what());
+  }
+}
+
+// keywords that need a mode or another keyword
+void FixCellServo::check_keyword_combinations()
+{
   if (mode == Mode::PATH && !(path_speed > 0.0))
     error->all(FLERR, "fix cell/servo: a Pi-plane path needs 'speed V' (|de/dt|, 1/s)");
   if (mode != Mode::PATH && path_speed > 0.0)
@@ -669,6 +751,22 @@ void FixCellServo::end_of_step()
   measure();
   compute_outputs();
   check_until_direction();
+  write_record_rows();
+  after_step();
+  const tycore::CellMeasurementOf<6> cell = cell_measurement();
+  const tycore::ServoCommandOf<6> command = next_command(cell);
+  check_equilibrium(cell);
+  watch_rate_cap(command);
+  require_followable(command);
+  add_boundary_work(command);
+  // the cell deforms at the next step's post_integrate, before its forces: the positions
+  // written at the end of a step are those its forces were computed at, so a restart (or a
+  // new run) recomputes the same forces in setup and continues the trajectory exactly
+}
+
+// the record's row of this step, and the end of the test once 'until' is met
+void FixCellServo::write_record_rows()
+{
   if (csv_every > 0 && update->ntimestep % csv_every == 0) {
     compute_particle_outputs();
     write_csv_row();
@@ -689,38 +787,46 @@ void FixCellServo::end_of_step()
       until_met = 1;
     }
   }
+}
 
-  after_step();
-  const tycore::CellMeasurementOf<6> cell = cell_measurement();
+// the strain rates of the next step
+tycore::ServoCommandOf<6> FixCellServo::next_command(const tycore::CellMeasurementOf<6> &cell)
+{
   tycore::ServoCommandOf<6> command;
   try {
     command = servo_command(cell);
   } catch (std::exception &e) {
     error->all(FLERR, "fix cell/servo: {}", e.what());
   }
+  return command;
+}
 
-  if (equilibrium_every > 0 && update->ntimestep % equilibrium_every == 0) {
-    compute_particle_outputs();
-    tycore::EquilibriumSample sample;
-    sample.stress = cell.stress.head<3>();
-    sample.target_stress = Eigen::Vector3d::Constant(target_p);
-    sample.unbalanced_force_ratio = output[UNBALANCED];
-    sample.kinetic_energy_ratio = output[KINETIC_RATIO];
-    sample.coordination = output[Z];
-    const tycore::EquilibriumCheck check =
-        tycore::update_equilibrium(equilibrium, sample, criteria);
-    equilibrium_reached = check.reached;
-    output[EQUILIBRIUM] = equilibrium_reached;
-    output[EQ_STRESS_OK] = check.stress_ok;
-    output[EQ_UNBALANCED_OK] = check.force_ok;
-    output[EQ_KINETIC_OK] = check.energy_ok;
-    output[EQ_COORDINATION_OK] = check.coordination_ok;
-  }
+// the quasi-equilibrium check of a preparation ('equilibrium N'), every N steps
+void FixCellServo::check_equilibrium(const tycore::CellMeasurementOf<6> &cell)
+{
+  if (!(equilibrium_every > 0 && update->ntimestep % equilibrium_every == 0)) return;
+  compute_particle_outputs();
+  tycore::EquilibriumSample sample;
+  sample.stress = cell.stress.head<3>();
+  sample.target_stress = Eigen::Vector3d::Constant(target_p);
+  sample.unbalanced_force_ratio = output[UNBALANCED];
+  sample.kinetic_energy_ratio = output[KINETIC_RATIO];
+  sample.coordination = output[Z];
+  const tycore::EquilibriumCheck check = tycore::update_equilibrium(equilibrium, sample, criteria);
+  equilibrium_reached = check.reached;
+  output[EQUILIBRIUM] = equilibrium_reached;
+  output[EQ_STRESS_OK] = check.stress_ok;
+  output[EQ_UNBALANCED_OK] = check.force_ok;
+  output[EQ_KINETIC_OK] = check.energy_ok;
+  output[EQ_COORDINATION_OK] = check.coordination_ok;
+}
 
-  // a servo at its cap whose stress error has grown since it reached the cap has lost control
-  // of the stress: say what to change, once per run. At the cap while the error shrinks (an
-  // approach to a far target at the cap's pace) the cap only sets the pace, and is no fault;
-  // `cap_warning no` silences the warning where a deck compresses at the cap on purpose.
+// a servo at its cap whose stress error has grown since it reached the cap has lost control
+// of the stress: say what to change, once per run. At the cap while the error shrinks (an
+// approach to a far target at the cap's pace) the cap only sets the pace, and is no fault;
+// `cap_warning no` silences the warning where a deck compresses at the cap on purpose.
+void FixCellServo::watch_rate_cap(const tycore::ServoCommandOf<6> &command)
+{
   if (!command.saturated) {
     saturated_steps = 0;
   } else if (++saturated_steps == 1) {
@@ -736,7 +842,11 @@ void FixCellServo::end_of_step()
                      saturated_steps, saturated_error, command.stress_error, held_targets(),
                      prescribed_rate());
   }
+}
 
+// the cell follows at most MAX_STRAIN_PER_STEP in one step
+void FixCellServo::require_followable(const tycore::ServoCommandOf<6> &command)
+{
   const double fastest = command.strain_rate.cwiseAbs().maxCoeff();
   if (fastest * update->dt > tycore::MAX_STRAIN_PER_STEP)
     error->all(FLERR, "fix cell/servo: at step {} the strain rate {:.4g} 1/s strains the cell by "
@@ -744,15 +854,16 @@ void FixCellServo::end_of_step()
                "<= {:.4g} 1/s (or a smaller timestep)", update->ntimestep,
                fastest, fastest * update->dt, tycore::MAX_STRAIN_PER_STEP,
                tycore::MAX_STRAIN_PER_STEP / update->dt);
+}
+
+// boundary work V sigma : deps over this step (contact stress; docs/theory.md §5.3; Voigt6
+// with engineering shears, so that sigma : deps = sum_I sigma_I deps_I)
+void FixCellServo::add_boundary_work(const tycore::ServoCommandOf<6> &command)
+{
   const double volume = cell_volume();
-  // boundary work V sigma : deps over this step (contact stress; docs/theory.md §5.3; Voigt6
-  // with engineering shears, so that sigma : deps = sum_I sigma_I deps_I)
   const int components = domain->triclinic ? 6 : 3;
   for (int k = 0; k < components; ++k)
     boundary_work += volume * stress(k) * command.strain_rate(k) * update->dt;
-  // the cell deforms at the next step's post_integrate, before its forces: the positions
-  // written at the end of a step are those its forces were computed at, so a restart (or a
-  // new run) recomputes the same forces in setup and continues the trajectory exactly
 }
 
 void FixCellServo::write_csv_row()

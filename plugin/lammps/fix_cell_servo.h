@@ -145,6 +145,8 @@ class FixCellServo : public Fix {
   int continue_previous;           // keyword continue yes|no
   tycore::FileIdentity continued_csv;    // the record that fix wrote
   double origin[N_OUTPUT];         // the outputs when the test began (NaN: not known)
+  void take_over_replaced_fix();   // the state of the fix this one redefines
+  void lead_into_path();           // the leg from the current strain to the path
 
   // measurements of the last step
   tycore::Vector6d stress;         // contact stress, compression positive (Voigt6) [Pa]
@@ -201,13 +203,29 @@ class FixCellServo : public Fix {
 
   // the programmes (fix_cell_servo_modes.cpp)
   void parse_mode(int narg, char **arg, int &iarg);
+  class ModeArgs;                  // a mode's arguments, read in turn
   void parse_principal_mode(const std::string &name, int narg, char **arg, int &iarg);
+  void parse_constant_b(ModeArgs &a);
+  void parse_polygon(ModeArgs &a);
   void parse_axes(int narg, char **arg, int &iarg);
   void parse_axial_rate(const std::string &name, const char *text);
   void parse_cell_mode(const std::string &name, int narg, char **arg, int &iarg);
   bool needs_triclinic() const;    // the programme moves or holds a shear component
   void require_controllable();
+  // the keywords (fix_cell_servo.cpp), in groups: each returns how many arguments the
+  // keyword at hand took, 0 if it is not one of its own
+  class KeywordArgs;
+  struct PathOptions;
   void parse_keywords(int narg, char **arg, int iarg);
+  int path_keyword(const KeywordArgs &k, PathOptions &options);
+  int servo_keyword(const KeywordArgs &k);
+  int record_keyword(const KeywordArgs &k);
+  int parse_extra(const KeywordArgs &k);
+  void parse_until(const std::string &name, const char *target);
+  int equilibrium_keyword(const KeywordArgs &k);
+  int cell_mode_keyword(const KeywordArgs &k);
+  void build_path(const PathOptions &options);
+  void check_keyword_combinations();
   AxisInput parse_value(const char *text, tycore::AxisControl control, const std::string &what);
   double evaluate(AxisInput &in);
   tycore::MixedControl6 current_control();
@@ -230,6 +248,13 @@ class FixCellServo : public Fix {
   void compute_particle_outputs();
   static bool is_particle_output(int);
   void write_csv_row();
+  // the pieces of end_of_step (fix_cell_servo.cpp)
+  void write_record_rows();
+  tycore::ServoCommandOf<6> next_command(const tycore::CellMeasurementOf<6> &cell);
+  void check_equilibrium(const tycore::CellMeasurementOf<6> &cell);
+  void watch_rate_cap(const tycore::ServoCommandOf<6> &command);
+  void require_followable(const tycore::ServoCommandOf<6> &command);
+  void add_boundary_work(const tycore::ServoCommandOf<6> &command);
   void open_csv();
   void advance_clock();
   std::vector<double> restart_record() const;

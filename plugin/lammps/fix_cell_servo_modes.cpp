@@ -113,83 +113,143 @@ void FixCellServo::parse_mode(int narg, char **arg, int &iarg)
                "cyclic_shear, undrained or rotation)", name);
 }
 
+// the arguments of a mode, read in turn from arg[iarg]; the messages name the mode
+class FixCellServo::ModeArgs {
+ public:
+  ModeArgs(FixCellServo &fix, const std::string &name, int narg, char **arg, int &iarg) :
+      name(name), fix(fix), narg(narg), arg(arg), iarg(iarg)
+  {
+  }
+  const std::string &name;
+
+  // n more arguments must follow
+  void need(int n) const
+  {
+    if (iarg + n > narg)
+      fix.error->all(FLERR, "Illegal fix cell/servo {} command: expected {} more argument(s)",
+                     name, n);
+  }
+  const char *next() { return arg[iarg++]; }
+  // a target stress: compressive
+  double stress(const char *what)
+  {
+    const double value = fix.finite_number(next(), name + " " + what);
+    if (!(value > 0.0))
+      fix.error->all(FLERR, "fix cell/servo {}: target {} = {} must be positive (a granular "
+                     "cell carries no tension)", name, what, value);
+    return value;
+  }
+  // a number in (0, hi]
+  double positive(const char *what, double hi)
+  {
+    return fix.number_in(next(), name + " " + what, 0.0, hi, true);
+  }
+  // a strain rate that is not zero
+  double rate(const char *what)
+  {
+    const double value = fix.finite_number(next(), name + " " + what);
+    if (value == 0.0) fix.error->all(FLERR, "fix cell/servo {}: {} must be non-zero", name, what);
+    return value;
+  }
+  int axis()
+  {
+    const int axis = axis_index(arg[iarg]);
+    if (axis < 0)
+      fix.error->all(FLERR, "fix cell/servo {}: axis '{}' is not x, y or z", name, arg[iarg]);
+    ++iarg;
+    return axis;
+  }
+  tycore::ShearPlane plane()
+  {
+    tycore::ShearPlane plane;
+    if (!plane_of(arg[iarg], plane))
+      fix.error->all(FLERR, "fix cell/servo {}: plane '{}' is not xy, xz or yz (the edge along "
+                     "the second axis tilts towards the first; LAMMPS's triclinic box has no "
+                     "other shears)", name, arg[iarg]);
+    ++iarg;
+    return plane;
+  }
+
+ private:
+  FixCellServo &fix;
+  const int narg;
+  char **const arg;
+  int &iarg;
+};
+
 // the programmes of the paper: principal strain rates and Pi-plane paths at a held p
 void FixCellServo::parse_principal_mode(const std::string &name, int narg, char **arg,
                                         int &iarg)
 {
-  auto need = [&](int n) {
-    if (iarg + n > narg)
-      error->all(FLERR, "Illegal fix cell/servo {} command: expected {} more argument(s)", name,
-                 n);
-  };
-  auto stress_arg = [&](const char *what) {
-    const double value = finite_number(arg[iarg++], name + " " + what);
-    if (!(value > 0.0))
-      error->all(FLERR, "fix cell/servo {}: target {} = {} must be positive (a granular cell "
-                 "carries no tension)", name, what, value);
-    return value;
-  };
-  auto axis_arg = [&]() {
-    const int axis = axis_index(arg[iarg]);
-    if (axis < 0) error->all(FLERR, "fix cell/servo {}: axis '{}' is not x, y or z", name, arg[iarg]);
-    ++iarg;
-    return axis;
-  };
-
+  ModeArgs a(*this, name, narg, arg, iarg);
   if (name == "iso") {
     mode = Mode::ISO;
-    need(1);
-    target_p = stress_arg("mean stress p");
+    a.need(1);
+    target_p = a.stress("mean stress p");
   } else if (name == "axisym") {
     mode = Mode::AXISYM;
-    need(3);
-    major_axis = axis_arg();
-    parse_axial_rate(name, arg[iarg++]);
-    target_p = stress_arg("mean stress p");
+    a.need(3);
+    major_axis = a.axis();
+    parse_axial_rate(name, a.next());
+    target_p = a.stress("mean stress p");
   } else if (name == "constant_b") {
-    mode = Mode::CONSTANT_B;
-    need(4);
-    b_target = finite_number(arg[iarg++], "constant_b b");
-    if (!(b_target >= 0.0 && b_target <= 1.0))
-      error->all(FLERR, "fix cell/servo constant_b: b = {} is outside [0, 1]", b_target);
-    major_axis = axis_arg();
-    major_input = parse_value(arg[iarg++], tycore::AxisControl::STRAIN_RATE,
-                              "constant_b major-axis strain rate");
-    major_rate = major_input.value;
-    if (major_input.variable.empty() && !(major_rate > 0.0))
-      error->all(FLERR, "fix cell/servo constant_b: the major-axis strain rate must be positive "
-                 "(compression of the major axis)");
-    target_p = stress_arg("mean stress p");
+    parse_constant_b(a);
   } else if (name == "deviatoric") {
     mode = Mode::DEVIATORIC;
-    need(4);
+    a.need(4);
     for (int k = 0; k < 3; ++k)
-      axis_input[k] = parse_value(arg[iarg++], tycore::AxisControl::STRAIN_RATE,
+      axis_input[k] = parse_value(a.next(), tycore::AxisControl::STRAIN_RATE,
                                   fmt::format("deviatoric strain rate R{}", k + 1));
-    target_p = stress_arg("mean stress p");
+    target_p = a.stress("mean stress p");
   } else if (name == "circle" || name == "triangle") {
     mode = Mode::PATH;
-    need(2);
-    prestrain = number_in(arg[iarg++], name + " pre-strain", 0.0, 1.0, true,
-                          " (a natural strain)");
-    target_p = stress_arg("mean stress p");
+    a.need(2);
+    prestrain = number_in(a.next(), name + " pre-strain", 0.0, 1.0, true, " (a natural strain)");
+    target_p = a.stress("mean stress p");
     path_kind = name;    // built in parse_keywords(), after its options
   } else if (name == "polygon") {
-    mode = Mode::PATH;
-    need(1);
-    const int n = positive_integer(arg[iarg++], "polygon vertex count N");
-    if (n < 2) error->all(FLERR, "fix cell/servo polygon: needs at least 2 vertices, got {}", n);
-    need(2 * n + 1);
-    polygon_vertices.clear();
-    for (int k = 0; k < n; ++k, iarg += 2)
-      polygon_vertices.emplace_back(
-          number_in(arg[iarg], fmt::format("polygon vertex {} x", k + 1), -1.0, 1.0, false,
-                    " (a natural strain)"),
-          number_in(arg[iarg + 1], fmt::format("polygon vertex {} y", k + 1), -1.0, 1.0, false,
-                    " (a natural strain)"));
-    target_p = stress_arg("mean stress p");
-    path_kind = name;
+    parse_polygon(a);
   }
+}
+
+// constant_b B AXIS RATE P: the major axis compressed at RATE, p and b held
+void FixCellServo::parse_constant_b(ModeArgs &a)
+{
+  mode = Mode::CONSTANT_B;
+  a.need(4);
+  b_target = finite_number(a.next(), "constant_b b");
+  if (!(b_target >= 0.0 && b_target <= 1.0))
+    error->all(FLERR, "fix cell/servo constant_b: b = {} is outside [0, 1]", b_target);
+  major_axis = a.axis();
+  major_input = parse_value(a.next(), tycore::AxisControl::STRAIN_RATE,
+                            "constant_b major-axis strain rate");
+  major_rate = major_input.value;
+  if (major_input.variable.empty() && !(major_rate > 0.0))
+    error->all(FLERR, "fix cell/servo constant_b: the major-axis strain rate must be positive "
+               "(compression of the major axis)");
+  target_p = a.stress("mean stress p");
+}
+
+// polygon N x1 y1 ... xN yN P: the vertices on the strain Pi-plane (the path is built in
+// parse_keywords(), after its options)
+void FixCellServo::parse_polygon(ModeArgs &a)
+{
+  mode = Mode::PATH;
+  a.need(1);
+  const int n = positive_integer(a.next(), "polygon vertex count N");
+  if (n < 2) error->all(FLERR, "fix cell/servo polygon: needs at least 2 vertices, got {}", n);
+  a.need(2 * n + 1);
+  polygon_vertices.clear();
+  for (int k = 0; k < n; ++k) {
+    const char *x = a.next(), *y = a.next();
+    polygon_vertices.emplace_back(
+        number_in(x, fmt::format("polygon vertex {} x", k + 1), -1.0, 1.0, false,
+                  " (a natural strain)"),
+        number_in(y, fmt::format("polygon vertex {} y", k + 1), -1.0, 1.0, false,
+                  " (a natural strain)"));
+  }
+  target_p = a.stress("mean stress p");
+  path_kind = a.name;
 }
 
 // axes C1 stress|rate V1 ...: each of the six components at a target stress or a strain rate;
@@ -242,63 +302,44 @@ void FixCellServo::parse_axes(int narg, char **arg, int &iarg)
 //   rotation PLANE P Q B RATE_DEG      principal stress rotation at constant p, q, b
 void FixCellServo::parse_cell_mode(const std::string &name, int narg, char **arg, int &iarg)
 {
-  auto need = [&](int n) {
-    if (iarg + n > narg)
-      error->all(FLERR, "Illegal fix cell/servo {} command: expected {} more argument(s)", name,
-                 n);
-  };
+  ModeArgs a(*this, name, narg, arg, iarg);
   auto plane_arg = [&]() {
-    if (!plane_of(arg[iarg], plane))
-      error->all(FLERR, "fix cell/servo {}: plane '{}' is not xy, xz or yz (the edge along the "
-                 "second axis tilts towards the first; LAMMPS's triclinic box has no other "
-                 "shears)", name, arg[iarg]);
-    ++iarg;
+    plane = a.plane();
     has_plane = true;
-  };
-  auto rate_arg = [&](const char *what) {
-    const double value = finite_number(arg[iarg++], name + " " + what);
-    if (value == 0.0) error->all(FLERR, "fix cell/servo {}: {} must be non-zero", name, what);
-    return value;
-  };
-  auto positive_arg = [&](const char *what, double hi) {
-    return number_in(arg[iarg++], name + " " + what, 0.0, hi, true);
   };
   constexpr double MAX_STRESS = 1e15;    // Pa: beyond any granular material
   if (name == "shear") {
     mode = Mode::SHEAR;
-    need(3);
+    a.need(3);
     plane_arg();
-    shear_rate = rate_arg("shear rate gamma_dot");
-    normal_target = positive_arg("normal stress sigma_n", MAX_STRESS);
+    shear_rate = a.rate("shear rate gamma_dot");
+    normal_target = a.positive("normal stress sigma_n", MAX_STRESS);
   } else if (name == "shear_cv") {
     mode = Mode::SHEAR_CV;
-    need(2);
+    a.need(2);
     plane_arg();
-    shear_rate = rate_arg("shear rate gamma_dot");
+    shear_rate = a.rate("shear rate gamma_dot");
   } else if (name == "cyclic_shear") {
     mode = Mode::CYCLIC_SHEAR;
-    need(3);
+    a.need(3);
     plane_arg();
-    shear_rate = positive_arg("shear rate gamma_dot", 1.0 / update->dt);
-    cyclic_stress_ratio = positive_arg("CSR", 10.0);
+    shear_rate = a.positive("shear rate gamma_dot", 1.0 / update->dt);
+    cyclic_stress_ratio = a.positive("CSR", 10.0);
   } else if (name == "undrained") {
     mode = Mode::UNDRAINED;
-    need(2);
-    major_axis = axis_index(arg[iarg]);
-    if (major_axis < 0)
-      error->all(FLERR, "fix cell/servo undrained: axis '{}' is not x, y or z", arg[iarg]);
-    ++iarg;
-    parse_axial_rate(name, arg[iarg++]);
+    a.need(2);
+    major_axis = a.axis();
+    parse_axial_rate(name, a.next());
   } else {    // rotation
     mode = Mode::ROTATION;
-    need(5);
+    a.need(5);
     plane_arg();
     stress_rotation.i = plane.direction, stress_rotation.j = plane.normal;
-    stress_rotation.mean_stress = positive_arg("mean stress p", MAX_STRESS);
-    stress_rotation.deviatoric_stress = number_in(arg[iarg++], "rotation deviatoric stress q", 0.0,
+    stress_rotation.mean_stress = a.positive("mean stress p", MAX_STRESS);
+    stress_rotation.deviatoric_stress = number_in(a.next(), "rotation deviatoric stress q", 0.0,
                                            MAX_STRESS, false);
-    stress_rotation.b = number_in(arg[iarg++], "rotation b", 0.0, 1.0, false);
-    stress_rotation.rotation_rate_deg = finite_number(arg[iarg++], "rotation rate (degree/s)");
+    stress_rotation.b = number_in(a.next(), "rotation b", 0.0, 1.0, false);
+    stress_rotation.rotation_rate_deg = finite_number(a.next(), "rotation rate (degree/s)");
     target_p = stress_rotation.mean_stress;
     // sigma_3 = p - (1 + b) q/3 must stay compressive
     if (!(stress_rotation.mean_stress - (1.0 + stress_rotation.b) * stress_rotation.deviatoric_stress / 3.0 > 0.0))

@@ -18,7 +18,6 @@ constexpr double kPi = 3.14159265358979323846;
 // docs/theory.md §1.8: two equal glass spheres R = 0.1 mm, E = 70 GPa, nu = 0.3, rho = 2650 kg/m^3
 constexpr double kE = 70e9, kNu = 0.3, kR = 1e-4, kRho = 2650.0;
 const double kEstar = kE / (2.0 * (1.0 - kNu * kNu));                      // like pair
-const double kGstar = kE / (2.0 * (1.0 + kNu)) / (2.0 * (2.0 - kNu));     // G/(2(2-nu))
 const double kRstar = kR / 2.0;
 const double kMstar = 0.5 * kRho * 4.0 / 3.0 * kPi * kR * kR * kR;
 
