@@ -18,6 +18,18 @@ os.environ["PYTHONPATH"] = os.pathsep.join(
     PYTHON_DIRS + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p])
 
 
+def cpu_flags():
+    """The instruction-set flags this processor reports (/proc/cpuinfo; empty elsewhere)."""
+    try:
+        with open("/proc/cpuinfo") as fh:
+            for line in fh:
+                if line.startswith("flags"):
+                    return set(line.split(":", 1)[1].split())
+    except OSError:
+        pass
+    return set()
+
+
 @pytest.fixture
 def repo():
     return REPO

@@ -18,7 +18,7 @@ import os
 import numpy as np
 import pytest
 
-from conftest import REPO
+from conftest import REPO, cpu_flags
 from lmprun import LOAD_TYLMP, run_deck, run_ok
 
 DATA = os.path.join(REPO, "bench", "data", "dense_paper_100kPa.data")
@@ -27,14 +27,6 @@ E, NU = 70e9, 0.3
 DT = 0.2 * np.pi * 0.0675e-3 * np.sqrt(2650e12 / (E / 2.6)) / (0.1631 * NU + 0.8766)
 STEPS = 1000
 COLUMNS = "x y z vx vy vz omegax omegay omegaz"
-
-
-def cpu_flags():
-    with open("/proc/cpuinfo") as fh:
-        for line in fh:
-            if line.startswith("flags"):
-                return set(line.split(":", 1)[1].split())
-    return set()
 
 
 FLAGS = cpu_flags()

@@ -16,18 +16,10 @@ import subprocess
 
 import pytest
 
-from conftest import REPO
+from conftest import REPO, cpu_flags
 
 CLANG = shutil.which("clang++")
-LAW_TESTS = "ContactKernel*:*BatchLaw*:BatchForces*:BatchDispatch*:SimdCbrt*"
-
-
-def cpu_flags():
-    with open("/proc/cpuinfo") as f:
-        for line in f:
-            if line.startswith("flags"):
-                return set(line.split(":", 1)[1].split())
-    return set()
+LAW_TESTS = "Mindlin*:ThorntonYin*:*BatchLaw*:BatchForces*:BatchDispatch*:SimdCbrt*"
 
 
 def expected_builds():
