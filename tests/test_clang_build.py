@@ -2,8 +2,9 @@
 scripts/setup.sh) must build without a warning and pass the core tests of the contact law. On
 x86-64 clang gets the law's SIMD builds too (plugin/core/contact_batch.hpp: TYCORE_VECTOR_BUILDS),
 one per instruction set the processor runs, and the batch tests hold each of them to the scalar
-build bit for bit: the batch entry against the reference law (thornton_yin.hpp) and, from the
-same state, against the scalar kernel (advance_contact), on random paths through every branch;
+build bit for bit: every build against the scalar kernel (advance_contact) from the same state,
+on paths through the contact's whole life, and the law's closed-form tests (Mindlin, Thornton-Yin)
+on its scalar instantiation;
 damping, tallies, stored energy, first touch and separation against their formulas and the
 vector builds against the scalar one; the setup pass; the lane-wide cube root against
 jkr::fast_cbrt. So a result that depends on GCC (its vectoriser, its contraction of
