@@ -14,13 +14,15 @@ at which |delta(tau/sigma_n)|/max(tau/sigma_n) exceeds 1e-8:
 
   rate 1e-3 1/s:  xy 0.150 %, yz 0.150 %, the one-ulp twin 0.150 %
   rate 1e-4 1/s:  xy 0.629 %, yz 0.988 %, the one-ulp twin 0.629 %, 2 ranks 0.629 %
+and on the specimen prepared since commit 9ab3779 (another realisation: the setup pass takes
+the law's Halley radius), rate 1e-4 1/s: xy 1.18 %, yz 0.929 %, the twin 1.18 %
 
 so the departure is the assembly's chaos horizon, not a frame dependence. The tests run at
 1e-4 1/s: the specimen is closer to quasi-static there (inertial number 2.4e-3 against 2.4e-2;
 sigma_n held to 0.05 % against 2.5 %), the contact network rearranges less per unit strain, and
 the horizon lies beyond the issue's 0.5 %. Beyond it the curves are different realisations of
-the same test (chaos, as between 1 and 2 ranks, docs/validation.md). About 1 minute on 2 cores
-after the specimens' preparation (four runs to 1.3 % of strain, two at a time).
+the same test (chaos, as between 1 and 2 ranks, docs/validation.md). About 2 minutes on 2 cores
+after the specimens' preparation (four runs to 3 % of strain, two at a time).
 """
 from concurrent.futures import ThreadPoolExecutor
 
@@ -33,9 +35,12 @@ from lmprun import LOAD_TYLMP, run_ok
 
 RATE = 1e-4
 BOUND, GAMMA_BOUND = 1e-8, 0.005     # the issue's bound: 1e-8 relative over 0.5 % of gamma
-# the runs go on to where the curves part, at most FACTOR times the twin's departure
+# the runs go on to where the curves part: the twin's departure depends on the specimen's
+# realisation (0.63 % on the specimen of commit a89af1a, 1.18 % on that of 9ab3779, whose
+# preparation took the law's Halley radius in the setup pass), so GAMMA_END leaves room for
+# a departure up to GAMMA_END / FACTOR
 FACTOR = 2.0
-GAMMA_END = 0.013
+GAMMA_END = 0.03
 
 # shear plane -> permutation of the specimen's axes that puts its (x, z) plane, sheared in xz
 # (edge along z towards x), on the plane: xy shears the edge along y towards x (new y = old z),
