@@ -54,6 +54,17 @@ struct ContactBatch {
   alignas(64) double rsq[batch_lanes];     // |x_i - x_j|^2 (affine-stiffness tally only)
   bool first_touch[batch_lanes];           // no history yet, delta >= 0: JKR snap-on first
 
+  // ---- the engine's data of the two spheres, from which contact_geometry
+  // (contact_geometry.hpp) derives n, delta, R, Rinv, vn, vt, spin_n and m_star ----
+  alignas(64) double del[3][batch_lanes];    // x_i - x_j
+  alignas(64) double v_rel[3][batch_lanes];  // v_i - v_j
+  alignas(64) double w_i[3][batch_lanes];    // angular velocities
+  alignas(64) double w_j[3][batch_lanes];
+  alignas(64) double r_i[batch_lanes];       // radii
+  alignas(64) double r_j[batch_lanes];
+  alignas(64) double m_i[batch_lanes];       // masses (Damped only)
+  alignas(64) double m_j[batch_lanes];
+
   // ---- history, in and out: ContactHistory as arrays (load_history / stored_history) ----
   alignas(64) double T[3][batch_lanes];
   alignas(64) double dir[3][batch_lanes];

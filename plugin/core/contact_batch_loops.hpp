@@ -25,6 +25,7 @@
 #define TYCORE_CONTACT_BATCH_LOOPS_HPP
 
 #include "contact_batch.hpp"
+#include "contact_geometry.hpp"
 #include "contact_law.hpp"
 #include "jkr.hpp"
 #include "mindlin_deresiewicz.hpp"
@@ -149,6 +150,13 @@ template <bool Adhesive, bool Damped>
   if (p.energy) detail::stored_energies(b, n, k);
 }
 
+// the law's inputs of every lane from the gathered sphere data (contact_geometry)
+template <bool Affine, bool Damped>
+[[gnu::always_inline]] inline void geometry_stage(ContactBatch& b, const AffineGradient g)
+{
+  for (int i = 0; i < L; ++i) contact_geometry<Affine, Damped>(b, i, g);
+}
+
 [[gnu::always_inline]] inline void vector_cube_roots(const double* x, double* y, int n)
 {
   for (int i = 0; i < n; ++i) y[i] = simd_cbrt(x[i]);
@@ -176,6 +184,15 @@ template <bool Adhesive, bool Damped>
                                                     const BatchParameters&);                   \
   template void advance_batch_##suffix<true, true>(ContactBatch&, int, const PairConstants&,  \
                                                    const BatchParameters&);                    \
+  template <bool Affine, bool Damped>                                                          \
+  target_attribute void batch_geometry_##suffix(ContactBatch& b, const AffineGradient& g)      \
+  {                                                                                            \
+    tycore::batch_loops::geometry_stage<Affine, Damped>(b, g);                                 \
+  }                                                                                            \
+  template void batch_geometry_##suffix<false, false>(ContactBatch&, const AffineGradient&);   \
+  template void batch_geometry_##suffix<false, true>(ContactBatch&, const AffineGradient&);    \
+  template void batch_geometry_##suffix<true, false>(ContactBatch&, const AffineGradient&);    \
+  template void batch_geometry_##suffix<true, true>(ContactBatch&, const AffineGradient&);     \
   target_attribute void cube_roots_##suffix(const double* x, double* y, int n)                \
   {                                                                                            \
     tycore::batch_loops::vector_cube_roots(x, y, n);                                           \

@@ -95,6 +95,7 @@ PairThorntonYin::PairThorntonYin(LAMMPS *lmp) : PairWithHistory(lmp)
   neighprev = 0;
   dt = 0.0;
   tally_cell = 0;
+  batch_energy = false;
   stiffness_set = PRINCIPAL;
   lane_entries = 0;
   record_contacts = 0;
@@ -334,6 +335,7 @@ void PairThorntonYin::init_style()
   // one batch per type pair, made when its first contact comes (eval)
   batches.clear();
   batches.resize((atom->ntypes + 1) * (atom->ntypes + 1));
+  batch_of_types.assign((atom->ntypes + 1) * (atom->ntypes + 1), nullptr);
 
   dt = update->dt;
 
@@ -682,8 +684,9 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
   // in setup the forces are recomputed at unchanged positions: no history increment
   const bool step = !update->setupflag;
   dt = update->dt;
-  double L[3][3];
-  const bool affine = affine_velocity_gradient(L) > 0.0;
+  Sweep sweep;
+  sweep.step = step;
+  sweep.affine = affine_velocity_gradient(sweep.gradient.L) > 0.0;
 
   double **x = atom->x;
   double **v = atom->v;
@@ -702,29 +705,19 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
   double **firsthistory = fix_history->firstvalue;
 
   begin_tallies();
-  Sums sums{0.0, 0.0, 0.0};
-  const bool energy = evflag && eflag_either;
-  const auto batch_of = [&](int itype, int jtype) -> Batch & {
-    const int pair = MIN(itype, jtype) * ntypes_plus_1 + MAX(itype, jtype);
-    if (!batches[pair]) batches[pair].reset(new Batch{});    // lanes past n hold numbers
-    Batch &bt = *batches[pair];
-    if (bt.n == 0) {
-      bt.constants = &pair_constants[pair];
-      bt.p = tycore::BatchParameters{dt, damp_n[itype][jtype], damp_t[itype][jtype],
-                                     tally_cell != 0, energy};
-    }
-    return bt;
-  };
-
+  begin_batches(evflag && eflag_either);
   const bool by_contact = stiffness_set <= FULL;
   const auto run = [&](Batch &bt) {
-    if (by_contact) run_batch<ADHESIVE, DAMPED, true>(bt, step, sums);
-    else run_batch<ADHESIVE, DAMPED, false>(bt, step, sums);
+    if (by_contact) run_batch<ADHESIVE, DAMPED, true>(bt, sweep);
+    else run_batch<ADHESIVE, DAMPED, false>(bt, sweep);
   };
 
+  // the neighbour loop: each touching pair's sphere data and history into its lane
   for (int ii = 0; ii < inum; ++ii) {
     const int i = ilist[ii];
     const double radi = radius[i];
+    const tycore::SphereState si{v[i], omega[i], radi, rmass[i]};
+    Batch **batch_of_j = &batch_of_types[type[i] * ntypes_plus_1];
     int *touch = firsttouch[i];
     double *allhistory = firsthistory[i];
     const int *jlist = firstneigh[i];
@@ -732,58 +725,34 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
 
     for (int jj = 0; jj < jnum; ++jj) {
       const int j = jlist[jj] & NEIGHMASK;
-      const double delx = x[i][0] - x[j][0];
-      const double dely = x[i][1] - x[j][1];
-      const double delz = x[i][2] - x[j][2];
-      const double rsq = delx * delx + dely * dely + delz * delz;
+      const double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
+      const double rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
       const double radj = radius[j];
       const double radsum = radi + radj;
       if (!touch[jj] && rsq > radsum * radsum) continue;    // apart, never touched (delta < 0)
 
-      const double r = std::sqrt(rsq);
-      const double delta = radsum - r;
-      // Hertz/JKR contact mechanics assume delta << R; once the overlap exceeds the smaller
-      // radius the law and the explicit step have long failed. A NaN overlap (a NaN position
-      // or radius) fails it too, and so does a contact torn apart by an infinite position
-      if (!(delta <= MIN(radi, radj)) || !std::isfinite(delta)) contact_fault(i, j, delta, false);
-
-      Batch &bt = batch_of(type[i], type[j]);
-      tycore::ContactBatch &b = bt.b;
+      Batch *batch = batch_of_j[type[j]];
+      if (!batch) batch = make_batch(type[i], type[j]);
+      Batch &bt = *batch;
       const int l = bt.n;
-      // lane l: geometry and velocities at the contact (docs/theory.md §5.1), with a deforming
-      // box the affine relative velocity L (x_i - x_j)
-      const double del[3] = {delx, dely, delz};
-      const tycore::SphereState si{v[i], omega[i], radi, rmass[i]};
       const tycore::SphereState sj{v[j], omega[j], radj, rmass[j]};
-      if (affine) {
-        const double affine_v[3] = {L[0][0] * delx + L[0][1] * dely + L[0][2] * delz,
-                                    L[1][1] * dely + L[1][2] * delz, L[2][2] * delz};
-        tycore::contact_geometry<true>(b, l, del, rsq, r, si, sj, !touch[jj], affine_v);
-      } else {
-        tycore::contact_geometry<false>(b, l, del, rsq, r, si, sj, !touch[jj]);
-      }
+      tycore::gather_contact<DAMPED>(bt.b, l, del, rsq, si, sj, !touch[jj]);
       double *slot = &allhistory[HISTORY_SIZE * jj];
-      tycore::load_history(b, l, slot);
+      tycore::load_history(bt.b, l, slot);
       bt.i[l] = i, bt.j[l] = j;
       bt.touch[l] = &touch[jj];
       bt.slot[l] = slot;
-      bt.del[0][l] = delx, bt.del[1][l] = dely, bt.del[2][l] = delz;
       bt.share[l] = (newton_pair || j < nlocal) ? 1.0 : 0.5;
       if (++bt.n == tycore::batch_lanes) run(bt);
     }
   }
   for (auto &bt : batches)
     if (bt && bt->n) run(*bt);
-  if (tally_cell)
-    for (int k = 0; k < tycore::AffineStiffnessSums::size; ++k)
-      if (lane_entries >> k & 1u)
-        for (int l = 0; l < tycore::batch_lanes; ++l)
-          tallies.sum[CellTallies::STIFFNESS + k] += stiffness_lanes[k][l];
-  if (tally_cell && newton_pair) tylmp_compat::reverse_comm(comm, this);
+  end_tallies();
 
-  pvector[DISSIPATION_FRICTION] += sums.friction;
-  pvector[DISSIPATION_BREAK] += sums.breaks;
-  pvector[DISSIPATION_DAMPING] += sums.damping;
+  pvector[DISSIPATION_FRICTION] += sweep.friction;
+  pvector[DISSIPATION_BREAK] += sweep.breaks;
+  pvector[DISSIPATION_DAMPING] += sweep.damping;
 }
 
 template void PairThorntonYin::eval<true, true>(int, int);
@@ -792,37 +761,94 @@ template void PairThorntonYin::eval<false, true>(int, int);
 template void PairThorntonYin::eval<false, false>(int, int);
 
 /* ----------------------------------------------------------------------
-   the contacts of one batch through the core (a step, or in setup the forces without one),
-   then their forces, torques, history and tallies back to LAMMPS
+   the batches of this force evaluation: one per pair of atom types (advance_batch takes one
+   material pair), made when its first contact comes; the table batch_of_types finds it from
+   either order of the types
+------------------------------------------------------------------------- */
+
+void PairThorntonYin::begin_batches(bool energy)
+{
+  const int ntypes_plus_1 = atom->ntypes + 1;
+  for (int itype = 1; itype < ntypes_plus_1; ++itype)
+    for (int jtype = itype; jtype < ntypes_plus_1; ++jtype) {
+      auto &bt = batches[itype * ntypes_plus_1 + jtype];
+      if (bt)
+        bt->p = tycore::BatchParameters{dt, damp_n[itype][jtype], damp_t[itype][jtype],
+                                        tally_cell != 0, energy};
+    }
+  batch_energy = energy;
+}
+
+PairThorntonYin::Batch *PairThorntonYin::make_batch(int itype, int jtype)
+{
+  const int ntypes_plus_1 = atom->ntypes + 1;
+  const int pair = MIN(itype, jtype) * ntypes_plus_1 + MAX(itype, jtype);
+  batches[pair].reset(new Batch{});    // value-initialised: lanes past n hold numbers
+  Batch *bt = batches[pair].get();
+  bt->constants = &pair_constants[pair];
+  bt->p = tycore::BatchParameters{dt, damp_n[itype][jtype], damp_t[itype][jtype],
+                                  tally_cell != 0, batch_energy};
+  batch_of_types[itype * ntypes_plus_1 + jtype] = bt;
+  batch_of_types[jtype * ntypes_plus_1 + itype] = bt;
+  return bt;
+}
+
+/* ----------------------------------------------------------------------
+   the contacts of one batch through the core (their geometry, then a step, or in setup the
+   forces without one), then their forces, torques, history and tallies back to LAMMPS
 ------------------------------------------------------------------------- */
 
 template <bool ADHESIVE, bool DAMPED, bool BY_CONTACT>
-void PairThorntonYin::run_batch(Batch &bt, bool step, Sums &sums)
+void PairThorntonYin::run_batch(Batch &bt, Sweep &sweep)
 {
   tycore::ContactBatch &b = bt.b;
   const int n = bt.n;
   bt.n = 0;
-  if (step) tycore::advance_batch<ADHESIVE, DAMPED>(b, n, *bt.constants, bt.p, isa);
+  if (sweep.affine) tycore::batch_geometry<true, DAMPED>(b, n, sweep.gradient, isa);
+  else tycore::batch_geometry<false, DAMPED>(b, n, sweep.gradient, isa);
+  check_overlaps(bt, n);
+  if (sweep.step) tycore::advance_batch<ADHESIVE, DAMPED>(b, n, *bt.constants, bt.p, isa);
   else tycore::forces_without_step<ADHESIVE, DAMPED>(b, n, *bt.constants, bt.p);
+  scatter<DAMPED>(bt, n, sweep);
+  if (tally_cell) tally_batch<BY_CONTACT>(bt, n);
+}
 
+// Hertz/JKR contact mechanics assume delta << R; once the overlap exceeds the smaller radius
+// the law and the explicit step have long failed. A NaN overlap (a NaN position or radius)
+// fails it too, and so does a contact torn apart by an infinite position.
+void PairThorntonYin::check_overlaps(const Batch &bt, int n)
+{
+  const tycore::ContactBatch &b = bt.b;
+  bool valid = true;
+  for (int l = 0; l < n; ++l)
+    valid &= (b.delta[l] <= MIN(b.r_i[l], b.r_j[l])) & (b.delta[l] >= -DBL_MAX);
+  if (valid) return;
+  for (int l = 0; l < n; ++l)
+    if (!(b.delta[l] <= MIN(b.r_i[l], b.r_j[l])) || !std::isfinite(b.delta[l]))
+      contact_fault(bt.i[l], bt.j[l], b.delta[l], false);
+}
+
+// forces, torques and history of a batch back to LAMMPS, and the energy sums
+template <bool DAMPED> void PairThorntonYin::scatter(const Batch &bt, int n, Sweep &sweep)
+{
+  const tycore::ContactBatch &b = bt.b;
   double **f = atom->f;
   double **torque = atom->torque;
-  const double *radius = atom->radius;
   const int nlocal = atom->nlocal;
   const int newton_pair = force->newton_pair;
   for (int l = 0; l < n; ++l) {
     const int i = bt.i[l], j = bt.j[l];
     const double share = bt.share[l];
-    sums.breaks += share * b.break_energy[l];
     if (b.broken[l] != 0.0) {    // separated at the break overlap: the contact is forgotten
+      sweep.breaks += share * b.break_energy[l];
       *bt.touch[l] = 0;
       for (int k = 0; k < HISTORY_SIZE; ++k) bt.slot[l][k] = 0.0;
       continue;
     }
     *bt.touch[l] = 1;
     tycore::store_history(b, l, bt.slot[l]);
-    sums.friction += share * b.dissipation[l];
-    sums.damping += share * b.damping_dissipation[l];
+    sweep.friction += share * b.dissipation[l];
+    if (DAMPED) sweep.damping += share * b.damping_dissipation[l];
 
     const double fx = b.force[0][l], fy = b.force[1][l], fz = b.force[2][l];
     // a NaN or inf anywhere upstream (velocity, spin, history, ...) reaches the force: stop
@@ -835,7 +861,7 @@ void PairThorntonYin::run_batch(Batch &bt, bool step, Sums &sums)
       record_contact(bt, l, Fn, fs);
     }
     // the tangential force acts at the contact point: levers r - delta/2
-    const double lever_i = radius[i] - 0.5 * b.delta[l];
+    const double lever_i = b.r_i[l] - 0.5 * b.delta[l];
     f[i][0] += fx;
     f[i][1] += fy;
     f[i][2] += fz;
@@ -843,7 +869,7 @@ void PairThorntonYin::run_batch(Batch &bt, bool step, Sums &sums)
     torque[i][1] -= lever_i * b.moment[1][l];
     torque[i][2] -= lever_i * b.moment[2][l];
     if (j_owned) {
-      const double lever_j = radius[j] - 0.5 * b.delta[l];
+      const double lever_j = b.r_j[l] - 0.5 * b.delta[l];
       f[j][0] -= fx;
       f[j][1] -= fy;
       f[j][2] -= fz;
@@ -853,19 +879,28 @@ void PairThorntonYin::run_batch(Batch &bt, bool step, Sums &sums)
     }
     if (evflag)
       ev_tally_xyz(i, j, nlocal, newton_pair, bt.p.energy ? b.energy[l] : 0.0, 0.0, fx, fy, fz,
-                   bt.del[0][l], bt.del[1][l], bt.del[2][l]);
-    if (tally_cell) {    // the servo's sums (docs/theory.md §6.1, §11.1), each contact once
-      if (BY_CONTACT)
-        for (int k = 0; k < 6; ++k)
-          tallies.sum[CellTallies::STIFFNESS + k] += share * b.affine_stiffness[k][l];
-      tallies.sum[CellTallies::CONTACTS] += share;
-      tallies.sum[CellTallies::SLIDING] += share * b.slides[l];
-      tallies.sum[CellTallies::FORCE] += share * b.force_magnitude[l];
-      atom_contacts[i] += 1.0;
-      if (j_owned) atom_contacts[j] += 1.0;
-    }
+                   b.del[0][l], b.del[1][l], b.del[2][l]);
   }
-  if (!tally_cell) return;
+}
+
+// the servo's sums of a batch (docs/theory.md §6.1, §11.1), each contact once
+template <bool BY_CONTACT> void PairThorntonYin::tally_batch(const Batch &bt, int n)
+{
+  const tycore::ContactBatch &b = bt.b;
+  const int nlocal = atom->nlocal;
+  const int newton_pair = force->newton_pair;
+  for (int l = 0; l < n; ++l) {
+    if (b.broken[l] != 0.0) continue;
+    const double share = bt.share[l];
+    if (BY_CONTACT)
+      for (int k = 0; k < 6; ++k)
+        tallies.sum[CellTallies::STIFFNESS + k] += share * b.affine_stiffness[k][l];
+    tallies.sum[CellTallies::CONTACTS] += share;
+    tallies.sum[CellTallies::SLIDING] += share * b.slides[l];
+    tallies.sum[CellTallies::FORCE] += share * b.force_magnitude[l];
+    atom_contacts[bt.i[l]] += 1.0;
+    if (newton_pair || bt.j[l] < nlocal) atom_contacts[bt.j[l]] += 1.0;
+  }
   if (BY_CONTACT) {
     if (stiffness_set == FULL) tally_stiffness_lanes<FULL>(bt, n);
   } else if (stiffness_set == HELD_XY) {
@@ -875,6 +910,18 @@ void PairThorntonYin::run_batch(Batch &bt, bool step, Sums &sums)
   } else {
     tally_stiffness_lanes<HELD_YZ>(bt, n);
   }
+}
+
+// the per-lane stiffness sums into the tallies, and the reverse communication of the contact
+// counts, after the last batch
+void PairThorntonYin::end_tallies()
+{
+  if (!tally_cell) return;
+  for (int k = 0; k < tycore::AffineStiffnessSums::size; ++k)
+    if (lane_entries >> k & 1u)
+      for (int l = 0; l < tycore::batch_lanes; ++l)
+        tallies.sum[CellTallies::STIFFNESS + k] += stiffness_lanes[k][l];
+  if (force->newton_pair) tylmp_compat::reverse_comm(comm, this);
 }
 
 /* ----------------------------------------------------------------------
@@ -995,7 +1042,7 @@ void PairThorntonYin::record_contact(const Batch &bt, int l, double Fn, const do
   for (int k = 0; k < 3; ++k) {
     rec.normal_force[k] = Fn * b.n[k][l];
     rec.tangential_force[k] = fs[k];
-    rec.branch[k] = bt.del[k][l];
+    rec.branch[k] = b.del[k][l];
   }
   rec.P = Fn;
   rec.overlap = b.delta[l];

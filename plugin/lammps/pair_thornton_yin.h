@@ -13,6 +13,7 @@
 
 #include "affine_shear_entries.hpp"
 #include "contact_batch.hpp"
+#include "contact_geometry.hpp"
 
 #include <memory>
 #include <vector>
@@ -138,7 +139,7 @@ class PairThorntonYin : public tylmp_compat::PairWithHistory, public CellTallySo
   double affine_velocity_gradient(double L[3][3]) const;
 
   // contacts of one material pair on their way through tycore::advance_batch: the batch and
-  // where each lane's contact lives (atoms, history slot, branch vector, share of the tallies)
+  // where each lane's contact lives (atoms, history slot, share of the tallies)
   struct Batch {
     tycore::ContactBatch b;
     const tycore::PairConstants *constants;
@@ -147,21 +148,36 @@ class PairThorntonYin : public tylmp_compat::PairWithHistory, public CellTallySo
     int i[tycore::batch_lanes], j[tycore::batch_lanes];
     int *touch[tycore::batch_lanes];
     double *slot[tycore::batch_lanes];
-    double del[3][tycore::batch_lanes], share[tycore::batch_lanes];
+    double share[tycore::batch_lanes];
   };
-  // one batch per type pair i <= j (advance_batch takes one material pair), made on first use;
-  // with one type the contacts reach the atoms in neighbour-list order, with several the
-  // forces on an atom add in another order (the same to round-off)
+  // one batch per type pair i <= j (advance_batch takes one material pair), made on first use
+  // (make_batch); batch_of_types[itype * (ntypes + 1) + jtype] points to it from either order.
+  // With one type the contacts reach the atoms in neighbour-list order, with several the forces
+  // on an atom add in another order (the same to round-off)
   std::vector<std::unique_ptr<Batch>> batches;
-  struct Sums {
-    double friction, breaks, damping;
+  std::vector<Batch *> batch_of_types;
+  bool batch_energy;    // this evaluation's batches fill the stored energy
+  void begin_batches(bool energy);
+  Batch *make_batch(int itype, int jtype);
+
+  // one force evaluation: a step or the setup pass (no history increment), the cell's
+  // velocity gradient, the dissipated energies summed over the contacts
+  struct Sweep {
+    bool step;
+    bool affine;    // the box deforms: the contacts' affine velocity gradient.L (x_i - x_j)
+    tycore::AffineGradient gradient;
+    double friction = 0.0, breaks = 0.0, damping = 0.0;
   };
 
+  template <bool ADHESIVE, bool DAMPED> void eval(int eflag, int vflag);
   // BY_CONTACT: the principal stiffness block is summed contact by contact (stiffness_set
   // PRINCIPAL or FULL), else per lane with the rest of its set
-  template <bool ADHESIVE, bool DAMPED, bool BY_CONTACT> void run_batch(Batch &, bool step, Sums &);
+  template <bool ADHESIVE, bool DAMPED, bool BY_CONTACT> void run_batch(Batch &, Sweep &);
+  void check_overlaps(const Batch &, int n);
+  template <bool DAMPED> void scatter(const Batch &, int n, Sweep &);
+  template <bool BY_CONTACT> void tally_batch(const Batch &, int n);
   void begin_tallies();
-  template <bool ADHESIVE, bool DAMPED> void eval(int eflag, int vflag);
+  void end_tallies();
 };
 
 }    // namespace LAMMPS_NS

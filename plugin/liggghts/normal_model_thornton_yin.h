@@ -245,7 +245,8 @@ class NormalModel<THORNTON_YIN> : public NormalModelBase {
     tycore::ContactBatch &b = *batch;
     const tycore::SphereState si{atom->v[i], atom->omega[i], atom->radius[i], atom->rmass[i]};
     const tycore::SphereState sj{atom->v[j], atom->omega[j], atom->radius[j], atom->rmass[j]};
-    tycore::contact_geometry<false>(b, 0, d.delta, d.rsq, std::sqrt(d.rsq), si, sj, first_touch);
+    tycore::gather_contact<true>(b, 0, d.delta, d.rsq, si, sj, first_touch);
+    tycore::contact_geometry<false, true>(b, 0, tycore::AffineGradient{});
     const double delta = b.delta[0];
     if (!(delta <= std::min(si.radius, sj.radius)) || !std::isfinite(delta))
       fail("atoms " + std::to_string(atom->tag[i]) + " " + std::to_string(atom->tag[j]) +
