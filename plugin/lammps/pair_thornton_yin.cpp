@@ -877,9 +877,22 @@ template <bool DAMPED> void PairThorntonYin::scatter(const Batch &bt, int n, Swe
       torque[j][1] -= lever_j * b.moment[1][l];
       torque[j][2] -= lever_j * b.moment[2][l];
     }
-    if (evflag)
+    if (!evflag) continue;
+    const double dx = b.del[0][l], dy = b.del[1][l], dz = b.del[2][l];
+    if (eflag_either || vflag_atom) {
       ev_tally_xyz(i, j, nlocal, newton_pair, bt.p.energy ? b.energy[l] : 0.0, 0.0, fx, fy, fz,
-                   b.del[0][l], b.del[1][l], b.del[2][l]);
+                   dx, dy, dz);
+    } else if (vflag_global) {    // the servo's stress every step: Pair::ev_tally_xyz inline
+      const double w[6] = {dx * fx, dy * fy, dz * fz, dx * fy, dx * fz, dy * fz};
+      if (newton_pair) {
+        for (int k = 0; k < 6; ++k) virial[k] += w[k];
+      } else {
+        if (i < nlocal)
+          for (int k = 0; k < 6; ++k) virial[k] += 0.5 * w[k];
+        if (j < nlocal)
+          for (int k = 0; k < 6; ++k) virial[k] += 0.5 * w[k];
+      }
+    }
   }
 }
 
