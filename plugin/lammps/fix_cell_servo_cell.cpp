@@ -136,9 +136,7 @@ void FixCellServo::set_box_rate(const tycore::Vector6d &rate, const Eigen::Matri
 
 void FixCellServo::change_box(const tycore::Vector6d &rate)
 {
-  double **x = atom->x;
-  const int nlocal = atom->nlocal;
-  for (int i = 0; i < nlocal; ++i) domain->x2lamda(x[i], x[i]);
+  domain->x2lamda(atom->nlocal);
 
   const double dt = update->dt;
   const Eigen::Matrix3d L = tycore::velocity_gradient(rate);
@@ -163,7 +161,7 @@ void FixCellServo::change_box(const tycore::Vector6d &rate)
   }
   domain->set_global_box();
   domain->set_local_box();
-  for (int i = 0; i < nlocal; ++i) domain->lamda2x(x[i], x[i]);
+  domain->lamda2x(atom->nlocal);
   set_box_rate(rate, next);    // (next, not boxhi - boxlo, which differs by round-off)
 
   if (domain->triclinic) {
