@@ -29,6 +29,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 
 namespace tycore {
@@ -146,18 +147,55 @@ inline ContactHistory stored_history(const ContactBatch& b, int lane)
 }
 
 // the same, from and to a contact's slot in LAMMPS's history page (history_size doubles,
-// ContactHistory verbatim)
+// ContactHistory verbatim), value by value (no copy through the stack)
+namespace slot_index {
+#define TYCORE_SLOT_INDEX(field) \
+  constexpr int field = offsetof(ContactHistory, field) / sizeof(double);
+TYCORE_SLOT_INDEX(T)
+TYCORE_SLOT_INDEX(load_dir)
+TYCORE_SLOT_INDEX(T_star)
+TYCORE_SLOT_INDEX(T_star2)
+TYCORE_SLOT_INDEX(P_prev)
+TYCORE_SLOT_INDEX(mode)
+TYCORE_SLOT_INDEX(peeling)
+TYCORE_SLOT_INDEX(sliding)
+TYCORE_SLOT_INDEX(stored_energy)
+TYCORE_SLOT_INDEX(radius)
+#undef TYCORE_SLOT_INDEX
+}    // namespace slot_index
+
 inline void load_history(ContactBatch& b, int lane, const double* slot)
 {
-  ContactHistory h;
-  std::memcpy(&h, slot, sizeof(h));
-  load_history(b, lane, h);
+  namespace at = slot_index;
+  for (int d = 0; d < 3; ++d) {
+    b.T[d][lane] = slot[at::T + d];
+    b.dir[d][lane] = slot[at::load_dir + d];
+  }
+  b.T_star[lane] = slot[at::T_star];
+  b.T_star2[lane] = slot[at::T_star2];
+  b.P_prev[lane] = slot[at::P_prev];
+  b.mode[lane] = slot[at::mode];
+  b.peeling[lane] = slot[at::peeling];
+  b.sliding[lane] = slot[at::sliding];
+  b.stored_energy[lane] = slot[at::stored_energy];
+  b.radius[lane] = slot[at::radius];
 }
 
 inline void store_history(const ContactBatch& b, int lane, double* slot)
 {
-  const ContactHistory h = stored_history(b, lane);
-  std::memcpy(slot, &h, sizeof(h));
+  namespace at = slot_index;
+  for (int d = 0; d < 3; ++d) {
+    slot[at::T + d] = b.T[d][lane];
+    slot[at::load_dir + d] = b.dir[d][lane];
+  }
+  slot[at::T_star] = b.T_star[lane];
+  slot[at::T_star2] = b.T_star2[lane];
+  slot[at::P_prev] = b.P_prev[lane];
+  slot[at::mode] = b.mode[lane];
+  slot[at::peeling] = b.peeling[lane];
+  slot[at::sliding] = b.sliding[lane];
+  slot[at::stored_energy] = b.stored_energy[lane];
+  slot[at::radius] = b.radius[lane];
 }
 
 // The vector builds of the law exist on x86-64 with GCC or Clang (the instruction sets are
