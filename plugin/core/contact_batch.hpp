@@ -1,7 +1,8 @@
 // One step of the Thornton-Yin law for a batch of contacts stored as a structure of arrays
 // (ContactBatch): geometry and velocities at the contact in; forces, the torque's ingredient,
 // the updated history and the per-contact tallies out. Everything the pair style does per
-// contact besides finding it and scattering its force: first touch (JKR snap-on), separation
+// contact besides finding it, deriving its geometry (contact_geometry.hpp, in the same lanes)
+// and scattering its force: first touch (JKR snap-on), separation
 // at the break overlap with its energy, the law (contact_law.hpp), viscous damping, the
 // servo's affine-stiffness tally (docs/theory.md §6.1) and the stored energy.
 //
@@ -40,7 +41,8 @@ namespace tycore {
 // ContactBatch b{}, so that they hold numbers).
 inline constexpr int batch_lanes = 16;
 
-// in: what the pair computes per contact (pair_thornton_yin.cpp), out: what it scatters
+// in: the contact's geometry and velocities (contact_geometry.hpp, from the spheres' data that
+// the engine gathers into the lanes) and its history; out: what the engine scatters
 struct ContactBatch {
   // ---- in ----
   alignas(64) double n[3][batch_lanes];    // unit normal, from j to i

@@ -1,6 +1,7 @@
-// The lane loops of tycore::advance_batch's vector builds (contact_batch.hpp): the contact
-// law's one text (contact_law.hpp, lane type double) over the lanes of a ContactBatch, one
-// loop per stage, each loop body branch-free so that the compiler turns it into SIMD code
+// The lane loops of tycore::advance_batch's vector builds (contact_batch.hpp) and of
+// tycore::batch_geometry (contact_geometry.hpp): the contact law's one text (contact_law.hpp,
+// lane type double) and the contact geometry's over the lanes of a ContactBatch, one loop per
+// stage, each loop body branch-free so that the compiler turns it into SIMD code
 // (every lane_select a blend, every stage computed for all lanes and the lane's own result
 // kept), and TYCORE_DEFINE_BATCH_BUILDS, which compiles an entry once per instruction set.
 // contact_batch.cpp defines the builds of the law with it; bench/ defines benchmark builds
