@@ -836,6 +836,11 @@ template <bool DAMPED> void PairThorntonYin::scatter(const Batch &bt, int n, Swe
   double **torque = atom->torque;
   const int nlocal = atom->nlocal;
   const int newton_pair = force->newton_pair;
+  // the global virial, when it alone is asked, in registers over the batch (the additions of
+  // Pair::ev_tally_xyz in the same order)
+  const bool virial_inline = evflag && vflag_global && !eflag_either && !vflag_atom;
+  double vir[6];
+  for (int k = 0; k < 6; ++k) vir[k] = virial[k];
   for (int l = 0; l < n; ++l) {
     const int i = bt.i[l], j = bt.j[l];
     const double share = bt.share[l];
@@ -879,21 +884,23 @@ template <bool DAMPED> void PairThorntonYin::scatter(const Batch &bt, int n, Swe
     }
     if (!evflag) continue;
     const double dx = b.del[0][l], dy = b.del[1][l], dz = b.del[2][l];
-    if (eflag_either || vflag_atom) {
-      ev_tally_xyz(i, j, nlocal, newton_pair, bt.p.energy ? b.energy[l] : 0.0, 0.0, fx, fy, fz,
-                   dx, dy, dz);
-    } else if (vflag_global) {    // the servo's stress every step: Pair::ev_tally_xyz inline
+    if (virial_inline) {    // the servo's stress every step
       const double w[6] = {dx * fx, dy * fy, dz * fz, dx * fy, dx * fz, dy * fz};
       if (newton_pair) {
-        for (int k = 0; k < 6; ++k) virial[k] += w[k];
+        for (int k = 0; k < 6; ++k) vir[k] += w[k];
       } else {
         if (i < nlocal)
-          for (int k = 0; k < 6; ++k) virial[k] += 0.5 * w[k];
+          for (int k = 0; k < 6; ++k) vir[k] += 0.5 * w[k];
         if (j < nlocal)
-          for (int k = 0; k < 6; ++k) virial[k] += 0.5 * w[k];
+          for (int k = 0; k < 6; ++k) vir[k] += 0.5 * w[k];
       }
+    } else {
+      ev_tally_xyz(i, j, nlocal, newton_pair, bt.p.energy ? b.energy[l] : 0.0, 0.0, fx, fy, fz,
+                   dx, dy, dz);
     }
   }
+  if (virial_inline)
+    for (int k = 0; k < 6; ++k) virial[k] = vir[k];
 }
 
 // the servo's sums of a batch (docs/theory.md §6.1, §11.1), each contact once
@@ -902,18 +909,26 @@ template <bool BY_CONTACT> void PairThorntonYin::tally_batch(const Batch &bt, in
   const tycore::ContactBatch &b = bt.b;
   const int nlocal = atom->nlocal;
   const int newton_pair = force->newton_pair;
+  // the sums in registers over the batch (the same additions in the same order)
+  double stiffness[6], contacts = tallies.sum[CellTallies::CONTACTS],
+                       sliding = tallies.sum[CellTallies::SLIDING],
+                       force_sum = tallies.sum[CellTallies::FORCE];
+  for (int k = 0; k < 6; ++k) stiffness[k] = tallies.sum[CellTallies::STIFFNESS + k];
   for (int l = 0; l < n; ++l) {
     if (b.broken[l] != 0.0) continue;
     const double share = bt.share[l];
     if (BY_CONTACT)
-      for (int k = 0; k < 6; ++k)
-        tallies.sum[CellTallies::STIFFNESS + k] += share * b.affine_stiffness[k][l];
-    tallies.sum[CellTallies::CONTACTS] += share;
-    tallies.sum[CellTallies::SLIDING] += share * b.slides[l];
-    tallies.sum[CellTallies::FORCE] += share * b.force_magnitude[l];
+      for (int k = 0; k < 6; ++k) stiffness[k] += share * b.affine_stiffness[k][l];
+    contacts += share;
+    sliding += share * b.slides[l];
+    force_sum += share * b.force_magnitude[l];
     atom_contacts[bt.i[l]] += 1.0;
     if (newton_pair || bt.j[l] < nlocal) atom_contacts[bt.j[l]] += 1.0;
   }
+  for (int k = 0; k < 6; ++k) tallies.sum[CellTallies::STIFFNESS + k] = stiffness[k];
+  tallies.sum[CellTallies::CONTACTS] = contacts;
+  tallies.sum[CellTallies::SLIDING] = sliding;
+  tallies.sum[CellTallies::FORCE] = force_sum;
   if (BY_CONTACT) {
     if (stiffness_set == FULL) tally_stiffness_lanes<FULL>(bt, n);
   } else if (stiffness_set == HELD_XY) {
