@@ -5,7 +5,8 @@ build, offer only the scalar build, and pass the core tests of the law: the clos
 (Mindlin-Deresiewicz, Savkoor-Briggs, JKR, energy) through the scalar entry, the batch entry
 against the scalar entry on random paths through every branch (attached, snap-in, break,
 peeling, sliding, unload/reload), the setup pass, first touch and separation, damping and
-tallies against their formulas, and the cube root. And it must be the same law to the bit as
+tallies against their formulas, the cube root, and the contact geometry
+(contact_geometry.hpp). And it must be the same law to the bit as
 every build of the default configuration: the digests of the outputs along those paths
 (tests/core/test_contact_batch.cpp, print_digest) equal those of the default build's
 core_tests (in TYLMP_BUILD_DIR), one per build this processor runs.
@@ -16,7 +17,8 @@ import subprocess
 
 from conftest import BUILD, REPO
 
-LAW_TESTS = "Mindlin*:ThorntonYin*:JkrWarm*:*BatchLaw*:BatchForces*:BatchDispatch*:SimdCbrt*"
+LAW_TESTS = ("Mindlin*:ThorntonYin*:JkrWarm*:*BatchLaw*:BatchForces*:BatchDispatch*:SimdCbrt*:"
+             "ContactGeometry*")
 DIGEST = re.compile(r"^law trajectory digest (\S+) (\S+) ([0-9a-f]{16})$", re.M)
 
 
