@@ -1,6 +1,7 @@
 """The vector builds of the batch contact law (plugin/core/contact_batch.cpp) are vector code in
-the plugin users load: each build of tycore::advance_batch does its arithmetic in registers of
-its width (AVX-512 zmm, AVX2 ymm, SSE2 xmm), its divisions and square roots packed.
+the plugin users load: each build of tycore::advance_batch, and of tycore::batch_geometry (the
+law's inputs from the spheres' data), does its arithmetic in registers of its width (AVX-512
+zmm, AVX2 ymm, SSE2 xmm), its divisions and square roots packed.
 
 GCC vectorises those loops only while every one of them stays branch-free and is compiled with
 the flags CMakeLists.txt sets for that file; a change that breaks this still passes the
@@ -20,11 +21,12 @@ LIBRARY = os.path.join(BUILD, "python", "tylmp", "tylmp.so")
 BUILDS = {"sse2": "xmm", "avx2": "ymm", "avx512": "zmm"}
 
 
-def batch_functions(disassembly):
-    """{(build, adhesive, damped): body} of the advance_batch_<build><A, D> functions."""
+def batch_functions(disassembly, entry="advance_batch"):
+    """{(build, first, second): body} of the <entry>_<build><bool, bool> functions
+    (advance_batch<Adhesive, Damped>, batch_geometry<Affine, Damped>)."""
     found = {}
     for chunk in re.split(r"\n(?=[0-9a-f]+ <)", disassembly):
-        m = re.match(r"[0-9a-f]+ <void tycore::detail::advance_batch_(\w+)<(\w+), (\w+)>\(", chunk)
+        m = re.match(rf"[0-9a-f]+ <void tycore::detail::{entry}_(\w+)<(\w+), (\w+)>\(", chunk)
         if m:
             found[(m.group(1), m.group(2) == "true", m.group(3) == "true")] = chunk
     return found
@@ -67,3 +69,23 @@ def test_every_build_of_the_batch_law_is_vector_code():
                     f"advance_batch_{build}<{adhesive}, {damped}>: {packed} packed divisions "
                     f"and square roots on {register}, {scalar} scalar: a loop of the batch law "
                     f"no longer vectorises (check with -fopt-info-vec-missed)")
+
+
+@pytest.mark.skipif(shutil.which("objdump") is None, reason="objdump (binutils) not installed")
+def test_every_build_of_the_contact_geometry_is_vector_code():
+    assert os.path.exists(LIBRARY), f"{LIBRARY} missing: build the plugin first"
+    out = subprocess.run(["objdump", "-d", "--no-show-raw-insn", "-C", LIBRARY],
+                         capture_output=True, text=True, check=True).stdout
+    found = batch_functions(out, "batch_geometry")
+    for build, register in BUILDS.items():
+        for affine in (False, True):
+            for damped in (False, True):
+                body = found.get((build, affine, damped))
+                assert body is not None, f"batch_geometry_{build}<{affine}, {damped}> missing"
+                packed, scalar = packed_and_scalar(body, register)
+                # |x_i - x_j|, 1/r, the one division for R* and 1/R*, and m* when damped: all
+                # in the lane loop, none left scalar
+                assert packed >= 3 + damped and scalar == 0, (
+                    f"batch_geometry_{build}<{affine}, {damped}>: {packed} packed divisions and "
+                    f"square roots on {register}, {scalar} scalar: the geometry's lane loop no "
+                    f"longer vectorises")
