@@ -26,7 +26,7 @@ def batch_functions(disassembly, entry="advance_batch"):
     (advance_batch<Adhesive, Damped>, batch_geometry<Affine, Damped>)."""
     found = {}
     for chunk in re.split(r"\n(?=[0-9a-f]+ <)", disassembly):
-        m = re.match(rf"[0-9a-f]+ <void tycore::detail::{entry}_(\w+)<(\w+), (\w+)>\(", chunk)
+        m = re.match(rf"[0-9a-f]+ <\w+ tycore::detail::{entry}_(\w+)<(\w+), (\w+)>\(", chunk)
         if m:
             found[(m.group(1), m.group(2) == "true", m.group(3) == "true")] = chunk
     return found

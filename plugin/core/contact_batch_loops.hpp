@@ -151,11 +151,16 @@ template <bool Adhesive, bool Damped>
   if (p.energy) detail::stored_energies(b, n, k);
 }
 
-// the law's inputs of every lane from the gathered sphere data (contact_geometry)
+// the law's inputs of every lane from the gathered sphere data (contact_geometry); whether the
+// overlaps of lanes 0 .. n-1 are valid (overlap_valid)
 template <bool Affine, bool Damped>
-[[gnu::always_inline]] inline void geometry_stage(ContactBatch& b, const AffineGradient g)
+[[gnu::always_inline]] inline bool geometry_stage(ContactBatch& b, int n, const AffineGradient g)
 {
   for (int i = 0; i < L; ++i) contact_geometry<Affine, Damped>(b, i, g);
+  // a loop of its own, with an integer reduction: GCC keeps either in the loop above scalar
+  unsigned invalid = 0u;
+  for (int i = 0; i < L; ++i) invalid |= unsigned(i < n) & unsigned(!overlap_valid(b, i));
+  return invalid == 0u;
 }
 
 [[gnu::always_inline]] inline void vector_cube_roots(const double* x, double* y, int n)
@@ -186,14 +191,15 @@ template <bool Affine, bool Damped>
   template void advance_batch_##suffix<true, true>(ContactBatch&, int, const PairConstants&,  \
                                                    const BatchParameters&);                    \
   template <bool Affine, bool Damped>                                                          \
-  target_attribute void batch_geometry_##suffix(ContactBatch& b, const AffineGradient& g)      \
+  target_attribute bool batch_geometry_##suffix(ContactBatch& b, int n,                        \
+                                                const AffineGradient& g)                       \
   {                                                                                            \
-    tycore::batch_loops::geometry_stage<Affine, Damped>(b, g);                                 \
+    return tycore::batch_loops::geometry_stage<Affine, Damped>(b, n, g);                       \
   }                                                                                            \
-  template void batch_geometry_##suffix<false, false>(ContactBatch&, const AffineGradient&);   \
-  template void batch_geometry_##suffix<false, true>(ContactBatch&, const AffineGradient&);    \
-  template void batch_geometry_##suffix<true, false>(ContactBatch&, const AffineGradient&);    \
-  template void batch_geometry_##suffix<true, true>(ContactBatch&, const AffineGradient&);     \
+  template bool batch_geometry_##suffix<false, false>(ContactBatch&, int, const AffineGradient&);\
+  template bool batch_geometry_##suffix<false, true>(ContactBatch&, int, const AffineGradient&); \
+  template bool batch_geometry_##suffix<true, false>(ContactBatch&, int, const AffineGradient&); \
+  template bool batch_geometry_##suffix<true, true>(ContactBatch&, int, const AffineGradient&);  \
   target_attribute void cube_roots_##suffix(const double* x, double* y, int n)                \
   {                                                                                            \
     tycore::batch_loops::vector_cube_roots(x, y, n);                                           \

@@ -93,38 +93,56 @@ template <bool Affine, bool Damped>
   if (Damped) b.m_star[l] = b.m_i[l] * b.m_j[l] / (b.m_i[l] + b.m_j[l]);
 }
 
+// Whether the overlap of lane l is in the law's domain: Hertz/JKR contact mechanics assume
+// delta << R; once the overlap exceeds the smaller radius the law and the explicit step have
+// long failed. A NaN overlap (a NaN position or radius) fails too, and so does a contact torn
+// apart by an infinite position.
+[[gnu::always_inline]] inline bool overlap_valid(const ContactBatch& b, int l)
+{
+  const double delta = b.delta[l], ri = b.r_i[l], rj = b.r_j[l];
+  const double smaller = ri < rj ? ri : rj;
+  return (delta <= smaller) & (delta >= -1.7976931348623157e308);    // -DBL_MAX
+}
+
 // contact_geometry over the whole batch: every lane in the vector builds (lanes at and beyond n
 // are computed on whatever they hold and never read back, as in advance_batch), lanes 0 .. n-1
 // in the scalar build. The same arithmetic in every build (no fused multiply-add), so the
-// builds agree to the bit.
+// builds agree to the bit. Returns whether every overlap of lanes 0 .. n-1 is valid
+// (overlap_valid).
 template <bool Affine, bool Damped>
-inline void geometry_lanes(ContactBatch& b, int n, const AffineGradient& g)
+inline bool geometry_lanes(ContactBatch& b, int n, const AffineGradient& g)
 {
-  for (int l = 0; l < n; ++l) contact_geometry<Affine, Damped>(b, l, g);
+  bool valid = true;
+  for (int l = 0; l < n; ++l) {
+    contact_geometry<Affine, Damped>(b, l, g);
+    valid &= overlap_valid(b, l);
+  }
+  return valid;
 }
 
 #ifdef TYCORE_VECTOR_BUILDS
 namespace detail {    // the vector builds, contact_batch.cpp
 template <bool Affine, bool Damped>
-void batch_geometry_sse2(ContactBatch&, const AffineGradient&);
+bool batch_geometry_sse2(ContactBatch&, int, const AffineGradient&);
 template <bool Affine, bool Damped>
-__attribute__((target("avx2"))) void batch_geometry_avx2(ContactBatch&, const AffineGradient&);
+__attribute__((target("avx2"))) bool batch_geometry_avx2(ContactBatch&, int,
+                                                         const AffineGradient&);
 template <bool Affine, bool Damped>
-__attribute__((target(TYCORE_AVX512))) void batch_geometry_avx512(ContactBatch&,
+__attribute__((target(TYCORE_AVX512))) bool batch_geometry_avx512(ContactBatch&, int,
                                                                   const AffineGradient&);
 }    // namespace detail
 #endif
 
 template <bool Affine, bool Damped>
-inline void batch_geometry(ContactBatch& b, int n, const AffineGradient& g, Isa isa = best_isa())
+inline bool batch_geometry(ContactBatch& b, int n, const AffineGradient& g, Isa isa = best_isa())
 {
   switch (isa) {
 #ifdef TYCORE_VECTOR_BUILDS
-    case Isa::avx512: detail::batch_geometry_avx512<Affine, Damped>(b, g); return;
-    case Isa::avx2: detail::batch_geometry_avx2<Affine, Damped>(b, g); return;
-    case Isa::sse2: detail::batch_geometry_sse2<Affine, Damped>(b, g); return;
+    case Isa::avx512: return detail::batch_geometry_avx512<Affine, Damped>(b, n, g);
+    case Isa::avx2: return detail::batch_geometry_avx2<Affine, Damped>(b, n, g);
+    case Isa::sse2: return detail::batch_geometry_sse2<Affine, Damped>(b, n, g);
 #endif
-    default: geometry_lanes<Affine, Damped>(b, n, g); return;
+    default: return geometry_lanes<Affine, Damped>(b, n, g);
   }
 }
 

@@ -804,28 +804,20 @@ void PairThorntonYin::run_batch(Batch &bt, Sweep &sweep)
   tycore::ContactBatch &b = bt.b;
   const int n = bt.n;
   bt.n = 0;
-  if (sweep.affine) tycore::batch_geometry<true, DAMPED>(b, n, sweep.gradient, isa);
-  else tycore::batch_geometry<false, DAMPED>(b, n, sweep.gradient, isa);
-  check_overlaps(bt, n);
+  const bool valid = sweep.affine ? tycore::batch_geometry<true, DAMPED>(b, n, sweep.gradient, isa)
+                                  : tycore::batch_geometry<false, DAMPED>(b, n, sweep.gradient, isa);
+  if (!valid) report_overlap(bt, n);
   if (sweep.step) tycore::advance_batch<ADHESIVE, DAMPED>(b, n, *bt.constants, bt.p, isa);
   else tycore::forces_without_step<ADHESIVE, DAMPED>(b, n, *bt.constants, bt.p);
   scatter<DAMPED>(bt, n, sweep);
   if (tally_cell) tally_batch<BY_CONTACT>(bt, n);
 }
 
-// Hertz/JKR contact mechanics assume delta << R; once the overlap exceeds the smaller radius
-// the law and the explicit step have long failed. A NaN overlap (a NaN position or radius)
-// fails it too, and so does a contact torn apart by an infinite position.
-void PairThorntonYin::check_overlaps(const Batch &bt, int n)
+// the first lane whose overlap is out of the law's domain (tycore::overlap_valid), as an error
+void PairThorntonYin::report_overlap(const Batch &bt, int n)
 {
-  const tycore::ContactBatch &b = bt.b;
-  bool valid = true;
   for (int l = 0; l < n; ++l)
-    valid &= (b.delta[l] <= MIN(b.r_i[l], b.r_j[l])) & (b.delta[l] >= -DBL_MAX);
-  if (valid) return;
-  for (int l = 0; l < n; ++l)
-    if (!(b.delta[l] <= MIN(b.r_i[l], b.r_j[l])) || !std::isfinite(b.delta[l]))
-      contact_fault(bt.i[l], bt.j[l], b.delta[l], false);
+    if (!tycore::overlap_valid(bt.b, l)) contact_fault(bt.i[l], bt.j[l], bt.b.delta[l], false);
 }
 
 // forces, torques and history of a batch back to LAMMPS, and the energy sums

@@ -173,7 +173,7 @@ class PairThorntonYin : public tylmp_compat::PairWithHistory, public CellTallySo
   // BY_CONTACT: the principal stiffness block is summed contact by contact (stiffness_set
   // PRINCIPAL or FULL), else per lane with the rest of its set
   template <bool ADHESIVE, bool DAMPED, bool BY_CONTACT> void run_batch(Batch &, Sweep &);
-  void check_overlaps(const Batch &, int n);
+  __attribute__((noinline, cold)) void report_overlap(const Batch &, int n);
   template <bool DAMPED> void scatter(const Batch &, int n, Sweep &);
   template <bool BY_CONTACT> void tally_batch(const Batch &, int n);
   void begin_tallies();

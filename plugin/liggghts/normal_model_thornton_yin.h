@@ -248,7 +248,7 @@ class NormalModel<THORNTON_YIN> : public NormalModelBase {
     tycore::gather_contact<true>(b, 0, d.delta, d.rsq, si, sj, first_touch);
     tycore::contact_geometry<false, true>(b, 0, tycore::AffineGradient{});
     const double delta = b.delta[0];
-    if (!(delta <= std::min(si.radius, sj.radius)) || !std::isfinite(delta))
+    if (!tycore::overlap_valid(b, 0))
       fail("atoms " + std::to_string(atom->tag[i]) + " " + std::to_string(atom->tag[j]) +
            ": overlap " + number(delta) + " is not finite or exceeds the smaller radius (the "
            "law and the explicit step have failed: the timestep is too large or a position "

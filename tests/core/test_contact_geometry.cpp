@@ -5,14 +5,17 @@
 // (contact point at -(r_i - delta/2) n from i and +(r_j - delta/2) n from j, so that the
 // spins add n x (l_i w_i + l_j w_j)), its normal and tangential parts, the twist rate
 // (w_i + w_j).n, m*, and a deforming cell's affine velocity L (x_i - x_j); and every build
-// against the scalar build to the last bit.
+// against the scalar build to the last bit; and the overlap check that comes with it (an
+// overlap beyond the smaller radius, or not finite, in a lane in use).
 #include "contact_geometry.hpp"
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -189,6 +192,40 @@ TEST(ContactGeometry, EveryBuildAgreesWithTheScalarBuildToTheLastBit)
           ASSERT_EQ(b.m_star[l], reference.m_star[l]);
         }
       }
+  }
+}
+
+// A batch of valid contacts in lanes 0 .. n-1 and one out of the law's domain: in use (lane 2)
+// or not (lane n), in every build.
+TEST(ContactGeometry, OverlapCheckNamesLanesInUseOnly)
+{
+  std::mt19937_64 rng(11);
+  const int n = 5;
+  ContactBatch valid{};
+  for (int l = 0; l < batch_lanes; ++l) gather(valid, l, random_contact(rng));
+  const auto with_lane = [&](int lane, double scale, double shift) {
+    ContactBatch b = valid;
+    // x_i - x_j scaled: 0.3 brings the centres within the smaller radius (an overlap above it);
+    // a shift of inf or NaN makes the distance infinite or NaN
+    for (int d = 0; d < 3; ++d) b.del[d][lane] = b.del[d][lane] * scale + shift;
+    b.rsq[lane] = b.del[0][lane] * b.del[0][lane] + b.del[1][lane] * b.del[1][lane] +
+                  b.del[2][lane] * b.del[2][lane];
+    return b;
+  };
+  const tycore::AffineGradient g{};
+  const double inf = std::numeric_limits<double>::infinity();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (Isa isa : supported_isas()) {
+    SCOPED_TRACE(tycore::isa_name(isa));
+    ContactBatch b = valid;
+    EXPECT_TRUE((tycore::batch_geometry<false, false>(b, n, g, isa)));
+    for (const auto& [scale, shift] : {std::pair{0.3, 0.0}, {1.0, inf}, {1.0, nan}}) {
+      b = with_lane(2, scale, shift);
+      EXPECT_FALSE((tycore::batch_geometry<false, false>(b, n, g, isa))) << scale << " " << shift;
+      EXPECT_FALSE(tycore::overlap_valid(b, 2));
+      b = with_lane(n, scale, shift);    // a lane not in use: ignored
+      EXPECT_TRUE((tycore::batch_geometry<false, false>(b, n, g, isa))) << scale << " " << shift;
+    }
   }
 }
 
