@@ -55,6 +55,22 @@ std::string surface_energy_unit(const char *unit_style)
   return "energy/area of 'units " + u + "'";
 }
 
+// the global virial of one pair force as Pair::ev_tally_xyz adds it (its additions in its
+// order): with newton_pair on once, else half for each local atom of the pair
+inline void add_pair_virial(double vir[6], bool newton_pair, bool i_local, bool j_local,
+                            double fx, double fy, double fz, double dx, double dy, double dz)
+{
+  const double w[6] = {dx * fx, dy * fy, dz * fz, dx * fy, dx * fz, dy * fz};
+  if (newton_pair) {
+    for (int k = 0; k < 6; ++k) vir[k] += w[k];
+    return;
+  }
+  if (i_local)
+    for (int k = 0; k < 6; ++k) vir[k] += 0.5 * w[k];
+  if (j_local)
+    for (int k = 0; k < 6; ++k) vir[k] += 0.5 * w[k];
+}
+
 inline tycore::ContactHistory load_history(const double *slot)
 {
   tycore::ContactHistory h;
@@ -877,15 +893,7 @@ template <bool DAMPED> void PairThorntonYin::scatter(const Batch &bt, int n, Swe
     if (!evflag) continue;
     const double dx = b.del[0][l], dy = b.del[1][l], dz = b.del[2][l];
     if (virial_inline) {    // the servo's stress every step
-      const double w[6] = {dx * fx, dy * fy, dz * fz, dx * fy, dx * fz, dy * fz};
-      if (newton_pair) {
-        for (int k = 0; k < 6; ++k) vir[k] += w[k];
-      } else {
-        if (i < nlocal)
-          for (int k = 0; k < 6; ++k) vir[k] += 0.5 * w[k];
-        if (j < nlocal)
-          for (int k = 0; k < 6; ++k) vir[k] += 0.5 * w[k];
-      }
+      add_pair_virial(vir, newton_pair, i < nlocal, j < nlocal, fx, fy, fz, dx, dy, dz);
     } else {
       ev_tally_xyz(i, j, nlocal, newton_pair, bt.p.energy ? b.energy[l] : 0.0, 0.0, fx, fy, fz,
                    dx, dy, dz);
