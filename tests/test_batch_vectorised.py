@@ -50,42 +50,41 @@ def test_parser_on_synthetic_disassembly():
     assert packed_and_scalar(found[("avx2", True, False)], "zmm") == (0, 1)
 
 
-@pytest.mark.skipif(shutil.which("objdump") is None, reason="objdump (binutils) not installed")
-def test_every_build_of_the_batch_law_is_vector_code():
+def builds_of(entry):
+    """{(build, register, first, second): (packed, scalar)} of every build of `entry` in the
+    plugin (a build missing fails)."""
     assert os.path.exists(LIBRARY), f"{LIBRARY} missing: build the plugin first"
     out = subprocess.run(["objdump", "-d", "--no-show-raw-insn", "-C", LIBRARY],
                          capture_output=True, text=True, check=True).stdout
-    found = batch_functions(out)
+    found = batch_functions(out, entry)
+    counts = {}
     for build, register in BUILDS.items():
-        for adhesive in (False, True):
-            for damped in (False, True):
-                body = found.get((build, adhesive, damped))
-                assert body is not None, f"advance_batch_{build}<{adhesive}, {damped}> missing"
-                packed, scalar = packed_and_scalar(body, register)
-                # the law's divisions and roots (cube roots, the Halley steps, directions,
-                # the Coulomb cap, damping) are in the vector loops; scalar ones only in the
-                # lane-by-lane rare cases (first touch, separation, JKR closed form)
-                assert packed >= 30 and packed >= 3 * scalar, (
-                    f"advance_batch_{build}<{adhesive}, {damped}>: {packed} packed divisions "
-                    f"and square roots on {register}, {scalar} scalar: a loop of the batch law "
-                    f"no longer vectorises (check with -fopt-info-vec-missed)")
+        for first in (False, True):
+            for second in (False, True):
+                body = found.get((build, first, second))
+                assert body is not None, f"{entry}_{build}<{first}, {second}> missing"
+                counts[(build, register, first, second)] = packed_and_scalar(body, register)
+    return counts
+
+
+@pytest.mark.skipif(shutil.which("objdump") is None, reason="objdump (binutils) not installed")
+def test_every_build_of_the_batch_law_is_vector_code():
+    for (build, register, adhesive, damped), (packed, scalar) in builds_of("advance_batch").items():
+        # the law's divisions and roots (cube roots, the Halley steps, directions, the Coulomb
+        # cap, damping) are in the vector loops; scalar ones only in the lane-by-lane rare
+        # cases (first touch, separation, JKR closed form)
+        assert packed >= 30 and packed >= 3 * scalar, (
+            f"advance_batch_{build}<{adhesive}, {damped}>: {packed} packed divisions and square "
+            f"roots on {register}, {scalar} scalar: a loop of the batch law no longer "
+            f"vectorises (check with -fopt-info-vec-missed)")
 
 
 @pytest.mark.skipif(shutil.which("objdump") is None, reason="objdump (binutils) not installed")
 def test_every_build_of_the_contact_geometry_is_vector_code():
-    assert os.path.exists(LIBRARY), f"{LIBRARY} missing: build the plugin first"
-    out = subprocess.run(["objdump", "-d", "--no-show-raw-insn", "-C", LIBRARY],
-                         capture_output=True, text=True, check=True).stdout
-    found = batch_functions(out, "batch_geometry")
-    for build, register in BUILDS.items():
-        for affine in (False, True):
-            for damped in (False, True):
-                body = found.get((build, affine, damped))
-                assert body is not None, f"batch_geometry_{build}<{affine}, {damped}> missing"
-                packed, scalar = packed_and_scalar(body, register)
-                # |x_i - x_j|, 1/r, the one division for R* and 1/R*, and m* when damped: all
-                # in the lane loop, none left scalar
-                assert packed >= 3 + damped and scalar == 0, (
-                    f"batch_geometry_{build}<{affine}, {damped}>: {packed} packed divisions and "
-                    f"square roots on {register}, {scalar} scalar: the geometry's lane loop no "
-                    f"longer vectorises")
+    for (build, register, affine, damped), (packed, scalar) in builds_of("batch_geometry").items():
+        # |x_i - x_j|, 1/r, the one division for R* and 1/R*, and m* when damped: all in the
+        # lane loop, none left scalar
+        assert packed >= 3 + damped and scalar == 0, (
+            f"batch_geometry_{build}<{affine}, {damped}>: {packed} packed divisions and square "
+            f"roots on {register}, {scalar} scalar: the geometry's lane loop no longer "
+            f"vectorises")
