@@ -10,13 +10,14 @@ paper-scale rates of the decks (axisym: eps1_dot = 5e-5 1/s; simple shear: gamma
 
 The plain NVE run of the same specimen and pair (no fix cell/servo) is the baseline of the
 servo workload: issue 29 asks that the axisymmetric test cost at most 1.1x its instructions per
-atom-step. Two figures: (1) wall clock, the median over `repeats` alternated runs of each deck of the loop
-time per atom-step, and their ratio (meaningful on a quiet machine only); (2) instructions per
-atom-step of the whole run loop (LAMMPS_NS::Verlet::run, so pair, neighbour lists,
-communication, the fix's measurement, servo and box change, flips), counted by valgrind's
-callgrind, which does not depend on the machine's load. Writes OUT.json (provenance stamped);
-with --keep-callgrind the callgrind outputs go to DIR, callgrind.nve, callgrind.axisym and
-callgrind.simple_shear, for a per-function comparison (callgrind_annotate).
+atom-step. Two figures: (1) wall clock, the median over `repeats` alternated runs of each deck
+of the loop time per atom-step, and their ratios (meaningful on a quiet machine only); (2)
+instructions per atom-step of the whole run loop (LAMMPS_NS::Verlet::run, so pair, neighbour
+lists, communication, the fix's measurement, servo and box change, flips), counted by
+valgrind's callgrind, which does not depend on the machine's load. Writes OUT.json (provenance
+stamped); with --keep-callgrind the callgrind outputs go to DIR, callgrind.nve,
+callgrind.axisym and callgrind.simple_shear, for a per-function comparison
+(callgrind_annotate).
 """
 import argparse
 import os

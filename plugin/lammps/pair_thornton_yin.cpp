@@ -820,8 +820,9 @@ void PairThorntonYin::run_batch(Batch &bt, Sweep &sweep)
   tycore::ContactBatch &b = bt.b;
   const int n = bt.n;
   bt.n = 0;
-  const bool valid = sweep.affine ? tycore::batch_geometry<true, DAMPED>(b, n, sweep.gradient, isa)
-                                  : tycore::batch_geometry<false, DAMPED>(b, n, sweep.gradient, isa);
+  const tycore::AffineGradient &g = sweep.gradient;
+  const bool valid = sweep.affine ? tycore::batch_geometry<true, DAMPED>(b, n, g, isa)
+                                  : tycore::batch_geometry<false, DAMPED>(b, n, g, isa);
   if (!valid) report_overlap(bt, n);
   if (sweep.step) tycore::advance_batch<ADHESIVE, DAMPED>(b, n, *bt.constants, bt.p, isa);
   else tycore::forces_without_step<ADHESIVE, DAMPED>(b, n, *bt.constants, bt.p);
