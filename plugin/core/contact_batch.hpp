@@ -114,42 +114,9 @@ struct BatchParameters {
   bool energy = false;     // fill energy
 };
 
-inline void load_history(ContactBatch& b, int lane, const ContactHistory& h)
-{
-  for (int d = 0; d < 3; ++d) {
-    b.T[d][lane] = h.T[d];
-    b.dir[d][lane] = h.load_dir[d];
-  }
-  b.T_star[lane] = h.T_star;
-  b.T_star2[lane] = h.T_star2;
-  b.P_prev[lane] = h.P_prev;
-  b.mode[lane] = h.mode;
-  b.peeling[lane] = h.peeling;
-  b.sliding[lane] = h.sliding;
-  b.stored_energy[lane] = h.stored_energy;
-  b.radius[lane] = h.radius;
-}
-
-inline ContactHistory stored_history(const ContactBatch& b, int lane)
-{
-  ContactHistory h;
-  for (int d = 0; d < 3; ++d) {
-    h.T[d] = b.T[d][lane];
-    h.load_dir[d] = b.dir[d][lane];
-  }
-  h.T_star = b.T_star[lane];
-  h.T_star2 = b.T_star2[lane];
-  h.P_prev = b.P_prev[lane];
-  h.mode = b.mode[lane];
-  h.peeling = b.peeling[lane];
-  h.sliding = b.sliding[lane];
-  h.stored_energy = b.stored_energy[lane];
-  h.radius = b.radius[lane];
-  return h;
-}
-
-// the same, from and to a contact's slot in LAMMPS's history page (history_size doubles,
-// ContactHistory verbatim), value by value (no copy through the stack)
+// A contact's history into and out of lane `lane`: from and to its slot in LAMMPS's history
+// page (history_size doubles, ContactHistory verbatim), value by value (no copy through the
+// stack); or from and to a ContactHistory (the rare paths: first touch, separation, energies)
 namespace slot_index {
 #define TYCORE_SLOT_INDEX(field) \
   constexpr int field = offsetof(ContactHistory, field) / sizeof(double);
@@ -198,6 +165,22 @@ inline void store_history(const ContactBatch& b, int lane, double* slot)
   slot[at::sliding] = b.sliding[lane];
   slot[at::stored_energy] = b.stored_energy[lane];
   slot[at::radius] = b.radius[lane];
+}
+
+inline void load_history(ContactBatch& b, int lane, const ContactHistory& h)
+{
+  double slot[history_size];
+  std::memcpy(slot, &h, sizeof(h));
+  load_history(b, lane, slot);
+}
+
+inline ContactHistory stored_history(const ContactBatch& b, int lane)
+{
+  double slot[history_size];
+  store_history(b, lane, slot);
+  ContactHistory h;
+  std::memcpy(&h, slot, sizeof(h));
+  return h;
 }
 
 // The vector builds of the law exist on x86-64 with GCC or Clang (the instruction sets are
