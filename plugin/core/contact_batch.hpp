@@ -54,7 +54,8 @@ struct ContactBatch {
                                            // contact point, spins included (docs/theory.md §5.1)
   alignas(64) double spin_n[batch_lanes];  // (w_i + w_j) . n: the history twists by dt/2 of it
   alignas(64) double m_star[batch_lanes];  // m_i m_j / (m_i + m_j) (Damped only)
-  alignas(64) double rsq[batch_lanes];     // |x_i - x_j|^2 (affine-stiffness tally only)
+  alignas(64) double rsq[batch_lanes];     // |x_i - x_j|^2 (gathered; the geometry's r and
+                                           // the affine-stiffness tally)
   bool first_touch[batch_lanes];           // no history yet, delta >= 0: JKR snap-on first
 
   // ---- the engine's data of the two spheres, from which contact_geometry

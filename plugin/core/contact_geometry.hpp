@@ -14,6 +14,7 @@
 #include "contact_batch.hpp"
 
 #include <cmath>
+#include <limits>
 
 namespace tycore {
 
@@ -101,7 +102,7 @@ template <bool Affine, bool Damped>
 {
   const double delta = b.delta[l], ri = b.r_i[l], rj = b.r_j[l];
   const double smaller = ri < rj ? ri : rj;
-  return (delta <= smaller) & (delta >= -1.7976931348623157e308);    // -DBL_MAX
+  return (delta <= smaller) & (delta >= -std::numeric_limits<double>::max());
 }
 
 // contact_geometry over the whole batch: every lane in the vector builds (lanes at and beyond n

@@ -784,15 +784,20 @@ template void PairThorntonYin::eval<false, false>(int, int);
 
 void PairThorntonYin::begin_batches(bool energy)
 {
+  batch_energy = energy;
   const int ntypes_plus_1 = atom->ntypes + 1;
   for (int itype = 1; itype < ntypes_plus_1; ++itype)
     for (int jtype = itype; jtype < ntypes_plus_1; ++jtype) {
       auto &bt = batches[itype * ntypes_plus_1 + jtype];
-      if (bt)
-        bt->p = tycore::BatchParameters{dt, damp_n[itype][jtype], damp_t[itype][jtype],
-                                        tally_cell != 0, energy};
+      if (bt) bt->p = batch_parameters(itype, jtype);
     }
-  batch_energy = energy;
+}
+
+// this evaluation's parameters of the batch of types itype, jtype
+tycore::BatchParameters PairThorntonYin::batch_parameters(int itype, int jtype) const
+{
+  return tycore::BatchParameters{dt, damp_n[itype][jtype], damp_t[itype][jtype],
+                                 tally_cell != 0, batch_energy};
 }
 
 PairThorntonYin::Batch *PairThorntonYin::make_batch(int itype, int jtype)
@@ -802,8 +807,7 @@ PairThorntonYin::Batch *PairThorntonYin::make_batch(int itype, int jtype)
   batches[pair].reset(new Batch{});    // value-initialised: lanes past n hold numbers
   Batch *bt = batches[pair].get();
   bt->constants = &pair_constants[pair];
-  bt->p = tycore::BatchParameters{dt, damp_n[itype][jtype], damp_t[itype][jtype],
-                                  tally_cell != 0, batch_energy};
+  bt->p = batch_parameters(itype, jtype);
   batch_of_types[itype * ntypes_plus_1 + jtype] = bt;
   batch_of_types[jtype * ntypes_plus_1 + itype] = bt;
   return bt;

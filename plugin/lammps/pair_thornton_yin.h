@@ -159,6 +159,7 @@ class PairThorntonYin : public tylmp_compat::PairWithHistory, public CellTallySo
   bool batch_energy;    // this evaluation's batches fill the stored energy
   void begin_batches(bool energy);
   Batch *make_batch(int itype, int jtype);
+  tycore::BatchParameters batch_parameters(int itype, int jtype) const;
 
   // one force evaluation: a step or the setup pass (no history increment), the cell's
   // velocity gradient, the dissipated energies summed over the contacts
