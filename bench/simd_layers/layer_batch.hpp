@@ -24,12 +24,10 @@ template <class Layer>
 inline law::History<typename Layer::V> load_history(const ContactBatch& b, int i)
 {
   law::History<typename Layer::V> h;
-  for (int d = 0; d < 3; ++d)
-    h.T[d] = Layer::load(b.T[d] + i), h.dir[d] = Layer::load(b.dir[d] + i);
-  h.T_star = Layer::load(b.T_star + i), h.T_star2 = Layer::load(b.T_star2 + i);
-  h.P_prev = Layer::load(b.P_prev + i), h.mode = Layer::load(b.mode + i);
-  h.peeling = Layer::load(b.peeling + i), h.sliding = Layer::load(b.sliding + i);
-  h.stored_energy = Layer::load(b.stored_energy + i), h.radius = Layer::load(b.radius + i);
+#define TYBENCH_LOAD_FIELD(name, values, carried, from_j, meaning) \
+  for (int k = 0; k < values; ++k) history::value(h.name, k) = Layer::load(batch_value(b.name, k) + i);
+  TYCORE_HISTORY_FIELDS(TYBENCH_LOAD_FIELD)
+#undef TYBENCH_LOAD_FIELD
   return h;
 }
 
@@ -71,20 +69,13 @@ inline void law_stage(ContactBatch& b, const PairConstants& k, const BatchParame
         k, Layer::load(b.R + i), Layer::load(b.Rinv + i), Layer::load(b.delta + i), ds,
         load_carry<Layer>(w, i), h);
     // detail::store_lane
-    V T[3];
-    for (int d = 0; d < 3; ++d) {
-      T[d] = lane_select(gone, zero, h.T[d]);
-      Layer::store(T[d], b.T[d] + i);
-      Layer::store(lane_select(gone, zero, h.dir[d]), b.dir[d] + i);
-    }
-    Layer::store(lane_select(gone, zero, h.T_star), b.T_star + i);
-    Layer::store(lane_select(gone, zero, h.T_star2), b.T_star2 + i);
-    Layer::store(lane_select(gone, zero, h.P_prev), b.P_prev + i);
-    Layer::store(lane_select(gone, zero, h.mode), b.mode + i);
-    Layer::store(lane_select(gone, zero, h.peeling), b.peeling + i);
-    Layer::store(lane_select(gone, zero, h.sliding), b.sliding + i);
-    Layer::store(lane_select(gone, zero, h.stored_energy), b.stored_energy + i);
-    Layer::store(lane_select(gone, zero, h.radius), b.radius + i);
+#define TYBENCH_STORE_FIELD(name, values, carried, from_j, meaning) \
+  for (int k = 0; k < values; ++k)                                  \
+    Layer::store(lane_select(gone, zero, history::value(h.name, k)), batch_value(b.name, k) + i);
+    TYCORE_HISTORY_FIELDS(TYBENCH_STORE_FIELD)
+#undef TYBENCH_STORE_FIELD
+    const V T[3] = {lane_select(gone, zero, h.T[0]), lane_select(gone, zero, h.T[1]),
+                    lane_select(gone, zero, h.T[2])};
     const V P = lane_select(gone, zero, out.P), a = lane_select(gone, zero, out.a);
     Layer::store(P, b.P + i);
     Layer::store(a, b.contact_radius + i);
@@ -144,8 +135,11 @@ void layer_batch(ContactBatch& b, int n, const PairConstants& k, const BatchPara
     law::Carry<V> lane{};
     law::carry<Adhesive>(k, nn, Layer::load(w.tw_c + i), Layer::load(w.tw_s + i), twisted,
                          Layer::load(b.Rinv + i), Layer::load(b.delta + i), h, lane);
-    for (int d = 0; d < 3; ++d)
-      Layer::store(h.T[d], b.T[d] + i), Layer::store(h.dir[d], b.dir[d] + i);
+#define TYBENCH_CARRIED_FIELD(name, values, carried, from_j, meaning) \
+  if constexpr (history::carried != history::kept)                    \
+    for (int k = 0; k < values; ++k) Layer::store(history::value(h.name, k), batch_value(b.name, k) + i);
+    TYCORE_HISTORY_FIELDS(TYBENCH_CARRIED_FIELD)
+#undef TYBENCH_CARRIED_FIELD
     store_carry<Layer>(w, i, lane, Adhesive);
   }
   if (Adhesive) {

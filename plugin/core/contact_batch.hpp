@@ -32,6 +32,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstring>
+#include <type_traits>
 
 namespace tycore {
 
@@ -40,6 +41,23 @@ namespace tycore {
 // on whatever they hold and never read back (start from a value-initialised batch,
 // ContactBatch b{}, so that they hold numbers).
 inline constexpr int batch_lanes = 16;
+
+// a history field of `values` values as arrays over the lanes: double[values][batch_lanes],
+// or double[batch_lanes] for a scalar
+template <int values> struct batch_field_type {
+  using type = double[values][batch_lanes];
+};
+template <> struct batch_field_type<1> {
+  using type = double[batch_lanes];
+};
+template <int values> using batch_field = typename batch_field_type<values>::type;
+
+// the lanes of value k of a history field of the batch, scalar (k = 0) or vector alike
+template <class X> [[gnu::always_inline]] constexpr auto& batch_value(X& x, int k)
+{
+  if constexpr (std::rank_v<X> == 2) return x[k];
+  else return x;
+}
 
 // in: the contact's geometry and velocities (contact_geometry.hpp, from the spheres' data that
 // the engine gathers into the lanes) and its history; out: what the engine scatters
@@ -69,17 +87,12 @@ struct ContactBatch {
   alignas(64) double m_i[batch_lanes];       // masses (Damped only)
   alignas(64) double m_j[batch_lanes];
 
-  // ---- history, in and out: ContactHistory as arrays (load_history / stored_history) ----
-  alignas(64) double T[3][batch_lanes];
-  alignas(64) double dir[3][batch_lanes];
-  alignas(64) double T_star[batch_lanes];
-  alignas(64) double T_star2[batch_lanes];
-  alignas(64) double P_prev[batch_lanes];
-  alignas(64) double mode[batch_lanes];
-  alignas(64) double peeling[batch_lanes];
-  alignas(64) double sliding[batch_lanes];
-  alignas(64) double stored_energy[batch_lanes];
-  alignas(64) double radius[batch_lanes];
+  // ---- history, in and out: the fields of TYCORE_HISTORY_FIELDS (contact_types.hpp) as
+  // arrays, a vector's value k in name[k][lane] (load_history / store_history) ----
+#define TYCORE_BATCH_HISTORY_MEMBER(name, values, carried, from_j, meaning) \
+  alignas(64) batch_field<values> name;
+  TYCORE_HISTORY_FIELDS(TYCORE_BATCH_HISTORY_MEMBER)
+#undef TYCORE_BATCH_HISTORY_MEMBER
 
   // ---- out ----
   alignas(64) double P[batch_lanes];               // elastic normal force, > 0 repulsive
@@ -116,56 +129,23 @@ struct BatchParameters {
 };
 
 // A contact's history into and out of lane `lane`: from and to its slot in LAMMPS's history
-// page (history_size doubles, ContactHistory verbatim), value by value (no copy through the
-// stack); or from and to a ContactHistory (the rare paths: first touch, separation, energies)
-namespace slot_index {
-#define TYCORE_SLOT_INDEX(field) \
-  constexpr int field = offsetof(ContactHistory, field) / sizeof(double);
-TYCORE_SLOT_INDEX(T)
-TYCORE_SLOT_INDEX(load_dir)
-TYCORE_SLOT_INDEX(T_star)
-TYCORE_SLOT_INDEX(T_star2)
-TYCORE_SLOT_INDEX(P_prev)
-TYCORE_SLOT_INDEX(mode)
-TYCORE_SLOT_INDEX(peeling)
-TYCORE_SLOT_INDEX(sliding)
-TYCORE_SLOT_INDEX(stored_energy)
-TYCORE_SLOT_INDEX(radius)
-#undef TYCORE_SLOT_INDEX
-}    // namespace slot_index
-
+// page (history_size doubles, ContactHistory verbatim, slot_index), value by value (no copy
+// through the stack); or from and to a ContactHistory (the rare paths: first touch,
+// separation, energies)
 inline void load_history(ContactBatch& b, int lane, const double* slot)
 {
-  namespace at = slot_index;
-  for (int d = 0; d < 3; ++d) {
-    b.T[d][lane] = slot[at::T + d];
-    b.dir[d][lane] = slot[at::load_dir + d];
-  }
-  b.T_star[lane] = slot[at::T_star];
-  b.T_star2[lane] = slot[at::T_star2];
-  b.P_prev[lane] = slot[at::P_prev];
-  b.mode[lane] = slot[at::mode];
-  b.peeling[lane] = slot[at::peeling];
-  b.sliding[lane] = slot[at::sliding];
-  b.stored_energy[lane] = slot[at::stored_energy];
-  b.radius[lane] = slot[at::radius];
+#define TYCORE_LOAD_FIELD(name, values, carried, from_j, meaning) \
+  for (int k = 0; k < values; ++k) batch_value(b.name, k)[lane] = slot[slot_index::name + k];
+  TYCORE_HISTORY_FIELDS(TYCORE_LOAD_FIELD)
+#undef TYCORE_LOAD_FIELD
 }
 
 inline void store_history(const ContactBatch& b, int lane, double* slot)
 {
-  namespace at = slot_index;
-  for (int d = 0; d < 3; ++d) {
-    slot[at::T + d] = b.T[d][lane];
-    slot[at::load_dir + d] = b.dir[d][lane];
-  }
-  slot[at::T_star] = b.T_star[lane];
-  slot[at::T_star2] = b.T_star2[lane];
-  slot[at::P_prev] = b.P_prev[lane];
-  slot[at::mode] = b.mode[lane];
-  slot[at::peeling] = b.peeling[lane];
-  slot[at::sliding] = b.sliding[lane];
-  slot[at::stored_energy] = b.stored_energy[lane];
-  slot[at::radius] = b.radius[lane];
+#define TYCORE_STORE_FIELD(name, values, carried, from_j, meaning) \
+  for (int k = 0; k < values; ++k) slot[slot_index::name + k] = batch_value(b.name, k)[lane];
+  TYCORE_HISTORY_FIELDS(TYCORE_STORE_FIELD)
+#undef TYCORE_STORE_FIELD
 }
 
 inline void load_history(ContactBatch& b, int lane, const ContactHistory& h)
@@ -237,10 +217,9 @@ namespace detail {
 
 // the parts of the step outside the law, shared by both builds
 
-// First touch (JKR snap-on at delta >= 0, no work done: begin_contact, docs/theory.md §1.3)
-// and separation at the break overlap delta_f (Thornton & Yin 1991, docs/theory.md §1.2):
-// the tangential energy and the JKR energy at a_f are lost. Lanes in neither state are left
-// alone; this runs lane by lane, both are rare.
+// First touch (law::snap_on, docs/theory.md §1.3) and separation at the break overlap
+// (law::separates, §1.2: the history cleared, its energy law::break_energy lost). Lanes in
+// neither state are left alone; this runs lane by lane, both are rare.
 template <bool Adhesive>
 inline void touch_or_break(ContactBatch& b, int n, const PairConstants& k)
 {
@@ -250,25 +229,11 @@ inline void touch_or_break(ContactBatch& b, int n, const PairConstants& k)
     b.break_energy[i] = 0.0;
     const double R = b.R[i], delta = b.delta[i];
     if (b.first_touch[i]) {
-      const double a = Adhesive ? jkr::contact_radius(delta, R, c.E_star, c.Gamma)
-                                : std::sqrt(R * delta);
-      ContactHistory h;
-      begin_contact(h, jkr::normal_force(a, R, c.E_star, c.Gamma), Adhesive);
-      h.radius = a;    // warm start of this step's radius
-      load_history(b, i, h);
-    } else if (delta < 0.0) {    // delta_f <= 0: only tensile contacts can break
-      const double delta_break = Adhesive ? jkr::break_overlap(R, c.E_star, c.Gamma) : 0.0;
-      if (delta < delta_break) {
-        const ContactHistory h = stored_history(b, i);
-        double stored = h.stored_energy;
-        if (Adhesive) {
-          const double a_break = jkr::contact_radius(delta_break, R, c.E_star, c.Gamma);
-          stored += jkr::stored_energy(a_break, R, c.E_star, c.Gamma);
-        }
-        b.broken[i] = 1.0;
-        b.break_energy[i] = stored;
-        load_history(b, i, ContactHistory{});
-      }
+      load_history(b, i, law::snap_on(c, R, delta, Adhesive));
+    } else if (law::separates(c, R, delta, Adhesive)) {
+      b.broken[i] = 1.0;
+      b.break_energy[i] = law::break_energy(c, R, stored_history(b, i), Adhesive);
+      load_history(b, i, ContactHistory{});
     }
   }
 }
@@ -337,9 +302,7 @@ template <bool Adhesive, bool Damped, bool Tally>
     // k_N = dP/d(delta) (jkr::normal_stiffness, docs/theory.md §1.5); k_T = 8 G* a_T(P + 2Pc),
     // a_T the Hertz radius itself without adhesion (as the law)
     const double rsq = b.rsq[i];
-    const double s = std::sqrt(9.0 * jkr::pi * c.Gamma * R * R / (c.E_star * a * a * a));
-    const double k_N = c.Gamma == 0.0 ? 2.0 * c.E_star * a
-                                      : 2.0 * c.E_star * a * 3.0 * (2.0 - s) / (6.0 - s);
+    const double k_N = jkr::normal_stiffness(a, R, c.E_star, c.Gamma);
     const double Pc = jkr::pull_off_force(c.Gamma, R);
     const double a_T = Adhesive ? simd_cbrt(3.0 * R * lane_max(P + 2.0 * Pc, 0.0) / (4.0 * c.E_star))
                                 : a;
@@ -362,10 +325,10 @@ template <bool Adhesive, bool Damped, bool Tally>
 [[gnu::always_inline]] inline law::History<double> lane_history(const ContactBatch& b, int i)
 {
   law::History<double> h;
-  for (int d = 0; d < 3; ++d) h.T[d] = b.T[d][i], h.dir[d] = b.dir[d][i];
-  h.T_star = b.T_star[i], h.T_star2 = b.T_star2[i], h.P_prev = b.P_prev[i], h.mode = b.mode[i];
-  h.peeling = b.peeling[i], h.sliding = b.sliding[i], h.stored_energy = b.stored_energy[i];
-  h.radius = b.radius[i];
+#define TYCORE_LANE_FIELD(name, values, carried, from_j, meaning) \
+  for (int k = 0; k < values; ++k) history::value(h.name, k) = batch_value(b.name, k)[i];
+  TYCORE_HISTORY_FIELDS(TYCORE_LANE_FIELD)
+#undef TYCORE_LANE_FIELD
   return h;
 }
 
@@ -374,18 +337,11 @@ template <bool Adhesive, bool Damped, bool Tally>
 [[gnu::always_inline]] inline void store_lane(ContactBatch& b, int i, const law::History<double>& h,
                                               const law::Outputs<double>& out, bool gone)
 {
-  for (int d = 0; d < 3; ++d) {
-    b.T[d][i] = gone ? 0.0 : h.T[d];
-    b.dir[d][i] = gone ? 0.0 : h.dir[d];
-  }
-  b.T_star[i] = gone ? 0.0 : h.T_star;
-  b.T_star2[i] = gone ? 0.0 : h.T_star2;
-  b.P_prev[i] = gone ? 0.0 : h.P_prev;
-  b.mode[i] = gone ? 0.0 : h.mode;
-  b.peeling[i] = gone ? 0.0 : h.peeling;
-  b.sliding[i] = gone ? 0.0 : h.sliding;
-  b.stored_energy[i] = gone ? 0.0 : h.stored_energy;
-  b.radius[i] = gone ? 0.0 : h.radius;
+#define TYCORE_STORE_LANE_FIELD(name, values, carried, from_j, meaning) \
+  for (int k = 0; k < values; ++k)                                      \
+    batch_value(b.name, k)[i] = gone ? 0.0 : history::value(h.name, k);
+  TYCORE_HISTORY_FIELDS(TYCORE_STORE_LANE_FIELD)
+#undef TYCORE_STORE_LANE_FIELD
   b.P[i] = gone ? 0.0 : out.P;
   b.contact_radius[i] = gone ? 0.0 : out.a;
   b.dissipation[i] = gone ? 0.0 : out.dissipation;

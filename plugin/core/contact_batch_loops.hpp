@@ -72,7 +72,12 @@ template <bool Adhesive>
     law::History<double> h = detail::lane_history(b, i);
     law::Carry<double> lane{};
     law::carry<Adhesive>(k, n, w.tw_c[i], w.tw_s[i], twisted, b.Rinv[i], b.delta[i], h, lane);
-    for (int d = 0; d < 3; ++d) b.T[d][i] = h.T[d], b.dir[d][i] = h.dir[d];
+    // the carried tangent vectors back (the scalars are kept)
+#define TYCORE_CARRIED_FIELD(name, values, carried, from_j, meaning) \
+  if constexpr (history::carried != history::kept)                   \
+    for (int k = 0; k < values; ++k) batch_value(b.name, k)[i] = history::value(h.name, k);
+    TYCORE_HISTORY_FIELDS(TYCORE_CARRIED_FIELD)
+#undef TYCORE_CARRIED_FIELD
     w.store(i, lane, Adhesive);
   }
 }
@@ -118,17 +123,13 @@ template <bool Adhesive, bool Damped>
 {
   detail::touch_or_break<Adhesive>(b, n, k);
   CarryLanes w;
-  // cos and sin of the twist: the Taylor terms of detail::twist_cos_sin lane-wide, libm where
-  // |twist| >= 1e-3 rad
-  for (int i = 0; i < L; ++i) {
-    const double twist = 0.5 * p.dt * b.spin_n[i];
-    const double t2 = twist * twist;
-    w.tw_c[i] = 1.0 - t2 * (0.5 - t2 * (1.0 / 24.0));
-    w.tw_s[i] = twist * (1.0 - t2 * (1.0 / 6.0 - t2 * (1.0 / 120.0)));
-  }
+  // cos and sin of the twist: the series of detail::twist_cos_sin lane-wide, libm where
+  // |twist| >= its bound
+  for (int i = 0; i < L; ++i)
+    detail::twist_cos_sin_series(0.5 * p.dt * b.spin_n[i], w.tw_c[i], w.tw_s[i]);
   for (int i = 0; i < n; ++i) {
     const double twist = 0.5 * p.dt * b.spin_n[i];
-    if (std::abs(twist) >= 1e-3) detail::twist_cos_sin(twist, w.tw_c[i], w.tw_s[i]);
+    if (!detail::twist_series_exact(twist)) detail::twist_cos_sin(twist, w.tw_c[i], w.tw_s[i]);
   }
   carry_stage<Adhesive>(b, k, p.dt, w);
   if (Adhesive) {

@@ -31,37 +31,20 @@ struct KernelResult {
 // frictionless contact, or a Hertz contact at zero load), which a step of the law also flags
 // as sliding. The flag kept in the history belongs to the last step and to the mu of that
 // step: after a change of mu (a new pair_coeff, fix adapt) it would be stale.
+// The tolerance is wider than the law's (detail::limit_tolerance): P here is evaluated anew
+// (normal_contact) and may differ in its last bits from the P of the step that capped T.
+inline constexpr double setup_limit_tolerance = 1e-12;
+
 inline bool slides_without_step(const PairConstants& k, double R, double P, const ContactHistory& h)
 {
   const double Pc = jkr::pull_off_force(k.c.Gamma, R);
-  const double limit = k.c.mu * std::max(P + 2.0 * Pc, 0.0);
+  const double limit = law::sliding_limit(k, P + 2.0 * Pc);
   if (limit <= 0.0) return true;
   const double T2 = h.T[0] * h.T[0] + h.T[1] * h.T[1] + h.T[2] * h.T[2];
-  return T2 >= limit * limit * (1.0 - 1e-12);
+  return T2 >= limit * limit * (1.0 - setup_limit_tolerance);
 }
 
 namespace law {
-
-// ContactHistory as the law's lanes (the same fields in the same order) and back
-inline History<double> lanes_of(const ContactHistory& c)
-{
-  History<double> h;
-  for (int d = 0; d < 3; ++d) h.T[d] = c.T[d], h.dir[d] = c.load_dir[d];
-  h.T_star = c.T_star, h.T_star2 = c.T_star2, h.P_prev = c.P_prev, h.mode = c.mode;
-  h.peeling = c.peeling, h.sliding = c.sliding, h.stored_energy = c.stored_energy;
-  h.radius = c.radius;
-  return h;
-}
-
-inline ContactHistory history_of(const History<double>& h)
-{
-  ContactHistory c;
-  for (int d = 0; d < 3; ++d) c.T[d] = h.T[d], c.load_dir[d] = h.dir[d];
-  c.T_star = h.T_star, c.T_star2 = h.T_star2, c.P_prev = h.P_prev, c.mode = h.mode;
-  c.peeling = h.peeling, c.sliding = h.sliding, c.stored_energy = h.stored_energy;
-  c.radius = h.radius;
-  return c;
-}
 
 // the JKR radius after halley_start at V = double: the later Halley rounds where pending, the
 // closed form where they found no radius
@@ -125,9 +108,7 @@ inline KernelResult advance_contact(const PairConstants& k, double R, double del
                                     const double n[3], double twist, const double ds[3],
                                     ContactHistory& h, double& dissipation)
 {
-  law::History<double> lanes = law::lanes_of(h);
-  const law::Outputs<double> out = law::scalar_step<Adhesive>(k, R, 1.0 / R, delta, n, twist, ds, lanes);
-  h = law::history_of(lanes);
+  const law::Outputs<double> out = law::scalar_step<Adhesive>(k, R, 1.0 / R, delta, n, twist, ds, h);
   dissipation += out.dissipation;
   return KernelResult{out.P, out.a};
 }

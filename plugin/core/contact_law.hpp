@@ -1,9 +1,26 @@
-// The Thornton-Yin contact law of the pair style, written once over a lane type V: JKR normal
-// force (the warm-started Halley iteration on the quartic in sqrt(a), docs/theory.md §1.4),
-// the history carried onto the new tangent plane and twisted, Savkoor-Briggs peeling (§2.2),
-// Mindlin-Deresiewicz micro-slip with its loading / unloading / reloading memory under a
-// varying normal load (§2.1, §2.3), the Coulomb cap (gross sliding), the frictionless
-// shortcut and the energy balance (§2.4). Thornton & Yin (1991); Thornton & Randall (1988).
+// The Thornton-Yin contact law of the pair style, written once over a lane type V,
+// Thornton & Yin (1991), Thornton & Randall (1988). Each piece is read against one section of
+// docs/theory.md:
+//   carry                 the history onto the turned tangent plane, twisted     §2.3 step 1
+//   halley_start/_again,  the JKR contact radius from the overlap (warm-started    §1.4
+//   closed_form_radius    Halley iteration on the quartic in sqrt(a), closed form)
+//   normal_force          the JKR (or Hertz) normal force                         §1.1, §1.6
+//   normal_load           P + 2Pc, dP and the sliding limit mu max(P + 2Pc, 0)    §2.2
+//   peeling               stage A, Savkoor-Briggs peeling                         §2.2
+//   tangential_stiffness  k_T = 8 G* a_T (peeling radius or micro-slip radius)    §2.2
+//   loading_direction     the loading direction t of a contact without one        §2.3 step 3
+//   slip_direction        THE branch rule: forward / backward slip or elastic     §2.3 step 3
+//   masing_branch         loading / unloading / reloading, reversal points T*, T** §2.1
+//   theta                 theta of the micro-slip annulus                         §2.1
+//   tangential_increment  dT along t and across it, the annulus dissipation       §2.1, §2.3 step 4, §2.4
+//   rejoin_loading        back on the virgin loading curve                        §2.1
+//   coulomb_cap           stage C, gross sliding at mu (P + 2Pc)                  §2.3 step 5
+//   energy_balance        work = dissipation + change of stored energy            §2.4
+//   release_tangential    no tangential force where the sliding limit is 0        §2.3
+//   tangential_step, step the step assembled from these
+// The law has no viscous damping: the pair's damping stays outside the elastic history
+// (detail::damped_force, contact_batch.hpp). The history it carries is the table
+// TYCORE_HISTORY_FIELDS (contact_types.hpp).
 //
 // Every branch of the law is a lane select (lane_select): each lane computes every branch and
 // keeps its own. One text, two instantiations in the plugin:
@@ -29,6 +46,7 @@
 #include "simd_math.hpp"
 
 #include <cmath>
+#include <utility>
 
 namespace tycore {
 
@@ -62,10 +80,25 @@ template <class V>
 
 namespace law {
 
-// ContactHistory of one lane (contact_types.hpp), field for field
-template <class V> struct History {
-  V T[3], dir[3], T_star, T_star2, P_prev, mode, peeling, sliding, stored_energy, radius;
-};
+// The history of one lane: the fields of TYCORE_HISTORY_FIELDS (contact_types.hpp) with values
+// of the lane type; at V = double it is ContactHistory itself
+template <class V> using History = HistoryOf<V>;
+
+// the lane mask of the lane type V (bool for V = double)
+template <class V> using Mask = decltype(std::declval<V>() > 0.0);
+
+// a in the lanes where m holds, else b, field for field
+template <class V, class M>
+[[gnu::always_inline]] inline History<V> select_history(M m, const History<V>& a, const History<V>& b)
+{
+  History<V> h;
+#define TYCORE_SELECT_FIELD(name, values, carried, from_j, meaning) \
+  for (int k = 0; k < values; ++k)                                 \
+    history::value(h.name, k) = lane_select(m, history::value(a.name, k), history::value(b.name, k));
+  TYCORE_HISTORY_FIELDS(TYCORE_SELECT_FIELD)
+#undef TYCORE_SELECT_FIELD
+  return h;
+}
 
 // What the carry stage hands to the law stage: |T| where the rotation gave it (else -1) and the
 // state of the JKR Halley iteration (a < 0: no radius yet; pending 1: it goes on)
@@ -165,16 +198,17 @@ template <class V>
   w.pending = lane_select(stepped & slope_next, V(1.0), zero);
 }
 
-// Stage 1: the stored vectors onto the tangent plane of n (magnitude kept), twisted about n by
-// the angle whose cosine and sine are (c, s) where `twisted` (on the loading branch
-// load_dir = T/|T| is projected once and T follows it), and with adhesion the JKR radius from
-// the previous one (halley_start).
+// Stage 1 (docs/theory.md §2.3 step 1): the history's tangent vectors onto the tangent plane of
+// n (magnitude kept), twisted about n by the angle whose cosine and sine are (c, s) where
+// `twisted` (on the loading branch load_dir = T/|T| is projected once and T follows it; any
+// other tangent vector of the history, TYCORE_HISTORY_FIELDS, on its own), and with adhesion
+// the JKR radius from the previous one (halley_start).
 template <bool Adhesive, class V, class M>
 [[gnu::always_inline]] inline void carry(const PairConstants& k, const V n[3], V c, V s,
                                          M twisted, V Rinv, V delta, History<V>& h, Carry<V>& w)
 {
   V T[3] = {h.T[0], h.T[1], h.T[2]};
-  V dir[3] = {h.dir[0], h.dir[1], h.dir[2]};
+  V dir[3] = {h.load_dir[0], h.load_dir[1], h.load_dir[2]};
   const V T2_before = dot3(T, T);
   const auto dir_follows_T = (h.mode == double(LOADING)) & (T2_before > 0.0) & (dot3(dir, dir) > 0.0);
   // loading branch: load_dir = T/|T|, projected once
@@ -194,9 +228,16 @@ template <bool Adhesive, class V, class M>
   const V zero = V(0.0);
   for (int d = 0; d < 3; ++d) {
     h.T[d] = lane_select(dir_follows_T, lane_select(kept, magnitude * q[d], zero), T[d]);
-    h.dir[d] = lane_select(dir_follows_T, lane_select(kept, q[d], zero), dir[d]);
+    h.load_dir[d] = lane_select(dir_follows_T, lane_select(kept, q[d], zero), dir[d]);
   }
   w.T_magnitude = lane_select(dir_follows_T & kept, magnitude, V(-1.0));
+#define TYCORE_CARRY_TANGENT(name, values, carried, from_j, meaning) \
+  if constexpr (history::carried == history::tangent) {            \
+    keep_magnitude(h.name, n);                                     \
+    twist(h.name, n, c, s, twisted);                               \
+  }
+  TYCORE_HISTORY_FIELDS(TYCORE_CARRY_TANGENT)
+#undef TYCORE_CARRY_TANGENT
 
   if (Adhesive) halley_start(k, Rinv, delta, h.radius, w);
 }
@@ -247,181 +288,385 @@ template <bool Adhesive, class V>
   return (4.0 / 3.0) * c.E_star * a * compression;
 }
 
+// ---- the facts of the law that its callers share (each defined here once) ----
+
+// a^3 = 3R*L/(4E*): the Hertz contact radius under the load L, cubed (docs/theory.md §1.6)
+template <class V>
+[[gnu::always_inline]] inline V hertz_radius_cubed(const PairConstants& k, V R, V load)
+{
+  return k.cube_radius_per_load * R * load;
+}
+
 // a_T^3 = 3R*(P + 2Pc)/(4E*): the Hertz radius of the effective load P + 2Pc, cubed, whose
 // 8 G* a_T is the micro-slip stiffness k_T (§2.2; zero where P + 2Pc <= 0)
 template <class V>
 [[gnu::always_inline]] inline V micro_slip_radius_cubed(const PairConstants& k, V R, V effective_load)
 {
-  return k.cube_radius_per_load * R * lane_max(effective_load, V(0.0));
+  return hertz_radius_cubed(k, R, lane_max(effective_load, V(0.0)));
 }
 
-// Stage 2: the normal force at the radius found and the tangential law for the increment ds
-// (peeling, micro-slip, Coulomb cap, energy balance); h becomes the new history. Frictionless:
-// the material pair has mu = 0, so the outcome is known without the tangential law: T and its
-// memory cleared, sliding, the stored energy released (docs/theory.md §2.3); the same values,
-// bit for bit, as the full law gives for mu = 0.
+// the sliding limit mu max(P + 2Pc, 0) of the effective load P + 2Pc (§2.2 stage C): zero for
+// mu = 0 and for a Hertz contact at zero load, where there is no tangential force (§2.3)
+template <class V>
+[[gnu::always_inline]] inline V sliding_limit(const PairConstants& k, V effective_load)
+{
+  return k.c.mu * lane_max(effective_load, V(0.0));
+}
+
+// ---- the contact's life cycle (docs/theory.md §1.3), contact by contact (both are rare) ----
+
+// Snap-on: the history of a contact created at overlap delta >= 0 (JKR: the radius jumps to
+// a(delta), (4/9)^(1/3) a0 at delta = 0, the force to P(a); no work is done): no tangential
+// force, peeling if adhesive (begin_contact), the radius the warm start of its first step
+inline ContactHistory snap_on(const PairCoefficients& c, double R, double delta, bool adhesive)
+{
+  const double a = adhesive ? jkr::contact_radius(delta, R, c.E_star, c.Gamma) : std::sqrt(R * delta);
+  ContactHistory h;
+  begin_contact(h, jkr::normal_force(a, R, c.E_star, c.Gamma), adhesive);
+  h.radius = a;
+  return h;
+}
+
+// Break: the contact separates beyond the break overlap, delta < delta_f (JKR under
+// displacement control, §1.2; delta_f = 0 without adhesion). delta_f <= 0: only a tensile
+// contact can break.
+inline bool separates(const PairCoefficients& c, double R, double delta, bool adhesive)
+{
+  if (!(delta < 0.0)) return false;
+  return delta < (adhesive ? jkr::break_overlap(R, c.E_star, c.Gamma) : 0.0);
+}
+
+// the elastic energy lost when a contact separates: its stored tangential energy and the JKR
+// energy at the break radius a_f (§1.7, §3.2)
+inline double break_energy(const PairCoefficients& c, double R, const ContactHistory& h, bool adhesive)
+{
+  double stored = h.stored_energy;
+  if (adhesive) {
+    const double a_break = jkr::contact_radius(jkr::break_overlap(R, c.E_star, c.Gamma), R,
+                                               c.E_star, c.Gamma);
+    stored += jkr::stored_energy(a_break, R, c.E_star, c.Gamma);
+  }
+  return stored;
+}
+
+// ---- one step of the tangential law, piece by piece (docs/theory.md §2) ----
+
+// The normal load as the tangential law sees it (§2.2): the JKR force P, the pull-off force
+// Pc = 3 pi Gamma R* (0 without adhesion), the effective load P + 2Pc on which micro-slip and
+// sliding act, the change dP of P since the last step and the sliding limit
+template <class V> struct NormalLoad {
+  V P, Pc, effective, dP, sliding_limit;
+};
+
+template <bool Adhesive, class V>
+[[gnu::always_inline]] inline NormalLoad<V> normal_load(const PairConstants& k, V R, V P, V P_prev)
+{
+  NormalLoad<V> load;
+  load.P = P;
+  load.Pc = Adhesive ? V(jkr::pull_off_force(k.c.Gamma, 1.0)) * R : V(0.0);
+  load.effective = P + 2.0 * load.Pc;
+  load.dP = P - P_prev;
+  load.sliding_limit = sliding_limit(k, load.effective);
+  return load;
+}
+
+// Stage A, Savkoor-Briggs peeling (§2.2): a contact still peeling (its flag set; adhesive
+// contacts start so) peels on this step while the discriminant 4PPc + 4Pc^2 - T^2 E*/(4G*) of
+// its force T is positive; where the discriminant is no longer positive, peeling is over.
+template <class V> struct Peeling {
+  Mask<V> peeled;     // this step is a peeling step
+  V discriminant;     // of the force before the step
+  V flag;             // the peeling flag after the step
+};
+
+template <bool Adhesive, class V>
+[[gnu::always_inline]] inline Peeling<V> peeling(const PairConstants& k, const NormalLoad<V>& load,
+                                                 V T2, V flag)
+{
+  const V zero = V(0.0);
+  Peeling<V> p;
+  p.discriminant = peeling_discriminant(k, load.P, load.Pc, T2);
+  const auto was_peeling = Adhesive ? flag != 0.0 : zero != zero;
+  p.peeled = was_peeling & (p.discriminant > 0.0);
+  p.flag = lane_select(was_peeling & !p.peeled, zero, flag);
+  return p;
+}
+
+// The tangential stiffness k_T = 8 G* a_T of the step (§2.2): a_T of the peeling contact,
+// 4E*a_T^3/(3R*) = P + 2Pc + sqrt(discriminant), or after peeling the Hertz radius of the
+// effective load (micro_slip_radius_cubed); without adhesion the contact radius a (§2.1)
+template <bool Adhesive, class V>
+[[gnu::always_inline]] inline V tangential_stiffness(const PairConstants& k, V R, V a,
+                                                     const NormalLoad<V>& load, const Peeling<V>& p)
+{
+  if (!Adhesive) return 8.0 * k.c.G_star * a;
+  const V peeling_cubed = hertz_radius_cubed(k, R, load.effective + std::sqrt(p.discriminant));
+  const V cubed = lane_select(p.peeled, peeling_cubed, micro_slip_radius_cubed(k, R, load.effective));
+  return 8.0 * k.c.G_star * simd_cbrt(cubed);
+}
+
+// The loading direction t of §2.3 step 3 for a contact that has none yet (not while peeling):
+// along T where there is a force, else along the increment; such a contact starts on the
+// loading branch. An inactive step (no direction, no force, no increment) changes nothing.
+template <class V> struct LoadingDirection {
+  V t[3];             // the unit loading direction (load_dir)
+  V mode;             // the branch the step starts on
+  Mask<V> fresh;      // t was chosen this step
+  Mask<V> active;
+};
+
+template <class V>
+[[gnu::always_inline]] inline LoadingDirection<V> loading_direction(const History<V>& old, V T2_old,
+                                                                    const V ds[3], Mask<V> peeled)
+{
+  LoadingDirection<V> d;
+  const auto needs_dir = dot3(old.load_dir, old.load_dir) == 0.0;
+  const V s2 = dot3(ds, ds);
+  const V inv_T = 1.0 / std::sqrt(T2_old), inv_s = 1.0 / std::sqrt(s2);
+  d.active = !needs_dir | (T2_old > 0.0) | (s2 > 0.0);
+  d.fresh = needs_dir & d.active & !peeled;
+  for (int i = 0; i < 3; ++i) {
+    const V along_T_or_ds = lane_select(T2_old > 0.0, old.T[i] * inv_T, ds[i] * inv_s);
+    d.t[i] = lane_select(d.fresh, along_T_or_ds, old.load_dir[i]);
+  }
+  d.mode = lane_select(d.fresh, V(double(LOADING)), old.mode);
+  return d;
+}
+
+// The branch rule of §2.3 step 3: with k s the elastic increment along t and mu dP the shift
+// of the slip thresholds by the normal load, slip forward where k s > mu dP, backward where
+// k s < -mu dP, elastic in between. Where both hold (dP < 0: the thresholds cross) the
+// increment counts as forward slip (masing_branch keeps the branch; a known deviation from
+// Mindlin & Deresiewicz, §2.3).
+template <class V> struct SlipDirection {
+  Mask<V> forward, backward;
+};
+
+template <class V>
+[[gnu::always_inline]] inline SlipDirection<V> slip_direction(V ks, V mu_dP)
+{
+  return SlipDirection<V>{ks > mu_dP, ks < -mu_dP};
+}
+
+// The Masing branch of the increment and its reversal points (§2.1): backward slip off the
+// loading or reloading branch starts unloading from T* = T, forward slip off the unloading
+// branch starts reloading from T** = T; both reversal points follow the normal load,
+// T* <- T* + mu dP, T** <- T** - mu dP.
+template <class V> struct MasingBranch {
+  V mode, T_star, T_star2;
+  Mask<V> slipping, unloading;
+};
+
+template <class V>
+[[gnu::always_inline]] inline MasingBranch<V> masing_branch(V mode_start, V T_along, V T_star,
+                                                            V T_star2, V mu_dP,
+                                                            const SlipDirection<V>& slip)
+{
+  MasingBranch<V> b;
+  const auto was_unloading = mode_start == double(UNLOADING);
+  const auto to_unloading = !was_unloading & !slip.forward & slip.backward;
+  const auto to_reloading = was_unloading & !slip.backward & slip.forward;
+  b.mode = lane_select(to_unloading, V(double(UNLOADING)),
+                       lane_select(to_reloading, V(double(RELOADING)), mode_start));
+  b.T_star = lane_select(to_unloading, T_along, T_star) + mu_dP;
+  b.T_star2 = lane_select(to_reloading, T_along, T_star2) - mu_dP;
+  b.slipping = slip.forward | slip.backward;
+  b.unloading = b.mode == double(UNLOADING);
+  return b;
+}
+
+// theta of Thornton & Randall (1988) with P -> P + 2Pc (§2.1, §2.2): theta^3 = loading
+// 1 - (T + mu dP)/L, unloading 1 - (T* - T + 2 mu dP)/2L, reloading 1 - (T - T** + 2 mu dP)/2L,
+// L = mu (P + 2Pc), clamped to [0, 1]; 1 without slip; 0 at the sliding limit (slid last step
+// on the loading branch)
+template <class V>
+[[gnu::always_inline]] inline V theta(const MasingBranch<V>& b, V T_along, V mu_dP, V limit,
+                                      Mask<V> at_limit)
+{
+  const V zero = V(0.0), one = V(1.0);
+  const V branch_term = lane_select(
+      b.unloading, b.T_star - T_along,
+      lane_select(b.mode == double(RELOADING), T_along - b.T_star2, 2.0 * T_along));
+  const V theta_cubed_formula = 1.0 - (branch_term + 2.0 * mu_dP) / (2.0 * limit);
+  const auto on_slip_branch = b.slipping & !((b.mode == double(LOADING)) & at_limit);
+  const V theta_cubed = lane_select(on_slip_branch, lane_clamp(theta_cubed_formula, zero, one), zero);
+  const V root = simd_cbrt(theta_cubed);
+  return lane_select(!b.slipping, one, lane_select(theta_cubed > 0.0, root, zero));
+}
+
+// T after the increment ds (§2.1, §2.3 step 4): along t, dT = theta k s + (-1)^k mu dP
+// (1 - theta) (k = 1 on the unloading branch); across t the no-slip k ds_perp (together k ds
+// at theta = 1); while peeling the elastic k ds (§2.2); unchanged in an inactive step. The
+// annulus dissipation of the micro-slip, mu (P + 2Pc) (1 - theta)^2 (1 + theta/2) |s| (§2.4),
+// goes to `lost`.
+template <class V>
+[[gnu::always_inline]] inline void tangential_increment(const V T_old[3], const V ds[3],
+                                                        const V t[3], V k_T, V s, V theta,
+                                                        V mu_dP, V limit, Mask<V> unloading,
+                                                        Mask<V> peeled, Mask<V> micro, V T[3],
+                                                        V& lost)
+{
+  const V ks = k_T * s;
+  const V sign = lane_select(unloading, V(-1.0), V(1.0));
+  const V dT_along = theta * ks + sign * mu_dP * (1.0 - theta);
+  lost = lane_select(micro, detail::annulus_dissipation_rate(limit, theta) * std::abs(s), V(0.0));
+  const V along = dT_along - ks;
+  for (int d = 0; d < 3; ++d) {
+    const V slipped = T_old[d] + (along * t[d] + k_T * ds[d]);
+    const V elastic = T_old[d] + k_T * ds[d];
+    T[d] = lane_select(peeled, elastic, lane_select(micro, slipped, T_old[d]));
+  }
+}
+
+// Back on the virgin loading curve (§2.1): unloading past -T* (the loading direction
+// reverses) or reloading past T*; the branch after the step
+template <class V>
+[[gnu::always_inline]] inline V rejoin_loading(const V T[3], V t[3], const MasingBranch<V>& b,
+                                               Mask<V> micro, V mode_start)
+{
+  const V T_along = dot3(T, t);
+  const auto reversed = micro & b.unloading & (T_along <= -b.T_star);
+  const auto rejoined = micro & (b.mode == double(RELOADING)) & (T_along >= b.T_star);
+  const V flip = lane_select(reversed, V(-1.0), V(1.0));
+  t[0] *= flip, t[1] *= flip, t[2] *= flip;
+  return lane_select(micro, lane_select(reversed | rejoined, V(double(LOADING)), b.mode), mode_start);
+}
+
+// Stage C, the Coulomb cap (§2.3 step 5): |T| <= mu (P + 2Pc); within a few ulps of the limit
+// T is kept as is (no work), beyond it T is scaled back onto the limit and the excess force
+// over k_T is slid, with the dissipation limit x slip added to `lost`. On the loading branch
+// and at the cap the loading direction becomes T/|T|. Returns where the contact is at the cap.
+template <class V>
+[[gnu::always_inline]] inline Mask<V> coulomb_cap(V T[3], V t[3], V limit, V k_T, Mask<V> peeled,
+                                                  V mode, V& lost)
+{
+  const V magnitude = std::sqrt(dot3(T, T));
+  const auto loading_dir = !peeled & (mode == double(LOADING)) & (magnitude > 0.0);
+  const auto capped = magnitude >= limit * (1.0 - detail::limit_tolerance);
+  const auto over = capped & (magnitude > limit * (1.0 + detail::limit_tolerance));
+  const V inv = 1.0 / magnitude, scale = limit / magnitude;
+  lost = lane_select(over, lost + limit * (magnitude - limit) / k_T, lost);
+  for (int d = 0; d < 3; ++d) {
+    t[d] = lane_select(loading_dir | capped, T[d] * inv, t[d]);
+    T[d] = lane_select(over, T[d] * scale, T[d]);
+  }
+  return capped;
+}
+
+// The energy balance of the step (§2.4): the work of the mean force over ds plus the stored
+// energy goes to dissipation (`lost`, held to [0, what is available]) and the new stored
+// energy (>= 0); returns the dissipation
+template <class V>
+[[gnu::always_inline]] inline V energy_balance(V stored_old, const V T_old[3], const V T[3],
+                                               const V ds[3], V lost, V& stored)
+{
+  const V zero = V(0.0);
+  const V available =
+      stored_old + 0.5 * ((T_old[0] + T[0]) * ds[0] + (T_old[1] + T[1]) * ds[1] +
+                          (T_old[2] + T[2]) * ds[2]);
+  const V dissipation = lane_clamp(lost, zero, lane_max(available, zero));
+  stored = lane_max(available - dissipation, zero);
+  return dissipation;
+}
+
+// Where the sliding limit is 0 (§2.3): no tangential force; T, its direction and memory are
+// cleared, the contact slides, and the stored tangential energy with the work of this step,
+// `released`, is dissipated (returned, >= 0). h keeps its normal part (radius, P_prev).
+template <class V>
+[[gnu::always_inline]] inline V release_tangential(History<V>& h, V released)
+{
+  const V zero = V(0.0);
+  for (int d = 0; d < 3; ++d) h.T[d] = h.load_dir[d] = zero;
+  h.T_star = h.T_star2 = h.peeling = h.stored_energy = zero;
+  h.mode = V(double(LOADING));
+  h.sliding = V(1.0);
+  return lane_max(released, zero);
+}
+
+// The tangential law of one step (§2.2, §2.3 steps 3-5, §2.4) from the history `old` (after
+// carry) for the increment ds: the new T, its direction and memory, the peeling and sliding
+// flags and the stored energy into h; the stiffness k_T and the dissipation into out.
+template <bool Adhesive, class V>
+[[gnu::always_inline]] inline void tangential_step(const PairConstants& k, V R, const V ds[3],
+                                                   const Carry<V>& w, const NormalLoad<V>& load,
+                                                   const History<V>& old, History<V>& h,
+                                                   Outputs<V>& out)
+{
+  const V T2_old = dot3(old.T, old.T);
+  const Peeling<V> peel = peeling<Adhesive>(k, load, T2_old, old.peeling);
+  const V k_T = tangential_stiffness<Adhesive>(k, R, out.a, load, peel);
+  LoadingDirection<V> dir = loading_direction(old, T2_old, ds, peel.peeled);
+  const auto at_limit = (old.sliding != 0.0) & (old.mode == double(LOADING)) & !dir.fresh;
+  // the Masing branch of the increment s along t
+  const V limit = k.c.mu * load.effective;
+  const V s = dot3(ds, dir.t);
+  const V mu_dP = k.c.mu * load.dP;
+  const V T_along = lane_select(w.T_magnitude >= 0.0, w.T_magnitude, dot3(old.T, dir.t));
+  const MasingBranch<V> branch =
+      masing_branch(dir.mode, T_along, old.T_star, old.T_star2, mu_dP, slip_direction(k_T * s, mu_dP));
+  const V th = theta(branch, T_along, mu_dP, limit, at_limit);
+  // the increment, the end of peeling, back on the loading curve
+  const auto micro = !peel.peeled & dir.active;
+  V T[3], lost;
+  tangential_increment(old.T, ds, dir.t, k_T, s, th, mu_dP, limit, branch.unloading, peel.peeled,
+                       micro, T, lost);
+  V peeling_flag = peel.flag;
+  if (Adhesive) {    // peeling ends where the discriminant vanishes
+    const auto peeling_ends = peel.peeled & (peeling_discriminant(k, load.P, load.Pc, dot3(T, T)) <= 0.0);
+    peeling_flag = lane_select(peeling_ends, V(0.0), peeling_flag);
+  }
+  const V mode = rejoin_loading(T, dir.t, branch, micro, dir.mode);
+  const auto capped = coulomb_cap(T, dir.t, load.sliding_limit, k_T, peel.peeled, mode, lost);
+  V stored;
+  out.dissipation = energy_balance(old.stored_energy, old.T, T, ds, lost, stored);
+  out.stiffness = lane_select(peel.peeled, V(-1.0), k_T);
+
+  // the new history; gross sliding clears the memory of the branches
+  const V zero = V(0.0);
+  for (int d = 0; d < 3; ++d) h.T[d] = T[d], h.load_dir[d] = dir.t[d];
+  h.T_star = lane_select(capped, zero, lane_select(micro, branch.T_star, old.T_star));
+  h.T_star2 = lane_select(capped, zero, lane_select(micro, branch.T_star2, old.T_star2));
+  h.mode = lane_select(capped, V(double(LOADING)), mode);
+  h.peeling = lane_select(capped, zero, peeling_flag);
+  h.sliding = lane_select(capped, V(1.0), zero);
+  h.stored_energy = stored;
+}
+
+// Stage 2, one step of the law: the normal force at the radius found (§1.1), then the
+// tangential law for the increment ds (tangential_step), or where the sliding limit is 0 its
+// outcome release_tangential; h becomes the new history. Frictionless: the material pair has
+// mu = 0, so the outcome is known without the tangential law (§2.3): the same values, bit for
+// bit, as the full law gives for mu = 0.
 template <bool Adhesive, bool Frictionless, class V>
 [[gnu::always_inline]] inline Outputs<V> step(const PairConstants& k, V R, V Rinv, V delta,
                                               const V ds[3], const Carry<V>& w, History<V>& h)
 {
-  const PairCoefficients& c = k.c;
-  const V zero = V(0.0), one = V(1.0);
-  const V T_old[3] = {h.T[0], h.T[1], h.T[2]};
-  const V dir_old[3] = {h.dir[0], h.dir[1], h.dir[2]};
-  const V mode_old = h.mode, peeling_old = h.peeling;
-  const V T_star_old = h.T_star, T_star2_old = h.T_star2, stored_old = h.stored_energy;
-  const V P_prev = h.P_prev;
-  const auto was_sliding = h.sliding != 0.0;
-
+  const History<V> old = h;
   Outputs<V> out;
-  V a;
-  const V P = normal_force<Adhesive>(k, R, Rinv, delta, w, a);
-  out.P = P;
-  out.a = a;
-  h.radius = a;
-  h.P_prev = P;
-  // frictionless, or a Hertz contact at zero load: T and its memory go, stored energy lost
-  const V released = stored_old + 0.5 * dot3(T_old, ds);
-
+  out.P = normal_force<Adhesive>(k, R, Rinv, delta, w, out.a);
+  h.radius = out.a;
+  h.P_prev = out.P;
+  // the stored tangential energy and this step's work, where there is no tangential force
+  const V released = old.stored_energy + 0.5 * dot3(old.T, ds);
+  History<V> released_h = h;
+  const V released_dissipation = release_tangential(released_h, released);
   if (Frictionless) {
-    for (int d = 0; d < 3; ++d) h.T[d] = h.dir[d] = zero;
-    h.T_star = h.T_star2 = h.peeling = h.stored_energy = zero;
-    h.mode = V(double(LOADING));
-    h.sliding = one;
-    out.dissipation = 0.0 + lane_max(released, zero);
+    h = released_h;
+    out.dissipation = released_dissipation;
     out.stiffness = V(-1.0);
     return out;
   }
-
-  const V Pc = Adhesive ? V(jkr::pull_off_force(c.Gamma, 1.0)) * R : zero;
-  const V effective_load = P + 2.0 * Pc;
-  const V dP = P - P_prev;
-  const V sliding_limit = c.mu * lane_max(effective_load, zero);
-  const auto frictionless = sliding_limit <= 0.0;
-  const V T2_old = dot3(T_old, T_old);
-  // stage A, Savkoor-Briggs peeling (§2.2): k_T = 8G* a_peel, elastic
-  const V before = peeling_discriminant(k, P, Pc, T2_old);
-  const auto tried_peeling = Adhesive ? peeling_old != 0.0 : zero != zero;
-  const auto peeled = tried_peeling & (before > 0.0);
-  V peeling = lane_select(tried_peeling & !peeled, zero, peeling_old);
-  V stiffness;
-  if (Adhesive) {    // k_T = 8G* a_T, a_T^3 peeled (4E*a^3/(3R*) = P + 2Pc + sqrt(disc)) or 3R*(P + 2Pc)/(4E*)
-    const V cubed = lane_select(peeled,
-                                k.cube_radius_per_load * R * (P + 2.0 * Pc + std::sqrt(before)),
-                                micro_slip_radius_cubed(k, R, effective_load));
-    stiffness = 8.0 * c.G_star * simd_cbrt(cubed);
-  } else {
-    stiffness = 8.0 * c.G_star * a;
-  }
-
-  // stage B, micro-slip (§2.1, §2.3): the loading direction where there is none yet
-  auto at_limit = was_sliding & (mode_old == double(LOADING));
-  const auto needs_dir = dot3(dir_old, dir_old) == 0.0;
-  const V s2 = dot3(ds, ds);
-  const V inv_T = 1.0 / std::sqrt(T2_old), inv_s = 1.0 / std::sqrt(s2);
-  const auto active = !needs_dir | (T2_old > 0.0) | (s2 > 0.0);
-  const auto new_dir = needs_dir & active & !peeled;
-  V dir[3];
-  for (int d = 0; d < 3; ++d) {
-    const V fresh = lane_select(T2_old > 0.0, T_old[d] * inv_T, ds[d] * inv_s);
-    dir[d] = lane_select(new_dir, fresh, dir_old[d]);
-  }
-  const V mode_start = lane_select(new_dir, V(double(LOADING)), mode_old);
-  at_limit = at_limit & !new_dir;
-  // the Masing branch of this increment: forward slip iff k s > mu dP, reverse iff k s < -mu dP,
-  // elastic otherwise; the reversal points follow the normal load
-  const V limit = c.mu * effective_load;
-  const V s = dot3(ds, dir);
-  const V ks = stiffness * s;
-  const V mu_dP = c.mu * dP;
-  const V T_along = lane_select(w.T_magnitude >= 0.0, w.T_magnitude, dot3(T_old, dir));
-  const auto was_unloading = mode_start == double(UNLOADING);
-  const auto forward = ks > mu_dP, backward = ks < -mu_dP;
-  const auto to_unloading = !was_unloading & !forward & backward;
-  const auto to_reloading = was_unloading & !backward & forward;
-  const V mode = lane_select(to_unloading, V(double(UNLOADING)),
-                             lane_select(to_reloading, V(double(RELOADING)), mode_start));
-  const V T_star = lane_select(to_unloading, T_along, T_star_old) + mu_dP;
-  const V T_star2 = lane_select(to_reloading, T_along, T_star2_old) - mu_dP;
-  const auto slipping = forward | backward;
-  const auto on_unloading = mode == double(UNLOADING);
-  // theta^3 of Thornton & Randall (1988), P -> P + 2Pc: loading 1 - (T + mu dP)/L, unloading
-  // 1 - (T* - T + 2 mu dP)/2L, reloading 1 - (T - T** + 2 mu dP)/2L
-  const V branch_term =
-      lane_select(on_unloading, T_star - T_along,
-                  lane_select(mode == double(RELOADING), T_along - T_star2, 2.0 * T_along));
-  const V t3 = 1.0 - (branch_term + 2.0 * mu_dP) / (2.0 * limit);
-  // at the sliding limit (slid last step, loading branch) theta = 0 exactly
-  const auto on_slip_branch = slipping & !((mode == double(LOADING)) & at_limit);
-  const V theta_cubed = lane_select(on_slip_branch, lane_clamp(t3, zero, one), zero);
-  const V root = simd_cbrt(theta_cubed);
-  const V theta = lane_select(!slipping, one, lane_select(theta_cubed > 0.0, root, zero));
-
-  // the micro-slip increment dT_par = theta k s + (-1)^k mu dP (1 - theta) along dir, k ds_perp
-  // across it (= k ds at theta = 1), or the peeled elastic one
-  const auto micro = (!peeled) & active;
-  const V sign = lane_select(on_unloading, V(-1.0), one);
-  const V dT_par = theta * ks + sign * mu_dP * (1.0 - theta);
-  const V annulus = 0.0 + detail::annulus_dissipation_rate(limit, theta) * std::abs(s);
-  V lost = lane_select(micro, annulus, zero);
-  const V along = dT_par - stiffness * s;
-  V T[3];
-  for (int d = 0; d < 3; ++d) {
-    const V slipped = T_old[d] + (along * dir[d] + stiffness * ds[d]);
-    const V elastic = T_old[d] + stiffness * ds[d];
-    T[d] = lane_select(peeled, elastic, lane_select(micro, slipped, T_old[d]));
-  }
-  if (Adhesive) {    // peeling ends where the discriminant vanishes
-    const auto peeling_ends = peeled & (peeling_discriminant(k, P, Pc, dot3(T, T)) <= 0.0);
-    peeling = lane_select(peeling_ends, zero, peeling);
-  }
-  // back on the virgin curve: unloading past -T* (direction reversed), reloading past T*
-  const V T_after = dot3(T, dir);
-  const auto reversed = micro & on_unloading & (T_after <= -T_star);
-  const auto rejoined = micro & (mode == double(RELOADING)) & (T_after >= T_star);
-  const V flip = lane_select(reversed, V(-1.0), one);
-  dir[0] *= flip, dir[1] *= flip, dir[2] *= flip;
-  const V mode_after = lane_select(micro, lane_select(reversed | rejoined, V(double(LOADING)), mode),
-                                   mode_start);
-
-  // stage C: one |T| for the loading direction and the Coulomb cap |T| <= mu (P + 2Pc); within
-  // a few ulps of the limit T is kept as is (no work)
-  const V magnitude = std::sqrt(dot3(T, T));
-  const auto loading_dir = !peeled & (mode_after == double(LOADING)) & (magnitude > 0.0);
-  const auto capped = magnitude >= sliding_limit * (1.0 - detail::limit_tolerance);
-  const auto over = capped & (magnitude > sliding_limit * (1.0 + detail::limit_tolerance));
-  const V inv = 1.0 / magnitude, scale = sliding_limit / magnitude;
-  const V slid = lost + sliding_limit * (magnitude - sliding_limit) / stiffness;
-  lost = lane_select(over, slid, lost);
-  for (int d = 0; d < 3; ++d) {
-    dir[d] = lane_select(loading_dir | capped, T[d] * inv, dir[d]);
-    T[d] = lane_select(over, T[d] * scale, T[d]);
-  }
-  // energy balance (§2.4): work = dissipation + change of stored energy, dissipation >= 0
-  const V available =
-      stored_old + 0.5 * ((T_old[0] + T[0]) * ds[0] + (T_old[1] + T[1]) * ds[1] +
-                          (T_old[2] + T[2]) * ds[2]);
-  const V kept_lost = lane_clamp(lost, zero, lane_max(available, zero));
-  const V stored = lane_max(available - kept_lost, zero);
-
-  // the new history: frictionless lanes lose T, memory and stored energy; sliding lanes memory
-  for (int d = 0; d < 3; ++d) {
-    h.T[d] = lane_select(frictionless, zero, T[d]);
-    h.dir[d] = lane_select(frictionless, zero, dir[d]);
-  }
-  const auto memory_cleared = frictionless | capped;
-  h.T_star = lane_select(memory_cleared, zero, lane_select(micro, T_star, T_star_old));
-  h.T_star2 = lane_select(memory_cleared, zero, lane_select(micro, T_star2, T_star2_old));
-  h.mode = lane_select(memory_cleared, V(double(LOADING)), mode_after);
-  h.peeling = lane_select(memory_cleared, zero, peeling);
-  h.sliding = lane_select(memory_cleared, one, zero);
-  h.stored_energy = lane_select(frictionless, zero, stored);
-  out.dissipation = lane_select(frictionless, 0.0 + lane_max(released, zero), 0.0 + kept_lost);
-  out.stiffness = lane_select(frictionless | peeled, V(-1.0), stiffness);
+  const NormalLoad<V> load = normal_load<Adhesive>(k, R, out.P, old.P_prev);
+  tangential_step<Adhesive>(k, R, ds, w, load, old, h, out);
+  const auto frictionless = load.sliding_limit <= 0.0;
+  h = select_history(frictionless, released_h, h);
+  out.dissipation = lane_select(frictionless, released_dissipation, out.dissipation);
+  out.stiffness = lane_select(frictionless, V(-1.0), out.stiffness);
   return out;
 }
 
 }    // namespace law
+
 
 }    // namespace tycore
 

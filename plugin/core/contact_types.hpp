@@ -3,7 +3,8 @@
 #ifndef TYCORE_CONTACT_TYPES_HPP
 #define TYCORE_CONTACT_TYPES_HPP
 
-#include <Eigen/Core>
+#include <cstddef>
+#include <type_traits>
 
 namespace tycore {
 
@@ -30,30 +31,114 @@ inline double effective_radius(double R1, double R2) { return R1 * R2 / (R1 + R2
 // Mindlin-Deresiewicz branch of the tangential law (docs/theory.md §2.1: k = 0, 1, 2)
 enum TangentialMode : int { LOADING = 0, UNLOADING = 1, RELOADING = 2 };
 
-// Per-contact memory, stored verbatim in LAMMPS' contact history (14 doubles).
-// Vectors are in the lab frame and belong to particle i of the pair (force on i).
-struct ContactHistory {
-  double T[3];          // tangential force on i
-  double load_dir[3];   // unit direction of the current MD loading (zero before any slip)
-  double T_star;        // T* : T along load_dir at the last loading->unloading reversal
-  double T_star2;       // T**: T along load_dir at the last unloading->reloading reversal
-  double P_prev;        // normal force of the previous step
-  double mode;          // TangentialMode
-  double peeling;       // 1 while Savkoor-Briggs peeling lasts (docs/theory.md §2.2)
-  double sliding;       // 1 if the contact is at the sliding limit this step
-  double stored_energy; // tangential elastic energy = tangential work - frictional dissipation
-                        // (a path quantity: the incremental law has no potential when P varies)
-  double radius;        // JKR contact radius of the last evaluated step: warm start of the
-                        // delta -> a inversion (law::halley_start); 0 = none yet
+// ---- the history of a contact: ONE table, every listing generated from it ----
+//
+// TYCORE_HISTORY_FIELDS(X) calls X(name, values, carried, from_j, meaning) for each field of a
+// contact's history (docs/theory.md §2.3), in storage order:
+//  * values: 3 for a vector (lab frame, in the tangent plane, belonging to particle i of the
+//    pair: the force on i), 1 for a scalar;
+//  * carried: what happens to it when the contact's tangent plane turns (law::carry,
+//    docs/theory.md §2.3 step 1): `force` (T itself: projected onto the new plane with its
+//    magnitude kept and twisted about the normal), `direction` (load_dir: the same, except on
+//    the loading branch, where it follows T), `tangent` (any other tangent vector: projected,
+//    magnitude kept, twisted), `kept` (a scalar, unchanged);
+//  * from_j: its sign when the pair is seen from particle j (LAMMPS's and LIGGGHTS's transfer
+//    of the history to the partner): vectors -1, scalars +1 (T* and T** are T along load_dir,
+//    both of which flip);
+//  * meaning: what it is.
+// Generated from it: ContactHistory (LAMMPS's history page and restart files verbatim: the
+// fields in this order, `values` doubles each), law::History (the law's lanes), the history
+// arrays of ContactBatch and their load/store, the slot of each field (slot_index),
+// history_size, history_transfer_sign, the LIGGGHTS history values' names and newton flags,
+// and the pair's and the LIGGGHTS model's sizes of the history store. Adding a field is one
+// row here (plus its physics in the law); its value starts at 0 in a new contact.
+#define TYCORE_HISTORY_FIELDS(X)                                                                 \
+  X(T, 3, force, -1, "tangential force on i (elastic: damping is not in the history)")           \
+  X(load_dir, 3, direction, -1,                                                                  \
+    "unit direction of the current Mindlin-Deresiewicz loading (zero before any)")               \
+  X(T_star, 1, kept, +1, "T*: T along load_dir at the last loading->unloading reversal")         \
+  X(T_star2, 1, kept, +1, "T**: T along load_dir at the last unloading->reloading reversal")     \
+  X(P_prev, 1, kept, +1, "normal force of the previous step")                                     \
+  X(mode, 1, kept, +1, "TangentialMode: loading, unloading or reloading branch (§2.1)")           \
+  X(peeling, 1, kept, +1, "1 while Savkoor-Briggs peeling lasts (§2.2)")                          \
+  X(sliding, 1, kept, +1, "1 if the contact is at the sliding limit this step")                   \
+  X(stored_energy, 1, kept, +1,                                                                  \
+    "tangential elastic energy = tangential work - frictional dissipation (a path quantity, "     \
+    "§2.4)")                                                                                     \
+  X(radius, 1, kept, +1,                                                                         \
+    "JKR contact radius of the last evaluated step: the warm start of the delta -> a "            \
+    "inversion (law::halley_start, §1.4); 0 = none yet")
+
+namespace history {
+
+// how a field is carried onto a turned tangent plane (the table's `carried` column)
+enum Carried { force, direction, tangent, kept };
+
+// the type of a field of `values` values of type V: V for a scalar, V[3] for a vector
+template <class V, int values> struct field_type {
+  using type = V[values];
+};
+template <class V> struct field_type<V, 1> {
+  using type = V;
+};
+template <class V, int values> using field = typename field_type<V, values>::type;
+
+// value k of a field, scalar (k = 0) or vector alike
+template <class X> [[gnu::always_inline]] constexpr auto& value(X& x, int k)
+{
+  if constexpr (std::is_array_v<X>) return x[k];
+  else return x;
+}
+
+}    // namespace history
+
+// The history of one contact with values of type V: ContactHistory (V = double) and the law's
+// lanes (law::History, contact_law.hpp). Vectors are in the lab frame and belong to particle i
+// of the pair (force on i).
+template <class V> struct HistoryOf {
+#define TYCORE_HISTORY_MEMBER(name, values, carried, from_j, meaning) \
+  history::field<V, values> name;
+  TYCORE_HISTORY_FIELDS(TYCORE_HISTORY_MEMBER)
+#undef TYCORE_HISTORY_MEMBER
 };
 
-constexpr int history_size = 14;
+// Per-contact memory, stored verbatim in LAMMPS's contact history (history_size doubles)
+using ContactHistory = HistoryOf<double>;
+
+#define TYCORE_HISTORY_COUNT(name, values, carried, from_j, meaning) +values
+constexpr int history_size = 0 TYCORE_HISTORY_FIELDS(TYCORE_HISTORY_COUNT);
+#undef TYCORE_HISTORY_COUNT
 static_assert(sizeof(ContactHistory) == history_size * sizeof(double),
               "ContactHistory must be a packed array of doubles");
 
-// the pair seen from j: vectors flip sign, scalars stay
-constexpr double history_transfer_sign[history_size] = {-1, -1, -1, -1, -1, -1,
-                                                        1,  1,  1,  1,  1,  1, 1, 1};
+// the slot of each field in the history (ContactHistory as history_size doubles)
+namespace slot_index {
+#define TYCORE_SLOT_INDEX(name, values, carried, from_j, meaning) \
+  constexpr int name = offsetof(ContactHistory, name) / sizeof(double);
+TYCORE_HISTORY_FIELDS(TYCORE_SLOT_INDEX)
+#undef TYCORE_SLOT_INDEX
+}    // namespace slot_index
+
+// the sign of each history value when the pair is seen from j
+#define TYCORE_TRANSFER_SIGN_1(from_j) from_j,
+#define TYCORE_TRANSFER_SIGN_3(from_j) from_j, from_j, from_j,
+#define TYCORE_TRANSFER_SIGN(name, values, carried, from_j, meaning) \
+  TYCORE_TRANSFER_SIGN_##values(from_j)
+constexpr double history_transfer_sign[history_size] = {
+    TYCORE_HISTORY_FIELDS(TYCORE_TRANSFER_SIGN)};
+#undef TYCORE_TRANSFER_SIGN
+#undef TYCORE_TRANSFER_SIGN_1
+#undef TYCORE_TRANSFER_SIGN_3
+
+// checks of the table: a vector lies in the tangent plane and flips seen from j, a scalar is
+// kept and does not
+#define TYCORE_HISTORY_CHECK(name, values, carried, from_j, meaning)                              \
+  static_assert((values == 3 && history::carried != history::kept && from_j == -1) ||           \
+                    (values == 1 && history::carried == history::kept && from_j == +1),        \
+                "history field " #name ": a vector is carried in the tangent plane and flips " \
+                "sign seen from j, a scalar is kept and does not");
+TYCORE_HISTORY_FIELDS(TYCORE_HISTORY_CHECK)
+#undef TYCORE_HISTORY_CHECK
 
 }    // namespace tycore
 

@@ -138,11 +138,12 @@ inline double contact_radius_newton(double delta, double R, double E, double Gam
 }
 
 // k_N = dP/d(delta) = 2E*a * 3(2 - s)/(6 - s), s = (a0/a)^(3/2)      (docs/theory.md §1.5)
-inline double normal_stiffness(double a, double R, double E, double Gamma)
+// (branch-free: the batch's lane loops inline it)
+[[gnu::always_inline]] inline double normal_stiffness(double a, double R, double E, double Gamma)
 {
-  if (Gamma == 0.0) return 2.0 * E * a;
   const double s = std::sqrt(9.0 * pi * Gamma * R * R / (E * a * a * a));
-  return 2.0 * E * a * 3.0 * (2.0 - s) / (6.0 - s);
+  const double adhesive = 2.0 * E * a * 3.0 * (2.0 - s) / (6.0 - s);
+  return Gamma == 0.0 ? 2.0 * E * a : adhesive;
 }
 
 // U(a) = integral of P d(delta) from first touch (a_touch = (4/9)^(1/3) a0, delta = 0):

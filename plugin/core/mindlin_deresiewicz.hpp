@@ -28,14 +28,22 @@ inline void begin_contact(ContactHistory& h, double P_now, bool adhesive)
 
 namespace detail {
 
-// cos and sin of a per-step twist: below 1e-3 rad the Taylor polynomials, whose remainders
-// t^6/720 and t^7/5040 are < 1.5e-21, replace the libm calls exactly to round-off
+// cos and sin of a per-step twist t: below 1e-3 rad (twist_series_exact) the Taylor
+// polynomials, whose remainders t^6/720 and t^7/5040 are < 1.5e-21, replace the libm calls
+// exactly to round-off; the series alone is branch-free, for the lane loops
+[[gnu::always_inline]] inline bool twist_series_exact(double twist) { return std::abs(twist) < 1e-3; }
+
+[[gnu::always_inline]] inline void twist_cos_sin_series(double twist, double& c, double& s)
+{
+  const double t2 = twist * twist;
+  c = 1.0 - t2 * (0.5 - t2 * (1.0 / 24.0));
+  s = twist * (1.0 - t2 * (1.0 / 6.0 - t2 * (1.0 / 120.0)));
+}
+
 inline void twist_cos_sin(double twist, double& c, double& s)
 {
-  if (std::abs(twist) < 1e-3) {
-    const double t2 = twist * twist;
-    c = 1.0 - t2 * (0.5 - t2 * (1.0 / 24.0));
-    s = twist * (1.0 - t2 * (1.0 / 6.0 - t2 * (1.0 / 120.0)));
+  if (twist_series_exact(twist)) {
+    twist_cos_sin_series(twist, c, s);
   } else {
     c = std::cos(twist);
     s = std::sin(twist);

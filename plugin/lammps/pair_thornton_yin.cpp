@@ -1190,10 +1190,14 @@ double PairThorntonYin::single(int i, int j, int itype, int jtype, double rsq,
 
   const double r = std::sqrt(rsq);
   const double delta = radsum - r;
-  if (delta < svector[S_BREAK_OVERLAP]) return 0.0;
-  const double a = (c.Gamma > 0.0) ? tycore::jkr::contact_radius(delta, R, c.E_star, c.Gamma)
-                                   : std::sqrt(R * MAX(delta, 0.0));
-  const double P = tycore::jkr::normal_force(a, R, c.E_star, c.Gamma);
+  if (tycore::law::separates(c, R, delta, c.Gamma > 0.0)) return 0.0;
+  // the law's normal contact, as the last force evaluation computed it (the same Adhesive
+  // instantiation, the iteration warm-started from the radius it kept)
+  const tycore::PairConstants &k = pair_constants[itype * (atom->ntypes + 1) + jtype];
+  const tycore::KernelResult normal =
+      adhesive ? tycore::normal_contact<true>(k, R, delta, h.radius)
+               : tycore::normal_contact<false>(k, R, delta, h.radius);
+  const double a = normal.contact_radius, P = normal.P;
   fforce = P / r;
   svector[S_NORMAL_FORCE] = P;
   svector[S_TANGENTIAL_FORCE] = std::sqrt(h.T[0] * h.T[0] + h.T[1] * h.T[1] + h.T[2] * h.T[2]);

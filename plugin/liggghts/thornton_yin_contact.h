@@ -20,12 +20,19 @@
 
 namespace tyliggghts {
 
-// ---- history layout: tycore::ContactHistory, in LIGGGHTS's named per-contact values ----
+// ---- history layout: tycore::ContactHistory, in LIGGGHTS's named per-contact values: one
+// per value of TYCORE_HISTORY_FIELDS, "ty_<field>" for a scalar and "ty_<field>_x" .. "_z"
+// for a vector ----
 constexpr int history_size = tycore::history_size;
+#define TYLIGGGHTS_HISTORY_NAMES_1(name) "ty_" #name,
+#define TYLIGGGHTS_HISTORY_NAMES_3(name) "ty_" #name "_x", "ty_" #name "_y", "ty_" #name "_z",
+#define TYLIGGGHTS_HISTORY_NAMES(name, values, carried, from_j, meaning) \
+  TYLIGGGHTS_HISTORY_NAMES_##values(name)
 constexpr const char* history_names[history_size] = {
-    "ty_T_x",      "ty_T_y",      "ty_T_z",   "ty_load_dir_x", "ty_load_dir_y",
-    "ty_load_dir_z", "ty_T_star", "ty_T_star2", "ty_P_prev",   "ty_mode",
-    "ty_peeling",  "ty_sliding",  "ty_stored_energy", "ty_radius"};
+    TYCORE_HISTORY_FIELDS(TYLIGGGHTS_HISTORY_NAMES)};
+#undef TYLIGGGHTS_HISTORY_NAMES
+#undef TYLIGGGHTS_HISTORY_NAMES_1
+#undef TYLIGGGHTS_HISTORY_NAMES_3
 // LIGGGHTS's newtonflag of value k: "1" if it changes sign seen from the other sphere
 inline const char* history_newton_flag(int k)
 {

@@ -70,11 +70,9 @@ template <bool Adhesive> struct Contact {
   Result step(double delta, const Vector3d& ds, const Vector3d& n = Vector3d(0, 0, 1),
               double twist = 0.0)
   {
-    tycore::law::History<double> lanes = tycore::law::lanes_of(h);
     const double nv[3] = {n.x(), n.y(), n.z()}, dsv[3] = {ds.x(), ds.y(), ds.z()};
     const tycore::law::Outputs<double> out =
-        tycore::law::scalar_step<Adhesive>(k, R, 1.0 / R, delta, nv, twist, dsv, lanes);
-    h = tycore::law::history_of(lanes);
+        tycore::law::scalar_step<Adhesive>(k, R, 1.0 / R, delta, nv, twist, dsv, h);
     Result r;
     r.P = out.P;
     r.contact_radius = out.a;
