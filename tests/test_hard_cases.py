@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from cellspec import read_csv, restart_deck
-from lmprun import LOAD_TYLMP, read_table, run_deck, run_ok
+from lmprun import LOAD_TYLMP, read_table, run_deck, run_ok, two_spheres_box
 from test_cell_servo import specimen  # noqa: F401  (session fixture: the dense specimen)
 from test_pair_impacts import impact_deck
 
@@ -27,6 +27,31 @@ def test_fast_impact_with_a_large_overlap_stops_with_a_clear_error(tmp_path):
     rc, out = run_deck(deck, tmp_path)
     assert rc != 0
     assert "exceeds the radius of the smaller sphere" in out and "reduce the timestep" in out
+
+
+@pytest.mark.parametrize("overlap_over_small, stops", [(0.9, False), (2.0, True), (2.9, True)])
+def test_overlap_beyond_the_smaller_of_unlike_radii_stops(tmp_path, overlap_over_small, stops):
+    """Radii 0.1 and 0.3 mm: an overlap between the smaller and the larger radius is out of the
+    law's domain (docs/pair_thornton_yin.md: the overlap may not exceed the smaller radius) and
+    stops the run with the error naming the smaller radius; one just below the smaller radius
+    runs. A check against the larger radius would let 2 and 2.9 r_small pass."""
+    r_small, r_large = 1e-4, 3e-4
+    x2 = r_small + r_large - overlap_over_small * r_small
+    deck = two_spheres_box(x2, 2 * r_small, RHO, types=2, second=(2 * r_large, RHO)) + f"""\
+{LOAD_TYLMP}
+pair_style thornton/yin
+pair_coeff * * {E} {NU} 0.3 0.0
+neighbor 1e-6 bin
+timestep {0.2 * rayleigh_time(r_small)!r}
+fix nve all nve/sphere
+run 0
+"""
+    rc, out = run_deck(deck, tmp_path)
+    if stops:
+        assert rc != 0
+        assert "exceeds the radius of the smaller sphere 0.0001" in out, out[-2000:]
+    else:
+        assert rc == 0 and "ERROR" not in out, out[-2000:]
 
 
 @pytest.mark.parametrize("speed", [1.0, 30.0])

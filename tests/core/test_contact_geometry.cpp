@@ -15,6 +15,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -227,6 +228,48 @@ TEST(ContactGeometry, OverlapCheckNamesLanesInUseOnly)
       EXPECT_TRUE((tycore::batch_geometry<false, false>(b, n, g, isa))) << scale << " " << shift;
     }
   }
+}
+
+// The bound is the SMALLER radius (contact_geometry.hpp, overlap_valid): with unlike radii
+// r_small = 0.1 mm and r_large = 0.3 mm, an overlap between the two (0.15, 0.2, 0.29 mm) is out
+// of the law's domain, whichever sphere of the pair is the small one, in every build; overlaps
+// just below r_small (and the small ones of a packing) are in it. A check against the larger
+// radius, or the sum, would pass the overlaps between the radii.
+TEST(ContactGeometry, OverlapBetweenTheSmallerAndTheLargerRadiusIsRejected)
+{
+  constexpr double r_small = 0.1e-3, r_large = 0.3e-3;
+  const Eigen::Vector3d n = Eigen::Vector3d(1.0, 2.0, -2.0) / 3.0;
+  const auto pair_with_overlap = [&](double overlap, bool i_is_small) {
+    Contact c;
+    c.i.r = i_is_small ? r_small : r_large;
+    c.j.r = i_is_small ? r_large : r_small;
+    c.j.x = Eigen::Vector3d(0.2e-3, -0.1e-3, 0.3e-3);
+    c.i.x = c.j.x + (c.i.r + c.j.r - overlap) * n;
+    for (Sphere* s : {&c.i, &c.j}) {
+      s->v = s->w = Eigen::Vector3d::Zero();
+      s->m = 2650.0 * 4.0 / 3.0 * M_PI * std::pow(s->r, 3);
+    }
+    return c;
+  };
+  const tycore::AffineGradient g{};
+  for (const bool i_is_small : {true, false})
+    for (const auto& [overlap, valid] :
+         {std::pair{1e-6, true}, {0.99 * r_small, true}, {1.5 * r_small, false},
+          {2.0 * r_small, false}, {0.97 * r_large, false}}) {
+      SCOPED_TRACE(std::to_string(overlap) + (i_is_small ? " i small" : " j small"));
+      ASSERT_GT(overlap, 0.0);
+      ASSERT_EQ(valid, overlap < r_small);    // the cases: below r_small, or between the radii
+      ASSERT_LT(overlap, r_large);
+      for (Isa isa : supported_isas()) {
+        SCOPED_TRACE(tycore::isa_name(isa));
+        ContactBatch b{};
+        for (int l = 0; l < batch_lanes; ++l) gather(b, l, pair_with_overlap(1e-6, true));
+        gather(b, 1, pair_with_overlap(overlap, i_is_small));
+        EXPECT_EQ((tycore::batch_geometry<false, false>(b, 3, g, isa)), valid);
+        EXPECT_NEAR(b.delta[1], overlap, 1e-12 * r_large);
+        EXPECT_EQ(tycore::overlap_valid(b, 1), valid);
+      }
+    }
 }
 
 }    // namespace
