@@ -72,6 +72,7 @@
 // The warm-Newton iteration mean counts the calls that converged (fallbacks are counted apart).
 
 #include "jkr.hpp"
+#include "jkr_extra.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -374,10 +374,6 @@ template <bool Adhesive, bool Damped>
 __attribute__((target(TYCORE_AVX512))) void advance_batch_avx512(ContactBatch&, int,
                                                                  const PairConstants&,
                                                                  const BatchParameters&);
-void cube_roots_sse2(const double*, double*, int);
-__attribute__((target("avx2"))) void cube_roots_avx2(const double*, double*, int);
-__attribute__((target(TYCORE_AVX512))) void cube_roots_avx512(const double*, double*, int);
-
 #endif
 
 }    // namespace detail
@@ -453,10 +449,6 @@ inline void force_parts(const ContactBatch& b, int lane, const PairCoefficients&
 {
   detail::damped_force<Damped>(b, lane, c, p, Fn, fs);
 }
-
-// Cube roots y_i = cbrt(x_i), i < n, lane-wide in the build `isa` (simd_cbrt). For tests and
-// benchmarks of the vector cube root; the batch entry inlines it.
-void cube_roots(const double* x, double* y, int n, Isa isa = best_isa());
 
 }    // namespace tycore
 

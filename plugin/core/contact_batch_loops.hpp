@@ -164,17 +164,12 @@ template <bool Affine, bool Damped>
   return invalid == 0u;
 }
 
-[[gnu::always_inline]] inline void vector_cube_roots(const double* x, double* y, int n)
-{
-  for (int i = 0; i < n; ++i) y[i] = simd_cbrt(x[i]);
-}
-
 }    // namespace tycore::batch_loops
 
 #ifdef TYCORE_VECTOR_BUILDS
 // The builds of one batch entry Law<Adhesive, Damped>(b, n, k, p) for every instruction set
-// of Isa (tycore::detail::advance_batch_*, declared in contact_batch.hpp) and of the lane-wide
-// cube root, and tycore::cube_roots. Once per program, at namespace scope.
+// of Isa (tycore::detail::advance_batch_*, declared in contact_batch.hpp) and of the contact
+// geometry (batch_geometry_*). Once per program, at namespace scope.
 #define TYCORE_BATCH_BUILD(Law, suffix, target_attribute)                                         \
   namespace tycore::detail {                                                                   \
   template <bool Adhesive, bool Damped>                                                        \
@@ -201,33 +196,13 @@ template <bool Affine, bool Damped>
   template bool batch_geometry_##suffix<false, true>(ContactBatch&, int, const AffineGradient&); \
   template bool batch_geometry_##suffix<true, false>(ContactBatch&, int, const AffineGradient&); \
   template bool batch_geometry_##suffix<true, true>(ContactBatch&, int, const AffineGradient&);  \
-  target_attribute void cube_roots_##suffix(const double* x, double* y, int n)                \
-  {                                                                                            \
-    tycore::batch_loops::vector_cube_roots(x, y, n);                                           \
-  }                                                                                            \
   }
 #define TYCORE_DEFINE_BATCH_BUILDS(Law)                                                         \
   TYCORE_BATCH_BUILD(Law, sse2, )                                                              \
   TYCORE_BATCH_BUILD(Law, avx2, __attribute__((target("avx2"))))                               \
-  TYCORE_BATCH_BUILD(Law, avx512, __attribute__((target(TYCORE_AVX512))))                      \
-  TYCORE_CUBE_ROOTS_ENTRY
-#define TYCORE_CUBE_ROOTS_ENTRY                                                                 \
-  void tycore::cube_roots(const double* x, double* y, int n, Isa isa)                          \
-  {                                                                                            \
-    switch (isa) {                                                                             \
-      case Isa::avx512: detail::cube_roots_avx512(x, y, n); return;                            \
-      case Isa::avx2: detail::cube_roots_avx2(x, y, n); return;                                \
-      case Isa::sse2: detail::cube_roots_sse2(x, y, n); return;                                \
-      case Isa::scalar: break;                                                                 \
-    }                                                                                          \
-    for (int i = 0; i < n; ++i) y[i] = jkr::fast_cbrt(x[i]);                                   \
-  }
+  TYCORE_BATCH_BUILD(Law, avx512, __attribute__((target(TYCORE_AVX512))))
 #else
-#define TYCORE_DEFINE_BATCH_BUILDS(Law)                                                         \
-  void tycore::cube_roots(const double* x, double* y, int n, Isa)                              \
-  {                                                                                            \
-    for (int i = 0; i < n; ++i) y[i] = jkr::fast_cbrt(x[i]);                                   \
-  }
+#define TYCORE_DEFINE_BATCH_BUILDS(Law)
 #endif
 
 #endif

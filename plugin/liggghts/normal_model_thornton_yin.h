@@ -36,6 +36,7 @@ TANGENTIAL_MODEL(TANGENTIAL_THORNTON_YIN, thornton_yin, 31)
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -151,7 +152,8 @@ class NormalModel<THORNTON_YIN> : public NormalModelBase {
 
   void fail(const std::string &what)
   {
-    error->all(FLERR, ("pair gran model thornton_yin: " + what).c_str());
+    const std::string message = "pair gran model thornton_yin: " + what;    // alive in the call
+    error->all(FLERR, message.c_str());
   }
 
   void check(double value, const char *name, int i, int j, bool in_range, const char *range)
@@ -273,7 +275,7 @@ class NormalModel<THORNTON_YIN> : public NormalModelBase {
     *d.contact_flags |= CONTACT_NORMAL_MODEL;
     tycore::store_history(b, 0, history);
     const double f[3] = {b.force[0][0], b.force[1][0], b.force[2][0]};
-    if (!(std::fabs(f[0] + f[1] + f[2]) <= 1.7976931348623157e308))
+    if (!(std::fabs(f[0] + f[1] + f[2]) <= std::numeric_limits<double>::max()))
       fail("atoms " + std::to_string(atom->tag[i]) + " " + std::to_string(atom->tag[j]) +
            ": the contact force is not finite (a velocity, spin or history value is not)");
     // the tangential force acts at the contact point: levers r - delta/2

@@ -10,6 +10,7 @@
 #include "contact_law.hpp"
 #include "contact_types.hpp"
 #include "jkr.hpp"
+#include "jkr_extra.hpp"
 #include "mindlin_deresiewicz.hpp"
 
 #include "glass_pair.hpp"

@@ -4,6 +4,7 @@
 // never taken from a run of the code under test.
 #include "contact_types.hpp"
 #include "jkr.hpp"
+#include "jkr_extra.hpp"
 
 #include <gtest/gtest.h>
 
