@@ -62,16 +62,9 @@ COLUMNS = "id x y z vx vy vz fx fy fz tqx tqy tqz"
 SNAPSHOT = f"write_dump all custom final.dump {COLUMNS} modify sort id format float %.17g\n"
 
 
-def lammps_deck(data, steps, gamma=0.6, newton="on", extra="", fix="", end=SNAPSHOT):
-    """A LAMMPS deck of one run: `steps` steps, then `end` (the snapshot)."""
-    return f"""{LOADER}units si
-atom_style sphere
-atom_modify map array
-boundary p p p
-newton {newton}
-comm_modify vel yes
-read_data {data}
-{extra}pair_style thornton/yin
+def lammps_run(gamma, steps, fix="", end=SNAPSHOT):
+    """The pair, the neighbour settings, the integrator, `fix`, `steps` steps and `end`."""
+    return f"""pair_style thornton/yin
 pair_coeff * * 70e9 0.3 0.3 {gamma}
 neighbor 1.35e-5 bin
 neigh_modify every 1 delay 0 check yes
@@ -82,21 +75,24 @@ run {steps}
 {end}"""
 
 
+def lammps_deck(data, steps, gamma=0.6, newton="on", extra="", fix="", end=SNAPSHOT):
+    """A LAMMPS deck of one run: `steps` steps, then `end` (the snapshot)."""
+    return f"""{LOADER}units si
+atom_style sphere
+atom_modify map array
+boundary p p p
+newton {newton}
+comm_modify vel yes
+read_data {data}
+{extra}""" + lammps_run(gamma, steps, fix, end)
+
+
 def restart_decks(data, steps, gamma=0.6):
     """The run as two halves: the first writes a restart, the second reads it."""
     half = steps // 2
     first = lammps_deck(data, half, gamma, end="write_restart half.restart\n")
-    second = f"""{LOADER}read_restart half.restart
-comm_modify vel yes
-pair_style thornton/yin
-pair_coeff * * 70e9 0.3 0.3 {gamma}
-neighbor 1.35e-5 bin
-neigh_modify every 1 delay 0 check yes
-timestep 0.0144
-fix integrate all nve/sphere
-thermo {steps - half}
-run {steps - half}
-{SNAPSHOT}"""
+    second = f"{LOADER}read_restart half.restart\ncomm_modify vel yes\n" + lammps_run(
+        gamma, steps - half)
     return [first, second]
 
 
