@@ -300,7 +300,9 @@ template <bool Adhesive, bool Damped, bool Tally>
   b.moment[2][i] = gone ? 0.0 : nx * fs2 - ny * fs1;
   if (Tally) {
     // k_N = dP/d(delta) (jkr::normal_stiffness, docs/theory.md §1.5); k_T = 8 G* a_T(P + 2Pc),
-    // a_T the Hertz radius itself without adhesion (as the law)
+    // a_T the Hertz radius itself without adhesion (as the law). a_T^3 here is
+    // law::micro_slip_radius_cubed, 3R*(P + 2Pc)/(4E*), with its operations in another order:
+    // in the law's order the servo's stiffness, and so its trajectories, move by round-off
     const double rsq = b.rsq[i];
     const double k_N = jkr::normal_stiffness(a, R, c.E_star, c.Gamma);
     const double Pc = jkr::pull_off_force(c.Gamma, R);
