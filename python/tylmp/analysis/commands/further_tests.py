@@ -118,7 +118,7 @@ def cmd_rotation(a):
 
 
 def register(sub):
-    """cyclic, shear, cyclic-shear, pq, undrained, rotation"""
+    """Adds the subcommands cyclic, shear, cyclic-shear, pq, undrained and rotation."""
     files_command(sub, "cyclic", cmd_cyclic, "cyclic axisymmetric test: q and εv against ε1 − ε3")
     files_command(sub, "shear", cmd_shear, "simple shear: τ/σn and εv against γ (drained), or τ/σn "
                   "against γ, the stress path σn–τ and r_u against γ (constant volume)")

@@ -233,7 +233,7 @@ def cmd_compare(a):
 
 
 def register(sub):
-    """axisym, friction, radial, pi-plane, prestrain, table, compare"""
+    """Adds the subcommands axisym, friction, radial, pi-plane, prestrain, table and compare."""
     files_command(sub, "axisym", cmd_axisym, "Figs 1-2: deviator stress, void ratio and volumetric strain vs ε1 − ε3")
     p = files_command(sub, "friction", cmd_friction, "Fig. 3: sinφ_max and sinφ_cv against μ")
     p.add_argument("--mu", type=float, nargs="+", help="μ of each file (default: from names like mu0.3)")

@@ -115,7 +115,7 @@ def _finite(obj):
 
 
 def register(sub):
-    """coordination, summary, micromechanics, liggghts-record, two-spheres"""
+    """Adds the subcommands coordination, summary, micromechanics, liggghts-record, two-spheres."""
     p = sub.add_parser("coordination", help="Z = 2C/N and Zm = (2C - N1)/(N - N0 - N1) of LAMMPS data files")
     p.add_argument("files", nargs="+", help="data files with 'Atoms # sphere' rows, orthogonal periodic "
                    "box; or fix cell/servo CSV records (N0, N1 recovered from the last row's Z and Zm)")
