@@ -64,7 +64,7 @@ void run_scene(const Scene& scene)
     for (int d = 0; d < 3; ++d) n[3 * i + d] = nn[d], ds[3 * i + d] = s[d];
     twist[i] = 1e-5 * g(rng);
     const double a = jkr::contact_radius(delta[i], kR, c.E_star, c.Gamma);
-    begin_contact(start[i], jkr::normal_force(a, kR, c.E_star, c.Gamma), scene.peeling);
+    begin_contact(start[i], scene.peeling);
     start[i].radius = a;
     double lost = 0.0;
     for (int step = 0; step < 50; ++step)

@@ -3,10 +3,10 @@ against Mindlin & Deresiewicz (1953): while dT/dP = (4G*/E*) ds/d(delta) stays b
 point of the contact slips, so the contact follows T = (4G*/E*) (ds/d(delta)) P exactly (both
 T = 8G* int a ds and P = 2E* int a d(delta) grow with the same a), and it would return along
 the same line when both loads fall; above mu it slides from the start at T = mu P
-(docs/theory.md §2.1-§2.3). The normal load varies throughout, so this checks Thornton's
-increment under varying P against theory rather than against another copy of the law. The
-return along the line is a known deviation of the law's branch rule (docs/theory.md §2.3),
-kept here as a strict xfail that will fail once the rule is changed."""
+(docs/theory.md §2.1-§2.3). The normal load varies throughout, so this checks the law under
+varying P against theory rather than against another copy of the law, in LAMMPS; the return
+along the line is what the memory of slip bands (§2.3) gets right where a memory of reversal
+points shifted by mu dP does not (tests/test_tangential_oracle.py has the general paths)."""
 import pytest
 
 from lmprun import LOAD_TYLMP, reduce_local, run_ok, two_spheres_box
@@ -56,11 +56,6 @@ def test_oblique_loading_below_mu_follows_the_no_slip_line(tmp_path, k):
     assert T / P == pytest.approx(ratio, rel=2e-3)
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "known deviation (docs/theory.md §2.3): for a proportional decrease of both loads the "
-    "branch rule of step 3 takes 8G*a s > mu dP (both negative) as forward slip, so T falls "
-    "below the no-slip line T = cP of Mindlin & Deresiewicz; Thornton's own choice of the "
-    "branch by the sign of s would keep it elastic"))
 @pytest.mark.parametrize("k", [0.2, 0.35])
 def test_oblique_unloading_below_mu_returns_along_the_no_slip_line(tmp_path, k):
     ratio = RATIO * k

@@ -43,15 +43,14 @@ constexpr int L = batch_lanes;
 // twist's cos and sin
 struct CarryLanes {
   alignas(64) double tw_c[L], tw_s[L];
-  alignas(64) double T_magnitude[L], u[L], f1[L], f2[L], step[L], a[L], pending[L];
+  alignas(64) double u[L], f1[L], f2[L], step[L], a[L], pending[L];
 
   [[gnu::always_inline]] law::Carry<double> lane(int i) const
   {
-    return law::Carry<double>{T_magnitude[i], u[i], f1[i], f2[i], step[i], a[i], pending[i]};
+    return law::Carry<double>{u[i], f1[i], f2[i], step[i], a[i], pending[i]};
   }
   [[gnu::always_inline]] void store(int i, const law::Carry<double>& w, bool adhesive)
   {
-    T_magnitude[i] = w.T_magnitude;
     if (!adhesive) return;
     u[i] = w.u, f1[i] = w.f1, f2[i] = w.f2, step[i] = w.step, a[i] = w.a, pending[i] = w.pending;
   }

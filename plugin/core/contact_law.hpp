@@ -44,6 +44,7 @@
 #include "jkr.hpp"
 #include "mindlin_deresiewicz.hpp"
 #include "simd_math.hpp"
+#include "slip_bands.hpp"
 
 #include <cmath>
 #include <utility>
@@ -57,6 +58,7 @@ struct PairConstants {
   double adhesive_force;    // 4 sqrt(pi Gamma E*): P = 4E*a^3/(3R*) - adhesive_force a^(3/2)  (§1.1)
   double peel_shear;        // E*/(4 G*): coefficient of T^2 in the Savkoor-Briggs discriminant (§2.2)
   double cube_radius_per_load;    // 3/(4E*): a^3 = 3R*P/(4E*) for a Hertz load P     (§2.2)
+  double slip_slope;        // kappa = mu E*/(4 G*): the memory's local Coulomb limit |u| <= kappa w (§2.3)
 };
 
 inline PairConstants pair_constants(const PairCoefficients& c)
@@ -67,6 +69,7 @@ inline PairConstants pair_constants(const PairCoefficients& c)
   k.adhesive_force = 4.0 * std::sqrt(jkr::pi * c.Gamma * c.E_star);
   k.peel_shear = savkoor_briggs_shear_factor * c.E_star / c.G_star;
   k.cube_radius_per_load = 3.0 / (4.0 * c.E_star);
+  k.slip_slope = c.mu * c.E_star / (4.0 * c.G_star);
   return k;
 }
 
@@ -100,10 +103,10 @@ template <class V, class M>
   return h;
 }
 
-// What the carry stage hands to the law stage: |T| where the rotation gave it (else -1) and the
-// state of the JKR Halley iteration (a < 0: no radius yet; pending 1: it goes on)
+// What the carry stage hands to the law stage: the state of the JKR Halley iteration (a < 0: no
+// radius yet; pending 1: it goes on)
 template <class V> struct Carry {
-  V T_magnitude, u, f1, f2, step, a, pending;
+  V u, f1, f2, step, a, pending;
 };
 
 // What the law stage gives besides the new history
@@ -198,41 +201,16 @@ template <class V>
   w.pending = lane_select(stepped & slope_next, V(1.0), zero);
 }
 
-// Stage 1 (docs/theory.md §2.3 step 1): the history's tangent vectors onto the tangent plane of
-// n (magnitude kept), twisted about n by the angle whose cosine and sine are (c, s) where
-// `twisted` (on the loading branch load_dir = T/|T| is projected once and T follows it; any
-// other tangent vector of the history, TYCORE_HISTORY_FIELDS, on its own), and with adhesion
-// the JKR radius from the previous one (halley_start).
+// Stage 1 (docs/theory.md §2.3 step 1): the history's tangent vectors (T, the memory's axis
+// load_dir, and any other of TYCORE_HISTORY_FIELDS) each onto the tangent plane of n with its
+// magnitude kept, twisted about n by the angle whose cosine and sine are (c, s) where
+// `twisted`; with adhesion the JKR radius from the previous one (halley_start).
 template <bool Adhesive, class V, class M>
 [[gnu::always_inline]] inline void carry(const PairConstants& k, const V n[3], V c, V s,
                                          M twisted, V Rinv, V delta, History<V>& h, Carry<V>& w)
 {
-  V T[3] = {h.T[0], h.T[1], h.T[2]};
-  V dir[3] = {h.load_dir[0], h.load_dir[1], h.load_dir[2]};
-  const V T2_before = dot3(T, T);
-  const auto dir_follows_T = (h.mode == double(LOADING)) & (T2_before > 0.0) & (dot3(dir, dir) > 0.0);
-  // loading branch: load_dir = T/|T|, projected once
-  const V along = dot3(T, n);
-  V q[3] = {T[0] - along * n[0], T[1] - along * n[1], T[2] - along * n[2]};
-  const V in_plane2 = dot3(q, q);
-  const V inv = 1.0 / std::sqrt(in_plane2);
-  q[0] *= inv, q[1] *= inv, q[2] *= inv;
-  twist(q, n, c, s, twisted);
-  const V magnitude = std::sqrt(T2_before);
-  const auto kept = in_plane2 > 0.0;
-  // otherwise each vector on its own
-  keep_magnitude(T, n);
-  twist(T, n, c, s, twisted);
-  keep_magnitude(dir, n);
-  twist(dir, n, c, s, twisted);
-  const V zero = V(0.0);
-  for (int d = 0; d < 3; ++d) {
-    h.T[d] = lane_select(dir_follows_T, lane_select(kept, magnitude * q[d], zero), T[d]);
-    h.load_dir[d] = lane_select(dir_follows_T, lane_select(kept, q[d], zero), dir[d]);
-  }
-  w.T_magnitude = lane_select(dir_follows_T & kept, magnitude, V(-1.0));
 #define TYCORE_CARRY_TANGENT(name, values, carried, from_j, meaning) \
-  if constexpr (history::carried == history::tangent) {            \
+  if constexpr (history::carried != history::kept) {               \
     keep_magnitude(h.name, n);                                     \
     twist(h.name, n, c, s, twisted);                               \
   }
@@ -322,7 +300,7 @@ inline ContactHistory snap_on(const PairCoefficients& c, double R, double delta,
 {
   const double a = adhesive ? jkr::contact_radius(delta, R, c.E_star, c.Gamma) : std::sqrt(R * delta);
   ContactHistory h;
-  begin_contact(h, jkr::normal_force(a, R, c.E_star, c.Gamma), adhesive);
+  begin_contact(h, adhesive);
   h.radius = a;
   return h;
 }
@@ -353,19 +331,18 @@ inline double break_energy(const PairCoefficients& c, double R, const ContactHis
 
 // The normal load as the tangential law sees it (§2.2): the JKR force P, the pull-off force
 // Pc = 3 pi Gamma R* (0 without adhesion), the effective load P + 2Pc on which micro-slip and
-// sliding act, the change dP of P since the last step and the sliding limit
+// sliding act, and the sliding limit mu max(P + 2Pc, 0)
 template <class V> struct NormalLoad {
-  V P, Pc, effective, dP, sliding_limit;
+  V P, Pc, effective, sliding_limit;
 };
 
 template <bool Adhesive, class V>
-[[gnu::always_inline]] inline NormalLoad<V> normal_load(const PairConstants& k, V R, V P, V P_prev)
+[[gnu::always_inline]] inline NormalLoad<V> normal_load(const PairConstants& k, V R, V P)
 {
   NormalLoad<V> load;
   load.P = P;
   load.Pc = Adhesive ? V(jkr::pull_off_force(k.c.Gamma, 1.0)) * R : V(0.0);
   load.effective = P + 2.0 * load.Pc;
-  load.dP = P - P_prev;
   load.sliding_limit = sliding_limit(k, load.effective);
   return load;
 }
@@ -392,243 +369,228 @@ template <bool Adhesive, class V>
   return p;
 }
 
-// The tangential stiffness k_T = 8 G* a_T of the step (§2.2): a_T of the peeling contact,
-// 4E*a_T^3/(3R*) = P + 2Pc + sqrt(discriminant), or after peeling the Hertz radius of the
-// effective load (micro_slip_radius_cubed); without adhesion the contact radius a (§2.1)
+// The micro-slip radius a_T (§2.2): the Hertz radius of the effective load P + 2Pc
+// (micro_slip_radius_cubed); without adhesion the contact radius a itself (§2.1). The memory's
+// springs live on the effective Hertz contact of radius a_T and overlap a_T^2/R* (§2.3).
 template <bool Adhesive, class V>
-[[gnu::always_inline]] inline V tangential_stiffness(const PairConstants& k, V R, V a,
-                                                     const NormalLoad<V>& load, const Peeling<V>& p)
+[[gnu::always_inline]] inline V micro_slip_radius(const PairConstants& k, V R, V a,
+                                                  const NormalLoad<V>& load)
 {
-  if (!Adhesive) return 8.0 * k.c.G_star * a;
-  const V peeling_cubed = hertz_radius_cubed(k, R, load.effective + std::sqrt(p.discriminant));
-  const V cubed = lane_select(p.peeled, peeling_cubed, micro_slip_radius_cubed(k, R, load.effective));
-  return 8.0 * k.c.G_star * simd_cbrt(cubed);
+  if (!Adhesive) return a;
+  return simd_cbrt(micro_slip_radius_cubed(k, R, load.effective));
 }
 
-// The loading direction t of §2.3 step 3 for a contact that has none yet (not while peeling):
-// along T where there is a force, else along the increment; such a contact starts on the
-// loading branch. An inactive step (no direction, no force, no increment) changes nothing.
-template <class V> struct LoadingDirection {
-  V t[3];             // the unit loading direction (load_dir)
-  V mode;             // the branch the step starts on
-  Mask<V> fresh;      // t was chosen this step
+// The tangential stiffness k_T = 8 G* a_T of the step (§2.2): a_T of the peeling contact,
+// 4E*a_T^3/(3R*) = P + 2Pc + sqrt(discriminant), or after peeling the micro-slip radius
+template <bool Adhesive, class V>
+[[gnu::always_inline]] inline V tangential_stiffness(const PairConstants& k, V R, V a_T,
+                                                     const NormalLoad<V>& load, const Peeling<V>& p)
+{
+  if (!Adhesive) return 8.0 * k.c.G_star * a_T;
+  const V peeling_cubed = hertz_radius_cubed(k, R, load.effective + std::sqrt(p.discriminant));
+  return 8.0 * k.c.G_star * lane_select(p.peeled, simd_cbrt(peeling_cubed), a_T);
+}
+
+// The memory's axis t (§2.3 step 3): kept once chosen; a contact without one (not while
+// peeling) takes it along its force T, or else along the increment ds. `active`: the contact
+// has an axis after the step.
+template <class V> struct MemoryAxis {
+  V t[3];
   Mask<V> active;
 };
 
 template <class V>
-[[gnu::always_inline]] inline LoadingDirection<V> loading_direction(const History<V>& old, V T2_old,
-                                                                    const V ds[3], Mask<V> peeled)
+[[gnu::always_inline]] inline MemoryAxis<V> memory_axis(const V old_t[3], const V T_old[3],
+                                                        const V ds[3], Mask<V> peeled)
 {
-  LoadingDirection<V> d;
-  const auto needs_dir = dot3(old.load_dir, old.load_dir) == 0.0;
-  const V s2 = dot3(ds, ds);
-  const V inv_T = 1.0 / std::sqrt(T2_old), inv_s = 1.0 / std::sqrt(s2);
-  d.active = !needs_dir | (T2_old > 0.0) | (s2 > 0.0);
-  d.fresh = needs_dir & d.active & !peeled;
+  MemoryAxis<V> axis;
+  const V T2 = dot3(T_old, T_old), s2 = dot3(ds, ds);
+  const auto has_axis = dot3(old_t, old_t) != 0.0;
+  const auto fresh = !has_axis & !peeled & ((T2 > 0.0) | (s2 > 0.0));
+  const V inv_T = 1.0 / std::sqrt(T2), inv_s = 1.0 / std::sqrt(s2);
   for (int i = 0; i < 3; ++i) {
-    const V along_T_or_ds = lane_select(T2_old > 0.0, old.T[i] * inv_T, ds[i] * inv_s);
-    d.t[i] = lane_select(d.fresh, along_T_or_ds, old.load_dir[i]);
+    const V along_T_or_ds = lane_select(T2 > 0.0, T_old[i] * inv_T, ds[i] * inv_s);
+    axis.t[i] = lane_select(fresh, along_T_or_ds, old_t[i]);
   }
-  d.mode = lane_select(d.fresh, V(double(LOADING)), old.mode);
-  return d;
+  axis.active = has_axis | fresh;
+  return axis;
 }
 
-// The branch rule of §2.3 step 3: with k s the elastic increment along t and mu dP the shift
-// of the slip thresholds by the normal load, slip forward where k s > mu dP, backward where
-// k s < -mu dP, elastic in between. Where both hold (dP < 0: the thresholds cross) the
-// increment counts as forward slip (masing_branch keeps the branch; a known deviation from
-// Mindlin & Deresiewicz, §2.3).
-template <class V> struct SlipDirection {
-  Mask<V> forward, backward;
-};
-
+// The memory's share of each band in the force along the axis (§2.3): f_j = x_j^(3/2) -
+// x_j+1^(3/2), x_j = (overlap - W_j)/overlap the Hertz load fraction below band j's outer
+// edge; T along the axis = mu (P + 2Pc) sum_j m_j f_j, exactly the limit when every band slips
 template <class V>
-[[gnu::always_inline]] inline SlipDirection<V> slip_direction(V ks, V mu_dP)
+[[gnu::always_inline]] inline void band_load_fractions(const bands::Profile<V>& p, V overlap,
+                                                       V f[memory_bands])
 {
-  return SlipDirection<V>{ks > mu_dP, ks < -mu_dP};
+  const V inv = 1.0 / overlap;
+  V begins = V(0.0), outer = V(1.0);
+  for (int j = 0; j < memory_bands; ++j) {
+    begins = begins + p.depth[j];
+    const V x = lane_max(1.0 - begins * inv, V(0.0));
+    const V inner = x * std::sqrt(x);
+    f[j] = outer - inner;
+    outer = inner;
+  }
 }
 
-// The Masing branch of the increment and its reversal points (§2.1): backward slip off the
-// loading or reloading branch starts unloading from T* = T, forward slip off the unloading
-// branch starts reloading from T** = T; both reversal points follow the normal load,
-// T* <- T* + mu dP, T** <- T** - mu dP.
-template <class V> struct MasingBranch {
-  V mode, T_star, T_star2;
-  Mask<V> slipping, unloading;
-};
-
 template <class V>
-[[gnu::always_inline]] inline MasingBranch<V> masing_branch(V mode_start, V T_along, V T_star,
-                                                            V T_star2, V mu_dP,
-                                                            const SlipDirection<V>& slip)
+[[gnu::always_inline]] inline V memory_ratio(const bands::Profile<V>& p, const V f[memory_bands])
 {
-  MasingBranch<V> b;
-  const auto was_unloading = mode_start == double(UNLOADING);
-  const auto to_unloading = !was_unloading & !slip.forward & slip.backward;
-  const auto to_reloading = was_unloading & !slip.backward & slip.forward;
-  b.mode = lane_select(to_unloading, V(double(UNLOADING)),
-                       lane_select(to_reloading, V(double(RELOADING)), mode_start));
-  b.T_star = lane_select(to_unloading, T_along, T_star) + mu_dP;
-  b.T_star2 = lane_select(to_reloading, T_along, T_star2) - mu_dP;
-  b.slipping = slip.forward | slip.backward;
-  b.unloading = b.mode == double(UNLOADING);
-  return b;
+  V sum = p.slope[0] * f[0];
+  for (int j = 1; j < memory_bands; ++j) sum = sum + p.slope[j] * f[j];
+  return sum;
 }
 
-// theta of Thornton & Randall (1988) with P -> P + 2Pc (§2.1, §2.2): theta^3 = loading
-// 1 - (T + mu dP)/L, unloading 1 - (T* - T + 2 mu dP)/2L, reloading 1 - (T - T** + 2 mu dP)/2L,
-// L = mu (P + 2Pc), clamped to [0, 1]; 1 without slip; 0 at the sliding limit (slid last step
-// on the loading branch)
+// Stage B, micro-slip (§2.3 steps 3-4): the memory along the axis t takes the step to the
+// effective overlap with the increment s = ds.t (slip_bands.hpp: exact Mindlin-Deresiewicz for
+// any history along t); the increment across t meets the no-slip stiffness k_T, and the force
+// then turns the memory with it: its slopes are raised by the ratio the turn added, at most to
+// the limit (§2.3 step 4). Returns the new T; t becomes its direction (sense kept).
 template <class V>
-[[gnu::always_inline]] inline V theta(const MasingBranch<V>& b, V T_along, V mu_dP, V limit,
-                                      Mask<V> at_limit)
+[[gnu::always_inline]] inline void micro_slip(bands::Profile<V>& p, V t[3], V overlap,
+                                              const V ds[3], V k_T, V limit, double kappa, V T[3])
 {
-  const V zero = V(0.0), one = V(1.0);
-  const V branch_term = lane_select(
-      b.unloading, b.T_star - T_along,
-      lane_select(b.mode == double(RELOADING), T_along - b.T_star2, 2.0 * T_along));
-  const V theta_cubed_formula = 1.0 - (branch_term + 2.0 * mu_dP) / (2.0 * limit);
-  const auto on_slip_branch = b.slipping & !((b.mode == double(LOADING)) & at_limit);
-  const V theta_cubed = lane_select(on_slip_branch, lane_clamp(theta_cubed_formula, zero, one), zero);
-  const V root = simd_cbrt(theta_cubed);
-  return lane_select(!b.slipping, one, lane_select(theta_cubed > 0.0, root, zero));
-}
-
-// T after the increment ds (§2.1, §2.3 step 4): along t, dT = theta k s + (-1)^k mu dP
-// (1 - theta) (k = 1 on the unloading branch); across t the no-slip k ds_perp (together k ds
-// at theta = 1); while peeling the elastic k ds (§2.2); unchanged in an inactive step. The
-// annulus dissipation of the micro-slip, mu (P + 2Pc) (1 - theta)^2 (1 + theta/2) |s| (§2.4),
-// goes to `lost`.
-template <class V>
-[[gnu::always_inline]] inline void tangential_increment(const V T_old[3], const V ds[3],
-                                                        const V t[3], V k_T, V s, V theta,
-                                                        V mu_dP, V limit, Mask<V> unloading,
-                                                        Mask<V> peeled, Mask<V> micro, V T[3],
-                                                        V& lost)
-{
-  const V ks = k_T * s;
-  const V sign = lane_select(unloading, V(-1.0), V(1.0));
-  const V dT_along = theta * ks + sign * mu_dP * (1.0 - theta);
-  lost = lane_select(micro, detail::annulus_dissipation_rate(limit, theta) * std::abs(s), V(0.0));
-  const V along = dT_along - ks;
+  const V inv_t = 1.0 / std::sqrt(dot3(t, t));    // unit (carried step after step, it drifts)
+  const auto has_axis = inv_t < 1e300;
+  for (int d = 0; d < 3; ++d) t[d] = lane_select(has_axis, t[d] * inv_t, t[d]);
+  const V s = dot3(ds, t);
+  bands::advance(p, overlap, s, kappa);
+  V f[memory_bands];
+  band_load_fractions(p, overlap, f);
+  const V along = limit * memory_ratio(p, f);
+  V across[3], Tv[3];
+  for (int d = 0; d < 3; ++d) across[d] = k_T * (ds[d] - s * t[d]);
+  for (int d = 0; d < 3; ++d) Tv[d] = along * t[d] + across[d];
+  const V magnitude = std::sqrt(along * along + dot3(across, across));
+  const V sense = lane_select(along < 0.0, V(-1.0), V(1.0));
+  const V raised = sense * (magnitude - std::abs(along)) / limit;
+  for (int j = 0; j < memory_bands; ++j)
+    p.slope[j] = lane_clamp(p.slope[j] + raised, V(-1.0), V(1.0));
+  const V turned = limit * memory_ratio(p, f);
+  const V inv = sense / magnitude;
+  const auto turns = magnitude > 0.0;
   for (int d = 0; d < 3; ++d) {
-    const V slipped = T_old[d] + (along * t[d] + k_T * ds[d]);
-    const V elastic = T_old[d] + k_T * ds[d];
-    T[d] = lane_select(peeled, elastic, lane_select(micro, slipped, T_old[d]));
+    t[d] = lane_select(turns, Tv[d] * inv, t[d]);
+    T[d] = turned * t[d];
   }
 }
 
-// Back on the virgin loading curve (§2.1): unloading past -T* (the loading direction
-// reverses) or reloading past T*; the branch after the step
+// Stage C (§2.3 step 5): the contact slides where its force is at the limit mu (P + 2Pc)
+// (within a few ulps): its memory is one band at the limit along T, the axis T/|T|. A
+// peeling force beyond the limit is brought back onto it. Returns where it slides.
 template <class V>
-[[gnu::always_inline]] inline V rejoin_loading(const V T[3], V t[3], const MasingBranch<V>& b,
-                                               Mask<V> micro, V mode_start)
-{
-  const V T_along = dot3(T, t);
-  const auto reversed = micro & b.unloading & (T_along <= -b.T_star);
-  const auto rejoined = micro & (b.mode == double(RELOADING)) & (T_along >= b.T_star);
-  const V flip = lane_select(reversed, V(-1.0), V(1.0));
-  t[0] *= flip, t[1] *= flip, t[2] *= flip;
-  return lane_select(micro, lane_select(reversed | rejoined, V(double(LOADING)), b.mode), mode_start);
-}
-
-// Stage C, the Coulomb cap (§2.3 step 5): |T| <= mu (P + 2Pc); within a few ulps of the limit
-// T is kept as is (no work), beyond it T is scaled back onto the limit and the excess force
-// over k_T is slid, with the dissipation limit x slip added to `lost`. On the loading branch
-// and at the cap the loading direction becomes T/|T|. Returns where the contact is at the cap.
-template <class V>
-[[gnu::always_inline]] inline Mask<V> coulomb_cap(V T[3], V t[3], V limit, V k_T, Mask<V> peeled,
-                                                  V mode, V& lost)
+[[gnu::always_inline]] inline Mask<V> coulomb_limit(bands::Profile<V>& p, V T[3], V t[3], V limit,
+                                                    V overlap)
 {
   const V magnitude = std::sqrt(dot3(T, T));
-  const auto loading_dir = !peeled & (mode == double(LOADING)) & (magnitude > 0.0);
-  const auto capped = magnitude >= limit * (1.0 - detail::limit_tolerance);
-  const auto over = capped & (magnitude > limit * (1.0 + detail::limit_tolerance));
+  const auto at_limit = magnitude >= limit * (1.0 - detail::limit_tolerance);
+  const auto over = magnitude > limit * (1.0 + detail::limit_tolerance);
   const V inv = 1.0 / magnitude, scale = limit / magnitude;
-  lost = lane_select(over, lost + limit * (magnitude - limit) / k_T, lost);
+  bands::Profile<V> slides;
+  bands::sliding(slides, overlap, V(1.0));
   for (int d = 0; d < 3; ++d) {
-    t[d] = lane_select(loading_dir | capped, T[d] * inv, t[d]);
+    t[d] = lane_select(at_limit, T[d] * inv, t[d]);
     T[d] = lane_select(over, T[d] * scale, T[d]);
   }
-  return capped;
+  for (int j = 0; j < memory_bands; ++j) {
+    p.slope[j] = lane_select(at_limit, slides.slope[j], p.slope[j]);
+    p.depth[j] = lane_select(at_limit, slides.depth[j], p.depth[j]);
+  }
+  return at_limit;
 }
 
-// The energy balance of the step (§2.4): the work of the mean force over ds plus the stored
-// energy goes to dissipation (`lost`, held to [0, what is available]) and the new stored
-// energy (>= 0); returns the dissipation
+// The energy of the step (§2.4): the stored tangential energy after it (the elastic energy of
+// the memory's tractions, 4 G* kappa^2 int phi^2 dx, where the memory holds the force; the
+// stored energy and the work of the step while peeling) and the dissipation, the work of the
+// mean force over ds less the change of stored energy (>= 0)
 template <class V>
 [[gnu::always_inline]] inline V energy_balance(V stored_old, const V T_old[3], const V T[3],
-                                               const V ds[3], V lost, V& stored)
+                                               const V ds[3], Mask<V> by_memory, V memory_energy,
+                                               V& stored)
 {
-  const V zero = V(0.0);
-  const V available =
-      stored_old + 0.5 * ((T_old[0] + T[0]) * ds[0] + (T_old[1] + T[1]) * ds[1] +
-                          (T_old[2] + T[2]) * ds[2]);
-  const V dissipation = lane_clamp(lost, zero, lane_max(available, zero));
-  stored = lane_max(available - dissipation, zero);
-  return dissipation;
+  const V work = 0.5 * ((T_old[0] + T[0]) * ds[0] + (T_old[1] + T[1]) * ds[1] +
+                        (T_old[2] + T[2]) * ds[2]);
+  const V available = stored_old + work;
+  stored = lane_select(by_memory, memory_energy, lane_max(available, V(0.0)));
+  return lane_max(available - stored, V(0.0));
 }
 
 // Where the sliding limit is 0 (§2.3): no tangential force; T, its direction and memory are
 // cleared, the contact slides, and the stored tangential energy with the work of this step,
-// `released`, is dissipated (returned, >= 0). h keeps its normal part (radius, P_prev).
+// `released`, is dissipated (returned, >= 0). h keeps its normal part (radius).
 template <class V>
 [[gnu::always_inline]] inline V release_tangential(History<V>& h, V released)
 {
   const V zero = V(0.0);
   for (int d = 0; d < 3; ++d) h.T[d] = h.load_dir[d] = zero;
-  h.T_star = h.T_star2 = h.peeling = h.stored_energy = zero;
-  h.mode = V(double(LOADING));
+  for (int j = 0; j < memory_bands; ++j) h.slope[j] = h.depth[j] = zero;
+  h.peeling = h.stored_energy = zero;
   h.sliding = V(1.0);
   return lane_max(released, zero);
 }
 
 // The tangential law of one step (§2.2, §2.3 steps 3-5, §2.4) from the history `old` (after
-// carry) for the increment ds: the new T, its direction and memory, the peeling and sliding
+// carry) for the increment ds: the new T, the memory's axis and bands, the peeling and sliding
 // flags and the stored energy into h; the stiffness k_T and the dissipation into out.
 template <bool Adhesive, class V>
 [[gnu::always_inline]] inline void tangential_step(const PairConstants& k, V R, const V ds[3],
-                                                   const Carry<V>& w, const NormalLoad<V>& load,
+                                                   const NormalLoad<V>& load,
                                                    const History<V>& old, History<V>& h,
                                                    Outputs<V>& out)
 {
-  const V T2_old = dot3(old.T, old.T);
-  const Peeling<V> peel = peeling<Adhesive>(k, load, T2_old, old.peeling);
-  const V k_T = tangential_stiffness<Adhesive>(k, R, out.a, load, peel);
-  LoadingDirection<V> dir = loading_direction(old, T2_old, ds, peel.peeled);
-  const auto at_limit = (old.sliding != 0.0) & (old.mode == double(LOADING)) & !dir.fresh;
-  // the Masing branch of the increment s along t
-  const V limit = k.c.mu * load.effective;
-  const V s = dot3(ds, dir.t);
-  const V mu_dP = k.c.mu * load.dP;
-  const V T_along = lane_select(w.T_magnitude >= 0.0, w.T_magnitude, dot3(old.T, dir.t));
-  const MasingBranch<V> branch =
-      masing_branch(dir.mode, T_along, old.T_star, old.T_star2, mu_dP, slip_direction(k_T * s, mu_dP));
-  const V th = theta(branch, T_along, mu_dP, limit, at_limit);
-  // the increment, the end of peeling, back on the loading curve
-  const auto micro = !peel.peeled & dir.active;
-  V T[3], lost;
-  tangential_increment(old.T, ds, dir.t, k_T, s, th, mu_dP, limit, branch.unloading, peel.peeled,
-                       micro, T, lost);
-  V peeling_flag = peel.flag;
-  if (Adhesive) {    // peeling ends where the discriminant vanishes
-    const auto peeling_ends = peel.peeled & (peeling_discriminant(k, load.P, load.Pc, dot3(T, T)) <= 0.0);
-    peeling_flag = lane_select(peeling_ends, V(0.0), peeling_flag);
+  const V zero = V(0.0);
+  const V limit = load.sliding_limit;
+  const Peeling<V> peel = peeling<Adhesive>(k, load, dot3(old.T, old.T), old.peeling);
+  const V a_T = micro_slip_radius<Adhesive>(k, R, out.a, load);
+  const V k_T = tangential_stiffness<Adhesive>(k, R, a_T, load, peel);
+  const V overlap = a_T * a_T / R;    // of the effective Hertz contact (§2.3)
+  MemoryAxis<V> axis = memory_axis(old.load_dir, old.T, ds, peel.peeled);
+  bands::Profile<V> memory;
+  for (int j = 0; j < memory_bands; ++j) memory.slope[j] = old.slope[j], memory.depth[j] = old.depth[j];
+  // stage A: the peeling contact is elastic; stage B: the memory where it holds the force
+  V T_micro[3];
+  bands::Profile<V> slipped = memory;
+  micro_slip(slipped, axis.t, overlap, ds, k_T, limit, k.slip_slope, T_micro);
+  V T[3];
+  for (int d = 0; d < 3; ++d)
+    T[d] = lane_select(peel.peeled, old.T[d] + k_T * ds[d], T_micro[d]);
+  for (int j = 0; j < memory_bands; ++j) {
+    memory.slope[j] = lane_select(peel.peeled, memory.slope[j], slipped.slope[j]);
+    memory.depth[j] = lane_select(peel.peeled, memory.depth[j], slipped.depth[j]);
   }
-  const V mode = rejoin_loading(T, dir.t, branch, micro, dir.mode);
-  const auto capped = coulomb_cap(T, dir.t, load.sliding_limit, k_T, peel.peeled, mode, lost);
+  // peeling ends where the discriminant vanishes: the memory of Mindlin & Deresiewicz's first
+  // loading to the force reached (§2.2), along T
+  V peeling_flag = peel.flag;
+  auto by_memory = !peel.peeled;
+  if (Adhesive) {
+    const V T_size = std::sqrt(dot3(T, T));
+    const auto ends = peel.peeled & (peeling_discriminant(k, load.P, load.Pc, T_size * T_size) <= 0.0);
+    peeling_flag = lane_select(ends, zero, peeling_flag);
+    bands::Profile<V> first;
+    bands::first_loading(first, overlap, lane_clamp(T_size / limit, zero, V(1.0)));
+    for (int j = 0; j < memory_bands; ++j) {
+      memory.slope[j] = lane_select(ends, first.slope[j], memory.slope[j]);
+      memory.depth[j] = lane_select(ends, first.depth[j], memory.depth[j]);
+    }
+    const V inv = 1.0 / T_size;
+    for (int d = 0; d < 3; ++d) axis.t[d] = lane_select(ends & (T_size > 0.0), T[d] * inv, axis.t[d]);
+    by_memory = by_memory | ends;
+  }
+  const auto slides = coulomb_limit(memory, T, axis.t, limit, overlap);
+  by_memory = by_memory | slides;
+  const V memory_energy = 4.0 * k.c.G_star * k.slip_slope * k.slip_slope *
+                          bands::energy_factor(memory, overlap, R);
   V stored;
-  out.dissipation = energy_balance(old.stored_energy, old.T, T, ds, lost, stored);
+  out.dissipation = energy_balance(old.stored_energy, old.T, T, ds, by_memory, memory_energy, stored);
   out.stiffness = lane_select(peel.peeled, V(-1.0), k_T);
 
-  // the new history; gross sliding clears the memory of the branches
-  const V zero = V(0.0);
-  for (int d = 0; d < 3; ++d) h.T[d] = T[d], h.load_dir[d] = dir.t[d];
-  h.T_star = lane_select(capped, zero, lane_select(micro, branch.T_star, old.T_star));
-  h.T_star2 = lane_select(capped, zero, lane_select(micro, branch.T_star2, old.T_star2));
-  h.mode = lane_select(capped, V(double(LOADING)), mode);
-  h.peeling = lane_select(capped, zero, peeling_flag);
-  h.sliding = lane_select(capped, V(1.0), zero);
+  // the new history; a contact without an axis keeps none
+  for (int d = 0; d < 3; ++d)
+    h.T[d] = T[d], h.load_dir[d] = lane_select(axis.active | slides, axis.t[d], zero);
+  for (int j = 0; j < memory_bands; ++j) h.slope[j] = memory.slope[j], h.depth[j] = memory.depth[j];
+  h.peeling = lane_select(slides, zero, peeling_flag);
+  h.sliding = lane_select(slides, V(1.0), zero);
   h.stored_energy = stored;
 }
 
@@ -645,7 +607,6 @@ template <bool Adhesive, bool Frictionless, class V>
   Outputs<V> out;
   out.P = normal_force<Adhesive>(k, R, Rinv, delta, w, out.a);
   h.radius = out.a;
-  h.P_prev = out.P;
   // the stored tangential energy and this step's work, where there is no tangential force
   const V released = old.stored_energy + 0.5 * dot3(old.T, ds);
   History<V> released_h = h;
@@ -656,8 +617,8 @@ template <bool Adhesive, bool Frictionless, class V>
     out.stiffness = V(-1.0);
     return out;
   }
-  const NormalLoad<V> load = normal_load<Adhesive>(k, R, out.P, old.P_prev);
-  tangential_step<Adhesive>(k, R, ds, w, load, old, h, out);
+  const NormalLoad<V> load = normal_load<Adhesive>(k, R, out.P);
+  tangential_step<Adhesive>(k, R, ds, load, old, h, out);
   const auto frictionless = load.sliding_limit <= 0.0;
   h = select_history(frictionless, released_h, h);
   out.dissipation = lane_select(frictionless, released_dissipation, out.dissipation);

@@ -28,23 +28,23 @@ inline double effective_shear_modulus(double E1, double nu1, double E2, double n
 
 inline double effective_radius(double R1, double R2) { return R1 * R2 / (R1 + R2); }
 
-// Mindlin-Deresiewicz branch of the tangential law (docs/theory.md §2.1: k = 0, 1, 2)
-enum TangentialMode : int { LOADING = 0, UNLOADING = 1, RELOADING = 2 };
+// how many slip bands a contact's Mindlin-Deresiewicz memory holds (slip_bands.hpp, §2.3)
+inline constexpr int memory_bands = 6;
 
 // ---- the history of a contact: ONE table, every listing generated from it ----
 //
 // TYCORE_HISTORY_FIELDS(X) calls X(name, values, carried, from_j, meaning) for each field of a
 // contact's history (docs/theory.md §2.3), in storage order:
 //  * values: 3 for a vector (lab frame, in the tangent plane, belonging to particle i of the
-//    pair: the force on i), 1 for a scalar;
+//    pair: the force on i), 1 for a scalar, memory_bands for the scalars of the slip bands;
 //  * carried: what happens to it when the contact's tangent plane turns (law::carry,
 //    docs/theory.md §2.3 step 1): `force` (T itself: projected onto the new plane with its
-//    magnitude kept and twisted about the normal), `direction` (load_dir: the same, except on
-//    the loading branch, where it follows T), `tangent` (any other tangent vector: projected,
-//    magnitude kept, twisted), `kept` (a scalar, unchanged);
+//    magnitude kept and twisted about the normal), `direction` (load_dir: the same, a unit
+//    vector), `tangent` (any other tangent vector: projected, magnitude kept, twisted), `kept`
+//    (scalars, unchanged);
 //  * from_j: its sign when the pair is seen from particle j (LAMMPS's and LIGGGHTS's transfer
-//    of the history to the partner): vectors -1, scalars +1 (T* and T** are T along load_dir,
-//    both of which flip);
+//    of the history to the partner): vectors -1, scalars +1 (the slopes are ratios along
+//    load_dir of T, both of which flip);
 //  * meaning: what it is.
 // Generated from it: ContactHistory (LAMMPS's history page and restart files verbatim: the
 // fields in this order, `values` doubles each), law::History (the law's lanes), the history
@@ -55,19 +55,24 @@ enum TangentialMode : int { LOADING = 0, UNLOADING = 1, RELOADING = 2 };
 #define TYCORE_HISTORY_FIELDS(X)                                                                 \
   X(T, 3, force, -1, "tangential force on i (elastic: damping is not in the history)")           \
   X(load_dir, 3, direction, -1,                                                                  \
-    "unit direction of the current Mindlin-Deresiewicz loading (zero before any)")               \
-  X(T_star, 1, kept, +1, "T*: T along load_dir at the last loading->unloading reversal")         \
-  X(T_star2, 1, kept, +1, "T**: T along load_dir at the last unloading->reloading reversal")     \
-  X(P_prev, 1, kept, +1, "normal force of the previous step")                                     \
-  X(mode, 1, kept, +1, "TangentialMode: loading, unloading or reloading branch (§2.1)")           \
+    "unit axis of the Mindlin-Deresiewicz memory, along which the slip bands' slopes are "        \
+    "counted (zero before any tangential displacement; §2.3)")                                   \
+  X(slope, 6, kept, +1,                                                                          \
+    "the memory's slip bands from the contact's edge inwards: the traction ratio m in [-1, 1] "   \
+    "of each (slip_bands.hpp, §2.3)")                                                            \
+  X(depth, 6, kept, +1,                                                                          \
+    "the depth of each slip band, in units of the effective overlap; they add up to the "         \
+    "effective overlap of the last step (§2.3)")                                                 \
   X(peeling, 1, kept, +1, "1 while Savkoor-Briggs peeling lasts (§2.2)")                          \
   X(sliding, 1, kept, +1, "1 if the contact is at the sliding limit this step")                   \
   X(stored_energy, 1, kept, +1,                                                                  \
-    "tangential elastic energy = tangential work - frictional dissipation (a path quantity, "     \
-    "§2.4)")                                                                                     \
+    "tangential elastic energy: the energy of the memory's tractions, or while peeling the "      \
+    "tangential work less dissipation (§2.4)")                                                   \
   X(radius, 1, kept, +1,                                                                         \
     "JKR contact radius of the last evaluated step: the warm start of the delta -> a "            \
     "inversion (law::halley_start, §1.4); 0 = none yet")
+
+static_assert(memory_bands == 6, "the table's slope and depth rows hold memory_bands values");
 
 namespace history {
 
@@ -122,6 +127,7 @@ TYCORE_HISTORY_FIELDS(TYCORE_SLOT_INDEX)
 // the sign of each history value when the pair is seen from j
 #define TYCORE_TRANSFER_SIGN_1(from_j) from_j,
 #define TYCORE_TRANSFER_SIGN_3(from_j) from_j, from_j, from_j,
+#define TYCORE_TRANSFER_SIGN_6(from_j) from_j, from_j, from_j, from_j, from_j, from_j,
 #define TYCORE_TRANSFER_SIGN(name, values, carried, from_j, meaning) \
   TYCORE_TRANSFER_SIGN_##values(from_j)
 constexpr double history_transfer_sign[history_size] = {
@@ -129,12 +135,14 @@ constexpr double history_transfer_sign[history_size] = {
 #undef TYCORE_TRANSFER_SIGN
 #undef TYCORE_TRANSFER_SIGN_1
 #undef TYCORE_TRANSFER_SIGN_3
+#undef TYCORE_TRANSFER_SIGN_6
 
 // checks of the table: a vector lies in the tangent plane and flips seen from j, a scalar is
 // kept and does not
 #define TYCORE_HISTORY_CHECK(name, values, carried, from_j, meaning)                              \
   static_assert((values == 3 && history::carried != history::kept && from_j == -1) ||           \
-                    (values == 1 && history::carried == history::kept && from_j == +1),        \
+                    ((values == 1 || values == memory_bands) &&                                 \
+                     history::carried == history::kept && from_j == +1),                       \
                 "history field " #name ": a vector is carried in the tangent plane and flips " \
                 "sign seen from j, a scalar is kept and does not");
 TYCORE_HISTORY_FIELDS(TYCORE_HISTORY_CHECK)

@@ -17,12 +17,11 @@ namespace tycore {
 // and not re-derived (docs/theory.md §2.2)
 inline constexpr double savkoor_briggs_shear_factor = 0.25;
 
-// a new contact (JKR snap-on or Hertz touch): no tangential force, peeling if adhesive
-inline void begin_contact(ContactHistory& h, double P_now, bool adhesive)
+// a new contact (JKR snap-on or Hertz touch): no tangential force, an empty memory (its first
+// step lays the first band), peeling if adhesive
+inline void begin_contact(ContactHistory& h, bool adhesive)
 {
   h = ContactHistory{};
-  h.P_prev = P_now;
-  h.mode = LOADING;
   h.peeling = adhesive ? 1.0 : 0.0;
 }
 

@@ -21,11 +21,13 @@
 namespace tyliggghts {
 
 // ---- history layout: tycore::ContactHistory, in LIGGGHTS's named per-contact values: one
-// per value of TYCORE_HISTORY_FIELDS, "ty_<field>" for a scalar and "ty_<field>_x" .. "_z"
+// per value of TYCORE_HISTORY_FIELDS, "ty_<field>" for a scalar, "ty_<field>_x" .. "_z"
 // for a vector ----
 constexpr int history_size = tycore::history_size;
 #define TYLIGGGHTS_HISTORY_NAMES_1(name) "ty_" #name,
 #define TYLIGGGHTS_HISTORY_NAMES_3(name) "ty_" #name "_x", "ty_" #name "_y", "ty_" #name "_z",
+#define TYLIGGGHTS_HISTORY_NAMES_6(name) \
+  "ty_" #name "_0", "ty_" #name "_1", "ty_" #name "_2", "ty_" #name "_3", "ty_" #name "_4", "ty_" #name "_5",
 #define TYLIGGGHTS_HISTORY_NAMES(name, values, carried, from_j, meaning) \
   TYLIGGGHTS_HISTORY_NAMES_##values(name)
 constexpr const char* history_names[history_size] = {
@@ -33,6 +35,7 @@ constexpr const char* history_names[history_size] = {
 #undef TYLIGGGHTS_HISTORY_NAMES
 #undef TYLIGGGHTS_HISTORY_NAMES_1
 #undef TYLIGGGHTS_HISTORY_NAMES_3
+#undef TYLIGGGHTS_HISTORY_NAMES_6
 // LIGGGHTS's newtonflag of value k: "1" if it changes sign seen from the other sphere
 inline const char* history_newton_flag(int k)
 {

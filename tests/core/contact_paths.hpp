@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 namespace contact_paths {
@@ -25,8 +26,12 @@ namespace contact_paths {
 using Eigen::Vector3d;
 
 struct Visits {
-  int peeling = 0, loading = 0, unloading = 0, reloading = 0, sliding = 0, tensile = 0,
+  int peeling = 0, forward = 0, backward = 0, sticking = 0, sliding = 0, tensile = 0,
       snap_ins = 0, breaks = 0;
+  // the energy balance over the path (docs/theory.md §2.4): the frictional dissipation booked,
+  // and what the stored energy gained beyond the step's work less dissipation (its
+  // discretisation: the work is the trapezoid of the force over the step)
+  double dissipated = 0.0, excess = 0.0;
 };
 
 // one step of a path: overlap, contact normal, tangential increment of j relative to i at the
@@ -70,7 +75,7 @@ class RandomPath {
     const double a0 = adhesive ? tycore::jkr::contact_radius(delta, R, c.E_star, c.Gamma)
                                : std::sqrt(R * delta);
     tycore::ContactHistory h;
-    tycore::begin_contact(h, tycore::jkr::normal_force(a0, R, c.E_star, c.Gamma), adhesive);
+    tycore::begin_contact(h, adhesive);
     h.radius = a0;
     return h;
   }
@@ -133,10 +138,10 @@ class RandomPath {
 // What holds for every step of the law from history `before` to `after` with increment s.ds,
 // normal force P and frictional dissipation `lost` (fatal gtest failures otherwise): T in the
 // tangent plane of s.n, |T| <= mu (P + 2Pc) (the Coulomb cap, within its 4-ulp tolerance),
-// the loading direction a unit vector or zero, the dissipation >= 0, and the energy balance
-// (docs/theory.md §2.4): stored energy after = stored before + tangential work - dissipation,
-// the stored energy >= 0 (held at 0 where the hypo-elastic law gives back more than was put
-// in). Counts the branch the step ended on in `seen`.
+// the memory's axis a unit vector or zero, the dissipation >= 0, the stored energy >= 0; sums
+// the dissipation and the step's departure from the energy balance (docs/theory.md §2.4:
+// stored energy after = stored before + tangential work - dissipation, up to the
+// discretisation of the work) in `seen`, and counts the state the step ended in.
 inline void expect_law_holds(const RandomPath& path, const Step& s, double P,
                              const tycore::ContactHistory& before,
                              const tycore::ContactHistory& after, double lost, Visits& seen)
@@ -150,23 +155,29 @@ inline void expect_law_holds(const RandomPath& path, const Step& s, double P,
   ASSERT_TRUE(dir2 == 0.0 || std::abs(dir2 - 1.0) < 1e-10) << dir2;
   ASSERT_GE(lost, 0.0);
   ASSERT_GE(after.stored_energy, 0.0);
+  for (int j = 0; j < tycore::memory_bands; ++j) {    // the memory: |m| <= 1, depths >= 0
+    ASSERT_LE(std::abs(after.slope[j]), 1.0) << j;
+    ASSERT_GE(after.depth[j], 0.0) << j;
+  }
   // the work of T over the step, T_old carried with the contact: onto the new tangent plane
   // (magnitude kept), then turned about n by the twist (Rodrigues)
   Vector3d carried = T_old - T_old.dot(s.n) * s.n;
   if (carried.norm() > 0.0) carried *= T_old.norm() / carried.norm();
   carried = std::cos(s.twist) * carried + std::sin(s.twist) * s.n.cross(carried);
   const double work = 0.5 * (carried + T).dot(s.ds);
-  const double step_work = path.force_scale * path.ds_scale;
-  if (after.stored_energy > 0.0 && path.c.mu > 0.0) {
-    ASSERT_NEAR(after.stored_energy, before.stored_energy + work - lost,
-                1e-12 * before.stored_energy + 1e-9 * step_work);
-  }
+  seen.dissipated += lost;
+  seen.excess += std::abs(after.stored_energy - (before.stored_energy + work - lost));
   seen.peeling += after.peeling != 0.0;
   seen.sliding += after.sliding != 0.0;
   seen.tensile += P < 0.0;
-  seen.loading += after.mode == tycore::LOADING && after.sliding == 0.0;
-  seen.unloading += after.mode == tycore::UNLOADING;
-  seen.reloading += after.mode == tycore::RELOADING;
+  // the edge band of the memory (docs/theory.md §2.3): slipping forward or backward along its
+  // axis, or sticking, while the contact as a whole does not slide
+  // (a turn of the force in the tangent plane raises the slopes by the second order of the
+  // turn: an edge within 1e-6 of the limit slips)
+  const bool micro = after.peeling == 0.0 && after.sliding == 0.0 && after.depth[0] > 0.0;
+  seen.forward += micro && after.slope[0] >= 1.0 - 1e-6;
+  seen.backward += micro && after.slope[0] <= -1.0 + 1e-6;
+  seen.sticking += micro && std::abs(after.slope[0]) < 1.0 - 1e-6;
 }
 
 // every branch of the law visited on one 20000-step path (adhesive: peeling and tension too)
@@ -178,10 +189,15 @@ inline void expect_every_branch(const Visits& v, bool adhesive)
   } else {
     EXPECT_EQ(v.peeling, 0);
   }
-  EXPECT_GT(v.loading, 100);
-  EXPECT_GT(v.unloading, 100);
-  EXPECT_GT(v.reloading, 100);
+  EXPECT_GT(v.forward, 100);
+  EXPECT_GT(v.backward, 100);
+  EXPECT_GT(v.sticking, 100);
   EXPECT_GT(v.sliding, 100);
+  // the balance over the path: these paths take steps of up to a fifth of the slip distance,
+  // where the trapezoid of the work misses ~1 % of the frictional loss (measured 0.5-2.4 %);
+  // docs/theory.md §2.4 shows the defect falling with the step
+  EXPECT_GT(v.dissipated, 0.0);
+  EXPECT_LT(v.excess, 0.05 * v.dissipated);
 }
 
 }    // namespace contact_paths

@@ -63,7 +63,7 @@ template <bool Adhesive> struct Contact {
   Contact(const tycore::PairCoefficients& coefficients, double P0)
       : c(coefficients), k(tycore::pair_constants(coefficients))
   {
-    tycore::begin_contact(h, P0, Adhesive);
+    tycore::begin_contact(h, Adhesive);
   }
 
   // one step at overlap delta with the tangential increment ds (in the tangent plane of n), the

@@ -206,8 +206,7 @@ void compare_batch_on_paths(Isa isa, const std::vector<RandomPath>& paths_in, in
       if (!touching[i]) {    // snap-in: the history begin_contact gives at the closed-form radius
         const double a = adhesive ? tycore::jkr::contact_radius(s[i].delta, paths[i].R, k.c.E_star, k.c.Gamma)
                                   : std::sqrt(paths[i].R * s[i].delta);
-        tycore::begin_contact(before, tycore::jkr::normal_force(a, paths[i].R, k.c.E_star, k.c.Gamma),
-                              adhesive);
+        tycore::begin_contact(before, adhesive);
         before.radius = a;
         ++seen[i].snap_ins;
       }
@@ -340,7 +339,7 @@ TEST_P(BatchLaw, FrictionlessStepReleasesTheStoredEnergy)
     s.twist = 0.0;
     s.delta = delta;
     tycore::ContactHistory h;
-    tycore::begin_contact(h, P, Gamma > 0.0);
+    tycore::begin_contact(h, Gamma > 0.0);
     h.radius = a;
     h.T[0] = 1e-3 * P;
     h.T[1] = -2e-3 * P;
@@ -558,7 +557,7 @@ TEST_P(BatchLaw, FirstTouchAndSeparation)
   b->first_touch[0] = true;
   // lane 1: a contact with stored tangential energy, pulled below delta_f
   tycore::ContactHistory stretched;
-  tycore::begin_contact(stretched, 0.0, true);
+  tycore::begin_contact(stretched, true);
   stretched.T[0] = 1e-6;
   stretched.stored_energy = 3e-15;
   stretched.radius = tycore::jkr::contact_radius(0.5 * delta_f, R, kEstar, Gamma);
@@ -616,7 +615,7 @@ TEST(BatchForcesWithoutStep, ForcesAtTheOverlapHistoryKept)
   s.delta = delta;
   tycore::ContactHistory h[3];
   for (int lane = 0; lane < 3; ++lane) {
-    tycore::begin_contact(h[lane], P, true);
+    tycore::begin_contact(h[lane], true);
     h[lane].peeling = 0.0;
     h[lane].radius = 1.01 * a;    // a warm start near the answer
     h[lane].stored_energy = 1e-15;

@@ -28,7 +28,7 @@ int main(int argc, char** argv)
   const bool adhesive = c.Gamma > 0.0;
   const tycore::PairConstants k = tycore::pair_constants(c);
   tycore::ContactHistory h;
-  tycore::begin_contact(h, 0.0, adhesive);
+  tycore::begin_contact(h, adhesive);
   const double n[3] = {1.0, 0.0, 0.0};
   double delta, dsy, dsz;
   while (std::scanf("%lf %lf %lf", &delta, &dsy, &dsz) == 3) {
