@@ -34,6 +34,8 @@
 
 #include "contact_kernel.hpp"
 
+#include <Eigen/Core>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
