@@ -25,7 +25,8 @@ inline law::History<typename Layer::V> load_history(const ContactBatch& b, int i
 {
   law::History<typename Layer::V> h;
 #define TYBENCH_LOAD_FIELD(name, values, carried, from_j, meaning) \
-  for (int k = 0; k < values; ++k) history::value(h.name, k) = Layer::load(batch_value(b.name, k) + i);
+  for (int k = 0; k < values; ++k)                                 \
+    history::value(h.name, k) = Layer::load(batch_value(b.name, k) + i);
   TYCORE_HISTORY_FIELDS(TYBENCH_LOAD_FIELD)
 #undef TYBENCH_LOAD_FIELD
   return h;
@@ -137,7 +138,8 @@ void layer_batch(ContactBatch& b, int n, const PairConstants& k, const BatchPara
                          Layer::load(b.Rinv + i), Layer::load(b.delta + i), h, lane);
 #define TYBENCH_CARRIED_FIELD(name, values, carried, from_j, meaning) \
   if constexpr (history::carried != history::kept)                    \
-    for (int k = 0; k < values; ++k) Layer::store(history::value(h.name, k), batch_value(b.name, k) + i);
+    for (int k = 0; k < values; ++k)                                  \
+      Layer::store(history::value(h.name, k), batch_value(b.name, k) + i);
     TYCORE_HISTORY_FIELDS(TYBENCH_CARRIED_FIELD)
 #undef TYBENCH_CARRIED_FIELD
     store_carry<Layer>(w, i, lane, Adhesive);

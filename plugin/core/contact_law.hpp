@@ -1,23 +1,28 @@
 // The Thornton-Yin contact law of the pair style, written once over a lane type V,
 // Thornton & Yin (1991), Thornton & Randall (1988). Each piece is read against one section of
 // docs/theory.md:
-//   carry                 the history onto the turned tangent plane, twisted     §2.3 step 1
-//   halley_start/_again,  the JKR contact radius from the overlap (warm-started    §1.4
-//   closed_form_radius    Halley iteration on the quartic in sqrt(a), closed form)
-//   normal_force          the JKR (or Hertz) normal force                         §1.1, §1.6
-//   normal_load           P + 2Pc, dP and the sliding limit mu max(P + 2Pc, 0)    §2.2
-//   peeling               stage A, Savkoor-Briggs peeling                         §2.2
-//   tangential_stiffness  k_T = 8 G* a_T (peeling radius or micro-slip radius)    §2.2
-//   loading_direction     the loading direction t of a contact without one        §2.3 step 3
-//   slip_direction        THE branch rule: forward / backward slip or elastic     §2.3 step 3
-//   masing_branch         loading / unloading / reloading, reversal points T*, T** §2.1
-//   theta                 theta of the micro-slip annulus                         §2.1
-//   tangential_increment  dT along t and across it, the annulus dissipation       §2.1, §2.3 step 4, §2.4
-//   rejoin_loading        back on the virgin loading curve                        §2.1
-//   coulomb_cap           stage C, gross sliding at mu (P + 2Pc)                  §2.3 step 5
-//   energy_balance        work = dissipation + change of stored energy            §2.4
-//   release_tangential    no tangential force where the sliding limit is 0        §2.3
-//   tangential_step, step the step assembled from these
+//   carry                  the history onto the turned tangent plane, twisted (§2.3 step 1)
+//   halley_start, _again,  the JKR contact radius from the overlap: warm-started Halley
+//   closed_form_radius     iteration on the quartic in sqrt(a), else the closed form (§1.4)
+//   normal_force           the JKR (or Hertz) normal force (§1.1, §1.6)
+//   normal_load            P + 2Pc, dP and the sliding limit mu max(P + 2Pc, 0) (§2.2)
+//   peeling                stage A, Savkoor-Briggs peeling (§2.2)
+//   tangential_stiffness   k_T = 8 G* a_T, the peeling or the micro-slip radius (§2.2)
+//   loading_direction      the loading direction t of a contact without one (§2.3 step 3)
+//   slip_direction         THE branch rule: forward or backward slip, or elastic (§2.3 step 3)
+//   masing_branch          loading / unloading / reloading, reversal points T*, T** (§2.1)
+//   theta                  theta of the micro-slip annulus (§2.1)
+//   tangential_increment   dT along t and across it (§2.1, §2.3 step 4), the annulus loss (§2.4)
+//   rejoin_loading         back on the virgin loading curve (§2.1)
+//   coulomb_cap            stage C, gross sliding at mu (P + 2Pc) (§2.3 step 5)
+//   energy_balance         work = dissipation + change of stored energy (§2.4)
+//   release_tangential     no tangential force where the sliding limit is 0 (§2.3)
+//   tangential_step, step  the step assembled from these
+//   snap_on, separates,    the contact's life cycle: first touch, break, its energy (§1.3)
+//   break_energy
+// The pieces hand their lane masks on in small structs passed by value: a named SlipDirection
+// passed by const reference was enough for GCC 12 to leave the law's lane loops scalar
+// (tests/test_batch_vectorised.py finds that; the numerical tests cannot, the bits are equal).
 // The law has no viscous damping: the pair's damping stays outside the elastic history
 // (detail::damped_force, contact_batch.hpp). The history it carries is the table
 // TYCORE_HISTORY_FIELDS (contact_types.hpp).
@@ -89,12 +94,14 @@ template <class V> using Mask = decltype(std::declval<V>() > 0.0);
 
 // a in the lanes where m holds, else b, field for field
 template <class V, class M>
-[[gnu::always_inline]] inline History<V> select_history(M m, const History<V>& a, const History<V>& b)
+[[gnu::always_inline]] inline History<V> select_history(M m, const History<V>& a,
+                                                         const History<V>& b)
 {
   History<V> h;
 #define TYCORE_SELECT_FIELD(name, values, carried, from_j, meaning) \
   for (int k = 0; k < values; ++k)                                 \
-    history::value(h.name, k) = lane_select(m, history::value(a.name, k), history::value(b.name, k));
+    history::value(h.name, k) =                                    \
+        lane_select(m, history::value(a.name, k), history::value(b.name, k));
   TYCORE_HISTORY_FIELDS(TYCORE_SELECT_FIELD)
 #undef TYCORE_SELECT_FIELD
   return h;
@@ -320,7 +327,8 @@ template <class V>
 // force, peeling if adhesive (begin_contact), the radius the warm start of its first step
 inline ContactHistory snap_on(const PairCoefficients& c, double R, double delta, bool adhesive)
 {
-  const double a = adhesive ? jkr::contact_radius(delta, R, c.E_star, c.Gamma) : std::sqrt(R * delta);
+  const double a =
+      adhesive ? jkr::contact_radius(delta, R, c.E_star, c.Gamma) : std::sqrt(R * delta);
   ContactHistory h;
   begin_contact(h, jkr::normal_force(a, R, c.E_star, c.Gamma), adhesive);
   h.radius = a;
@@ -338,7 +346,8 @@ inline bool separates(const PairCoefficients& c, double R, double delta, bool ad
 
 // the elastic energy lost when a contact separates: its stored tangential energy and the JKR
 // energy at the break radius a_f (§1.7, §3.2)
-inline double break_energy(const PairCoefficients& c, double R, const ContactHistory& h, bool adhesive)
+inline double break_energy(const PairCoefficients& c, double R, const ContactHistory& h,
+                           bool adhesive)
 {
   double stored = h.stored_energy;
   if (adhesive) {
@@ -397,11 +406,12 @@ template <bool Adhesive, class V>
 // effective load (micro_slip_radius_cubed); without adhesion the contact radius a (§2.1)
 template <bool Adhesive, class V>
 [[gnu::always_inline]] inline V tangential_stiffness(const PairConstants& k, V R, V a,
-                                                     const NormalLoad<V>& load, const Peeling<V>& p)
+                                                     const NormalLoad<V>& load, Peeling<V> p)
 {
   if (!Adhesive) return 8.0 * k.c.G_star * a;
   const V peeling_cubed = hertz_radius_cubed(k, R, load.effective + std::sqrt(p.discriminant));
-  const V cubed = lane_select(p.peeled, peeling_cubed, micro_slip_radius_cubed(k, R, load.effective));
+  const V micro_slip_cubed = micro_slip_radius_cubed(k, R, load.effective);
+  const V cubed = lane_select(p.peeled, peeling_cubed, micro_slip_cubed);
   return 8.0 * k.c.G_star * simd_cbrt(cubed);
 }
 
@@ -460,7 +470,7 @@ template <class V> struct MasingBranch {
 template <class V>
 [[gnu::always_inline]] inline MasingBranch<V> masing_branch(V mode_start, V T_along, V T_star,
                                                             V T_star2, V mu_dP,
-                                                            const SlipDirection<V>& slip)
+                                                            SlipDirection<V> slip)
 {
   MasingBranch<V> b;
   const auto was_unloading = mode_start == double(UNLOADING);
@@ -480,7 +490,7 @@ template <class V>
 // L = mu (P + 2Pc), clamped to [0, 1]; 1 without slip; 0 at the sliding limit (slid last step
 // on the loading branch)
 template <class V>
-[[gnu::always_inline]] inline V theta(const MasingBranch<V>& b, V T_along, V mu_dP, V limit,
+[[gnu::always_inline]] inline V theta(MasingBranch<V> b, V T_along, V mu_dP, V limit,
                                       Mask<V> at_limit)
 {
   const V zero = V(0.0), one = V(1.0);
@@ -489,7 +499,8 @@ template <class V>
       lane_select(b.mode == double(RELOADING), T_along - b.T_star2, 2.0 * T_along));
   const V theta_cubed_formula = 1.0 - (branch_term + 2.0 * mu_dP) / (2.0 * limit);
   const auto on_slip_branch = b.slipping & !((b.mode == double(LOADING)) & at_limit);
-  const V theta_cubed = lane_select(on_slip_branch, lane_clamp(theta_cubed_formula, zero, one), zero);
+  const V theta_cubed =
+      lane_select(on_slip_branch, lane_clamp(theta_cubed_formula, zero, one), zero);
   const V root = simd_cbrt(theta_cubed);
   return lane_select(!b.slipping, one, lane_select(theta_cubed > 0.0, root, zero));
 }
@@ -521,7 +532,7 @@ template <class V>
 // Back on the virgin loading curve (§2.1): unloading past -T* (the loading direction
 // reverses) or reloading past T*; the branch after the step
 template <class V>
-[[gnu::always_inline]] inline V rejoin_loading(const V T[3], V t[3], const MasingBranch<V>& b,
+[[gnu::always_inline]] inline V rejoin_loading(const V T[3], V t[3], MasingBranch<V> b,
                                                Mask<V> micro, V mode_start)
 {
   const V T_along = dot3(T, t);
@@ -529,7 +540,8 @@ template <class V>
   const auto rejoined = micro & (b.mode == double(RELOADING)) & (T_along >= b.T_star);
   const V flip = lane_select(reversed, V(-1.0), V(1.0));
   t[0] *= flip, t[1] *= flip, t[2] *= flip;
-  return lane_select(micro, lane_select(reversed | rejoined, V(double(LOADING)), b.mode), mode_start);
+  const V mode = lane_select(reversed | rejoined, V(double(LOADING)), b.mode);
+  return lane_select(micro, mode, mode_start);
 }
 
 // Stage C, the Coulomb cap (§2.3 step 5): |T| <= mu (P + 2Pc); within a few ulps of the limit
@@ -602,8 +614,9 @@ template <bool Adhesive, class V>
   const V s = dot3(ds, dir.t);
   const V mu_dP = k.c.mu * load.dP;
   const V T_along = lane_select(w.T_magnitude >= 0.0, w.T_magnitude, dot3(old.T, dir.t));
+  const SlipDirection<V> slip = slip_direction(k_T * s, mu_dP);
   const MasingBranch<V> branch =
-      masing_branch(dir.mode, T_along, old.T_star, old.T_star2, mu_dP, slip_direction(k_T * s, mu_dP));
+      masing_branch(dir.mode, T_along, old.T_star, old.T_star2, mu_dP, slip);
   const V th = theta(branch, T_along, mu_dP, limit, at_limit);
   // the increment, the end of peeling, back on the loading curve
   const auto micro = !peel.peeled & dir.active;
@@ -612,7 +625,8 @@ template <bool Adhesive, class V>
                        micro, T, lost);
   V peeling_flag = peel.flag;
   if (Adhesive) {    // peeling ends where the discriminant vanishes
-    const auto peeling_ends = peel.peeled & (peeling_discriminant(k, load.P, load.Pc, dot3(T, T)) <= 0.0);
+    const V discriminant_after = peeling_discriminant(k, load.P, load.Pc, dot3(T, T));
+    const auto peeling_ends = peel.peeled & (discriminant_after <= 0.0);
     peeling_flag = lane_select(peeling_ends, V(0.0), peeling_flag);
   }
   const V mode = rejoin_loading(T, dir.t, branch, micro, dir.mode);
