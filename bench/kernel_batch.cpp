@@ -18,6 +18,8 @@
 #include "contact_batch.hpp"
 #include "contact_kernel.hpp"
 
+#include <Eigen/Core>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>

@@ -108,7 +108,8 @@ inline KernelResult advance_contact(const PairConstants& k, double R, double del
                                     const double n[3], double twist, const double ds[3],
                                     ContactHistory& h, double& dissipation)
 {
-  const law::Outputs<double> out = law::scalar_step<Adhesive>(k, R, 1.0 / R, delta, n, twist, ds, h);
+  const law::Outputs<double> out =
+      law::scalar_step<Adhesive>(k, R, 1.0 / R, delta, n, twist, ds, h);
   dissipation += out.dissipation;
   return KernelResult{out.P, out.a};
 }

@@ -40,6 +40,7 @@ inline LawDomainFault law_domain_fault(const PairCoefficients& c, double R, doub
     fault.quantity = quantity;
     fault.delta = delta;
   };
+  const PairConstants k = pair_constants(c);
   const double Pc = jkr::pull_off_force(c.Gamma, R);
   const double delta_f = jkr::break_overlap(R, c.E_star, c.Gamma);
   bad(Pc, "pull-off force Pc", 0.0);
@@ -54,10 +55,9 @@ inline LawDomainFault law_domain_fault(const PairCoefficients& c, double R, doub
     if (delta != delta_f)
       bad(jkr::normal_stiffness(a, R, c.E_star, c.Gamma), "normal stiffness", delta);
     bad(jkr::stored_energy(a, R, c.E_star, c.Gamma), "stored energy", delta);
-    const double limit = c.mu * (P + 2.0 * Pc);
+    const double limit = law::sliding_limit(k, P + 2.0 * Pc);
     bad(limit, "sliding limit mu (P + 2 Pc)", delta);
-    const double a_T =
-        c.Gamma > 0.0 ? std::cbrt(law::micro_slip_radius_cubed(pair_constants(c), R, P + 2.0 * Pc)) : a;
+    const double a_T = c.Gamma > 0.0 ? std::cbrt(law::micro_slip_radius_cubed(k, R, P + 2.0 * Pc)) : a;
     const double k_T = 8.0 * c.G_star * a_T;
     bad(k_T, "tangential stiffness 8 G* a", delta);
     if (k_T > 0.0) bad(limit * limit / (2.0 * k_T), "tangential energy at sliding", delta);

@@ -30,7 +30,10 @@ namespace detail {
 // cos and sin of a per-step twist t: below 1e-3 rad (twist_series_exact) the Taylor
 // polynomials, whose remainders t^6/720 and t^7/5040 are < 1.5e-21, replace the libm calls
 // exactly to round-off; the series alone is branch-free, for the lane loops
-[[gnu::always_inline]] inline bool twist_series_exact(double twist) { return std::abs(twist) < 1e-3; }
+[[gnu::always_inline]] inline bool twist_series_exact(double twist)
+{
+  return std::abs(twist) < 1e-3;
+}
 
 [[gnu::always_inline]] inline void twist_cos_sin_series(double twist, double& c, double& s)
 {
