@@ -281,9 +281,10 @@ template <bool Damped>
 // (frictionless or peeled step). Branch-free and reading every input unconditionally, so that
 // it inlines into the vector loop.
 template <bool Adhesive, bool Damped, bool Tally>
-[[gnu::always_inline]] inline void lane_outputs(ContactBatch& b, int i, const PairCoefficients c,
+[[gnu::always_inline]] inline void lane_outputs(ContactBatch& b, int i, const PairConstants k,
                                                 const BatchParameters p, double k_T_law)
 {
+  const PairCoefficients c = k.c;
   const bool gone = b.broken[i] != 0.0;
   const double nx = b.n[0][i], ny = b.n[1][i], nz = b.n[2][i];
   const double a = b.contact_radius[i], R = b.R[i], P = b.P[i];
@@ -299,15 +300,13 @@ template <bool Adhesive, bool Damped, bool Tally>
   b.moment[1][i] = gone ? 0.0 : nz * fs1 - nx * fs3;
   b.moment[2][i] = gone ? 0.0 : nx * fs2 - ny * fs1;
   if (Tally) {
-    // k_N = dP/d(delta) (jkr::normal_stiffness, docs/theory.md §1.5); k_T = 8 G* a_T(P + 2Pc),
-    // a_T the Hertz radius itself without adhesion (as the law). a_T^3 here is
-    // law::micro_slip_radius_cubed, 3R*(P + 2Pc)/(4E*), with its operations in another order:
-    // in the law's order the servo's stiffness, and so its trajectories, move by round-off
+    // k_N = dP/d(delta) (jkr::normal_stiffness, docs/theory.md §1.5); where the law used no
+    // k_T this step (peeling, the setup pass), k_T = 8 G* a_T of the micro-slip radius
+    // (law::micro_slip_radius, §2.2)
     const double rsq = b.rsq[i];
     const double k_N = jkr::normal_stiffness(a, R, c.E_star, c.Gamma);
-    const double Pc = jkr::pull_off_force(c.Gamma, R);
-    const double a_T = Adhesive ? simd_cbrt(3.0 * R * lane_max(P + 2.0 * Pc, 0.0) / (4.0 * c.E_star))
-                                : a;
+    const law::NormalLoad<double> load = law::normal_load<Adhesive>(k, R, P);
+    const double a_T = law::micro_slip_radius<Adhesive>(k, R, a, load);
     const double k_T = k_T_law >= 0.0 ? k_T_law : 8.0 * c.G_star * a_T;
     const double n2[3] = {nx * nx, ny * ny, nz * nz};
     constexpr int a_of[6] = {0, 1, 2, 0, 0, 1}, b_of[6] = {0, 1, 2, 1, 2, 2};
@@ -399,8 +398,8 @@ inline void advance_batch(ContactBatch& b, int n, const PairConstants& k, const 
       detail::touch_or_break<Adhesive>(b, n, k);
       for (int i = 0; i < n; ++i) {
         const double k_T = detail::scalar_lane<Adhesive>(b, i, k, p.dt);
-        if (p.tally) detail::lane_outputs<Adhesive, Damped, true>(b, i, k.c, p, k_T);
-        else detail::lane_outputs<Adhesive, Damped, false>(b, i, k.c, p, k_T);
+        if (p.tally) detail::lane_outputs<Adhesive, Damped, true>(b, i, k, p, k_T);
+        else detail::lane_outputs<Adhesive, Damped, false>(b, i, k, p, k_T);
       }
       if (p.energy) detail::stored_energies(b, n, k);
       break;
@@ -419,7 +418,6 @@ template <bool Adhesive, bool Damped>
 inline void forces_without_step(ContactBatch& b, int n, const PairConstants& k,
                                 const BatchParameters& p)
 {
-  const PairCoefficients& c = k.c;
   detail::touch_or_break<Adhesive>(b, n, k);
   for (int i = 0; i < n; ++i) {
     const ContactHistory h = stored_history(b, i);
@@ -434,8 +432,8 @@ inline void forces_without_step(ContactBatch& b, int n, const PairConstants& k,
     b.P[i] = P;
     b.slides[i] = b.broken[i] == 0.0 && slides_without_step(k, R, P, h) ? 1.0 : 0.0;
     b.dissipation[i] = 0.0;
-    if (p.tally) detail::lane_outputs<Adhesive, Damped, true>(b, i, c, p, -1.0);
-    else detail::lane_outputs<Adhesive, Damped, false>(b, i, c, p, -1.0);
+    if (p.tally) detail::lane_outputs<Adhesive, Damped, true>(b, i, k, p, -1.0);
+    else detail::lane_outputs<Adhesive, Damped, false>(b, i, k, p, -1.0);
     b.damping_dissipation[i] = 0.0;
     b.break_energy[i] = 0.0;
   }

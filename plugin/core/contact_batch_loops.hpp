@@ -112,7 +112,7 @@ template <bool Adhesive, bool Damped, bool Tally, bool Frictionless>
     const law::Outputs<double> out =
         law::step<Adhesive, Frictionless>(k, b.R[i], b.Rinv[i], b.delta[i], ds, w.lane(i), h);
     detail::store_lane(b, i, h, out, gone);
-    lane_outputs<Adhesive, Damped, Tally>(b, i, k.c, p, out.stiffness);
+    lane_outputs<Adhesive, Damped, Tally>(b, i, k, p, out.stiffness);
   }
 }
 

@@ -67,7 +67,7 @@ template <class V> [[gnu::always_inline]] inline V merge_cost(const Profile<V>& 
 
 // a band of slope m and depth h enters at the edge: into an empty edge band, or merged with an
 // edge band of the same slope, or in front of the others, the cheapest pair of neighbours
-// merged to make room
+// merged to make room; a band of no depth changes nothing
 template <class V> [[gnu::always_inline]] inline void enter_at_edge(Profile<V>& p, V m, V h)
 {
   const auto empty_edge = p.depth[0] == 0.0, same_slope = p.slope[0] == m;
@@ -90,9 +90,10 @@ template <class V> [[gnu::always_inline]] inline void enter_at_edge(Profile<V>& 
     shifted.slope[i] = lane_select(moved, p.slope[i - 1], lane_select(merged, mean, p.slope[i]));
     shifted.depth[i] = lane_select(moved, p.depth[i - 1], lane_select(merged, sum, p.depth[i]));
   }
-  const auto in_place = empty_edge | same_slope;
+  const auto nothing = !(h > 0.0);    // a band of no depth changes nothing
+  const auto in_place = empty_edge | same_slope | nothing;
   for (int i = 0; i < memory_bands; ++i) {
-    const V slope0 = lane_select(empty_edge, m, p.slope[0]);
+    const V slope0 = lane_select(empty_edge & !nothing, m, p.slope[0]);
     const V depth0 = p.depth[0] + h;
     p.slope[i] = lane_select(in_place, i == 0 ? slope0 : p.slope[i], shifted.slope[i]);
     p.depth[i] = lane_select(in_place, i == 0 ? depth0 : p.depth[i], shifted.depth[i]);

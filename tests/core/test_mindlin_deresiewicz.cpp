@@ -555,3 +555,23 @@ TEST(MindlinSliding, ForceTurnsTowardsNewSlipDirection)
   EXPECT_GT(cos_y, 0.9);
   EXPECT_NEAR(lost, mu * P * 10 * md.d, 0.2 * mu * P * 10 * md.d);
 }
+
+// §2.3 step 4: an increment across the memory's axis meets the no-slip stiffness 8 G* a, and the
+// memory turns with the force: from a sticking memory (uniform ratio below the limit) a sideways
+// ds gives T = T0 + 8 G* a ds exactly (magnitude and direction), and the axis follows T
+TEST(MindlinTurn, SidewaysIncrementIsElasticAndTurnsTheMemory)
+{
+  const double P = 1e-2;
+  const Vector3d n(0, 0, 1), T0(1e-3, 0, 0);
+  Driver<false> drv(coefficients(0.3, 0.0), P);
+  drv.step(P, Vector3d::Zero());
+  drv.hold(T0, P);
+  const Vector3d ds(0, 2e-10, 0);
+  drv.step(P, ds, n);
+  const Vector3d expect = T0 + 8.0 * kGstar * hertz_radius(P) * ds;
+  EXPECT_NEAR((drv.T() - expect).norm(), 0.0, 1e-12 * expect.norm());
+  const Vector3d axis = Eigen::Map<const Vector3d>(drv.h.load_dir);
+  EXPECT_NEAR((axis - expect.normalized()).norm(), 0.0, 1e-12);
+  // the memory carries |T|: a uniform ratio |T|/(mu P)
+  EXPECT_NEAR(drv.h.slope[0], expect.norm() / (0.3 * P), 1e-12);
+}
