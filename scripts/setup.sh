@@ -18,9 +18,11 @@ if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 export DEBIAN_FRONTEND=noninteractive
 
 # python3-dev: the PYTHON package of the LAMMPS that scripts/lammps2025.sh builds; clang: the
-# second compiler of the core tests (tests/test_clang_build.py)
+# second compiler of the core tests (tests/test_clang_build.py); libgmock-dev, libyaml-dev,
+# pkg-config: LAMMPS's own pair-style tester built against that LAMMPS (tests/lammps_harness)
 PACKAGES="lammps liblammps-dev python3-lammps openmpi-bin libopenmpi-dev libeigen3-dev
-  cmake make g++ clang libgtest-dev dpkg-dev xz-utils python3-dev
+  cmake make g++ clang libgtest-dev libgmock-dev libyaml-dev pkg-config dpkg-dev xz-utils
+  python3-dev
   python3-numpy python3-scipy python3-matplotlib python3-pytest
   python3-venv python3-setuptools python3-wheel"
 # LIGGGHTS 3.8 and the headers of exactly its library (Debian's patched ones) for the
