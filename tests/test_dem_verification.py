@@ -188,7 +188,6 @@ def test_oblique_impact_pair_in_gross_sliding(tmp_path, style):
     record("oblique_impact_pair", style, **errors)
     # the contact normal turns by 2 vt t_c / d = 7e-4 rad during the impact (t_c = 33 us), so
     # x and y are the normal and tangential directions to 7e-4 vt/vn = 3.5e-3 in v_x
-    # (upstream's analytic_tol is 0.01)
     assert max(errors.values()) < 5e-3
 
 

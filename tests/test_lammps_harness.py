@@ -162,18 +162,26 @@ def test_reference_system_has_contacts_that_change_during_the_run(yaml):
 
 
 def test_plugin_load_alone_is_lost_at_clear(harness, tmp_path):
-    # the same YAML with `plugin load` among its pre_commands instead of LAMMPS_PLUGIN_PATH:
-    # the first stages pass, the restart stage (after `clear`) no longer knows the style
+    # the same YAML with `plugin load` among its pre_commands instead of LAMMPS_PLUGIN_PATH
     tester, plugins = harness
-    text = YAMLS[0].read_text()
     library = os.path.realpath(plugins / "tylmp-plugin.so")
-    text = text.replace("pre_commands: ! |\n", f"pre_commands: ! |\n  plugin load {library}\n")
+    text = YAMLS[0].read_text().replace("pre_commands: ! |\n",
+                                         f"pre_commands: ! |\n  plugin load {library}\n")
     yaml = tmp_path / "pair-plugin_load.yaml"
+    # the tester checks the prerequisites before the pre_commands: it skips every test
     yaml.write_text(text)
+    proc, results = run_tester(tester, yaml, tmp_path, None)
+    assert "One or more prerequisite styles are not available" in proc.stderr
+    assert all(case["result"] == "SKIPPED" for case in results.values()) and results
+    # without the prerequisite line the first stages pass (the first force evaluation and the
+    # run, newton on and off); the restart stage starts with `clear` and stops
+    yaml.write_text(text.replace("  pair thornton/yin\n", "", 1))
     proc, results = run_tester(tester, yaml, tmp_path, None, "--gtest_filter=PairStyle.plain")
-    output = proc.stdout + proc.stderr
+    failure = failures(results["plain"])
     assert proc.returncode != 0
-    assert "Unrecognized pair style 'thornton/yin'" in output, output[-3000:]
+    assert len(results["plain"]["failures"]) == 1         # nothing failed before it
+    assert "ERROR: Unrecognized pair style 'thornton/yin'" in failure
+    assert "Last input line: read_restart" in failure
 
 
 def regenerate():
