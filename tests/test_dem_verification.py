@@ -83,7 +83,8 @@ neigh_modify delay 0 every 1 check yes
 timestep {dt!r}
 fix integrate all nve/sphere
 compute w all property/atom omegax omegay omegaz
-fix out all print {every} "$(x[1]) $(y[1]) $(x[2]) $(y[2]) $(vx[1]) $(vy[1]) $(vx[2]) $(vy[2]) $(C_w[1][3]) $(C_w[2][3]) $(fx[1]) $(fy[1])" file out.txt screen no title "# {COLUMNS}"
+fix out all print {every} "$(x[1]) $(y[1]) $(x[2]) $(y[2]) $(vx[1]) $(vy[1]) $(vx[2]) &
+  $(vy[2]) $(C_w[1][3]) $(C_w[2][3]) $(fx[1]) $(fy[1])" file out.txt screen no title "# {COLUMNS}"
 thermo 0
 run {steps}
 print "FINAL $(x[1]:%.17g) $(y[1]:%.17g) $(z[1]:%.17g) $(x[2]:%.17g) $(y[2]:%.17g) &
