@@ -102,13 +102,36 @@ build_lammps() {
     { tail -30 "$PREFIX.build.log" >&2; exit 1; }
   cmake --install "$bld" >/dev/null
   # the full source headers a plugin needs beyond the installed public ones (neigh_request.h,
-  # fix_neigh_history.h, GRANULAR, EXTRA-FIX), and the Python module
+  # fix_neigh_history.h, GRANULAR, EXTRA-FIX), the Python module, and the sources of LAMMPS's
+  # pair-style tester (tests/lammps_harness)
   mkdir -p "$PREFIX/share/lammps-src"
   (cd "$SRC" && cp -r --parents src/*.h src/fmt src/GRANULAR/*.h src/EXTRA-FIX/*.h python/lammps \
-     "$PREFIX/share/lammps-src/")
+     unittest/force-styles/*.cpp unittest/force-styles/*.h "$PREFIX/share/lammps-src/")
   printf '%s\n' "$DEB_UPSTREAM" "${LAMMPS_CONFIG[@]}" >"$PREFIX/tylmp-lammps-config.txt"
   touch "$PREFIX/.complete"
   rm -rf "$bld" "$SRC"         # the install holds all later runs need (headers included)
+}
+
+install_harness_sources() {
+  # the sources of LAMMPS's pair-style tester (unittest/force-styles: test_pair_style.cpp and
+  # its support files) for tests/lammps_harness: an install made before build_lammps kept them
+  # gets them from the cached tarball (or the source tree, fetched again if need be)
+  local dest="$PREFIX/share/lammps-src/unittest/force-styles"
+  [ -f "$dest/test_pair_style.cpp" ] && return 0
+  local tarball="$CACHE/apt-trixie/download/$DEB_ORIG" tmp="$PREFIX/share/lammps-src/unittest.tmp"
+  rm -rf "$tmp"
+  mkdir -p "$tmp"
+  if [ -f "$tarball" ]; then
+    tar -xf "$tarball" -C "$tmp" --strip-components=1 --wildcards \
+      '*/unittest/force-styles/*.cpp' '*/unittest/force-styles/*.h'
+  else
+    fetch_source
+    (cd "$SRC" && cp -r --parents unittest/force-styles/*.cpp unittest/force-styles/*.h "$tmp/")
+    rm -rf "$SRC"
+  fi
+  mkdir -p "$(dirname "$dest")"
+  mv "$tmp/unittest/force-styles" "$dest"
+  rm -rf "$tmp"
 }
 
 install_python_module() {
@@ -167,6 +190,7 @@ BUILD="${TYLMP_LAMMPS2025_BUILD_DIR:-$repo/build-lammps2025}"
 VENV="$PREFIX/tylmp/venv"
 bash "$repo/scripts/setup.sh" --packages          # compilers, MPI, python3-dev, Eigen, GoogleTest
 build_lammps
+install_harness_sources
 install_python_module
 build_tylmp
 write_wrapper

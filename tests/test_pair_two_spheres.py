@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import jkr_reference as ref
-from lmprun import LOAD_TYLMP, read_table, run_ok, two_spheres_box
+from lmprun import LOAD_TYLMP, read_table, reduce_local, run_ok, two_spheres_box
 
 E, NU, RHO = 70e9, 0.3, 2650.0
 R = 1.0e-4                         # sphere radius: R* = 50 µm (docs/theory.md §1.8)
@@ -202,6 +202,42 @@ def test_adhesive_contact_slides_at_mu_P_plus_2Pc(tmp_path):
     k0 = np.polyfit(y[1:20], T[1:20], 1)[0]
     assert k0 == pytest.approx(8 * G_STAR * a, rel=2e-2)
 
+
+
+def test_single_gives_the_normal_and_tangential_force_and_energy_of_compute(tmp_path):
+    # what LAMMPS's test_pair_style checks as "single" (f_i = -fsingle (x_j - x_i) for two
+    # atoms), which it cannot run for a granular style (docs/lammps_harness.md), done for a
+    # contact law with a tangential force: atom 2 pushed obliquely into an adhesive frictional
+    # contact, then pulled back; at every step single() (compute pair/local p1 p2 eng) gives
+    # the normal component P and the magnitude |T| of the force compute() put on atom 2, and
+    # the pair's energy
+    mu, Gamma, speed = 0.3, 0.3, 1e-3
+    extra = ("variable zero equal 0\n"
+             f"variable vx equal -{speed}*(step*dt<2e-5)+{speed}*(step*dt>=2e-5)\n"
+             f"variable vy equal {0.4 * speed}\nvariable vz equal {-0.2 * speed}\n"
+             "compute pl all pair/local p1 p2 eng\n" +
+             reduce_local("s", "c_pl[1]", "c_pl[2]", "c_pl[3]") +
+             "compute epair all pair thornton/yin\n")
+    motion = "move variable NULL NULL NULL v_vx v_vy v_vz"
+    cols = {"x": "x[2]", "y": "y[2]", "z": "z[2]", "fx": "fx[2]", "fy": "fy[2]", "fz": "fz[2]",
+            "P": "c_s[1]", "T": "c_s[2]", "U": "c_s[3]", "Epair": "c_epair"}
+    deck = two_sphere_deck(f"pair_style thornton/yin\npair_coeff * * {E} {NU} {mu} {Gamma}",
+                           motion, 4000, 1e-8, cols, extra=extra)
+    run_ok(deck, tmp_path)
+    d = read_table(tmp_path / "out.txt")
+    r = np.sqrt(d["x"] ** 2 + d["y"] ** 2 + d["z"] ** 2)
+    n = np.array([d["x"], d["y"], d["z"]]) / r
+    f = np.array([d["fx"], d["fy"], d["fz"]])
+    P = np.sum(f * n, axis=0)                               # repulsive > 0 on atom 2
+    T = np.linalg.norm(f - P * n, axis=0)
+    contact = d["P"] != 0
+    Pc = ref.pull_off_force(Gamma, R_STAR)
+    assert contact.sum() > 1000 and np.min(P[contact]) < -0.5 * Pc  # went tensile
+    assert np.max(T[contact]) > 0.1 * Pc                    # and loaded tangentially
+    assert np.allclose(d["P"][contact], P[contact], rtol=0, atol=1e-12 * Pc)
+    assert np.allclose(d["T"][contact], T[contact], rtol=0, atol=1e-12 * Pc)
+    assert np.allclose(d["U"], d["Epair"], rtol=1e-12, atol=1e-12 * np.max(np.abs(d["Epair"])))
+    assert np.all(P[~contact] == 0) and np.all(T[~contact] == 0)
 
 @pytest.mark.parametrize("axis", ["z", "x"])
 def test_loaded_pair_rotated_rigidly_keeps_its_force_in_the_body_frame(tmp_path, axis):
