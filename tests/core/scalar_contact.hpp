@@ -59,8 +59,8 @@ template <bool Adhesive> struct Contact {
   double R = glass_pair::kRstar;
   tycore::ContactHistory h;
 
-  // a new contact (begin_contact) whose previous normal force was P0
-  Contact(const tycore::PairCoefficients& coefficients, double P0)
+  // a new contact (begin_contact): its memory starts empty, its first step lays the first band
+  explicit Contact(const tycore::PairCoefficients& coefficients)
       : c(coefficients), k(tycore::pair_constants(coefficients))
   {
     tycore::begin_contact(h, Adhesive);

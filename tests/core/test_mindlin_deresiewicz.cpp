@@ -32,7 +32,7 @@ template <bool Adhesive> struct Driver {
   double dissipation = 0.0;
   double x = 0.0;    // accumulated tangential displacement along e_x
 
-  Driver(const tycore::PairCoefficients& coef, double P0) : contact(coef, P0), c(coef), h(contact.h) {}
+  explicit Driver(const tycore::PairCoefficients& coef) : contact(coef), c(coef), h(contact.h) {}
   void step(double P, const Vector3d& ds, const Vector3d& n = Vector3d(0, 0, 1), double twist = 0.0)
   {
     dissipation += contact.step_at_load(P, ds, n, twist).dissipation;
@@ -82,7 +82,7 @@ struct Mindlin {
 TEST(MindlinLoading, InitialStiffnessIs8Ga)
 {
   const double P = 1e-3;
-  Driver<false> drv(coefficients(0.3, 0.0), P);
+  Driver<false> drv(coefficients(0.3, 0.0));
   const double ds = 1e-13;
   drv.step(P, Vector3d::Zero());    // loaded normally first
   drv.step(P, Vector3d(ds, 0, 0));
@@ -99,7 +99,7 @@ TEST(MindlinLoading, MonotonicFollowsMindlinCurve)
 {
   const double P = 1e-3, mu = 0.3;
   const Mindlin md(mu, P, hertz_radius(P));
-  Driver<false> drv(coefficients(mu, 0.0), P);
+  Driver<false> drv(coefficients(mu, 0.0));
   const int n = 1000000;    // steps per d (explicit increments: error ~ 1/n)
   for (double frac = 0.05; frac < 0.99; frac += 0.05) {
     drv.move_to(frac * md.d, static_cast<int>(0.05 * n), P);
@@ -118,7 +118,7 @@ TEST(MindlinLoading, GrossSlidingAtMuP)
 {
   const double P = 1e-3, mu = 0.3;
   const Mindlin md(mu, P, hertz_radius(P));
-  Driver<false> drv(coefficients(mu, 0.0), P);
+  Driver<false> drv(coefficients(mu, 0.0));
   const int n = 200000;
   const double dx = md.d / n;
   int first_slide = -1;
@@ -146,7 +146,7 @@ TEST(MindlinUnloading, MasingCurveFromSliding)
 {
   const double P = 2e-3, mu = 0.3;
   const Mindlin md(mu, P, hertz_radius(P));
-  Driver<false> drv(coefficients(mu, 0.0), P);
+  Driver<false> drv(coefficients(mu, 0.0));
   const int n = 200000;
   drv.move_to(1.5 * md.d, 3 * n / 2, P);
   ASSERT_EQ(drv.h.sliding, 1.0);
@@ -167,7 +167,7 @@ TEST(MindlinReloading, MasingReloadAndReturnPointMemory)
 {
   const double P = 1e-3, mu = 0.4;
   const Mindlin md(mu, P, hertz_radius(P));
-  Driver<false> drv(coefficients(mu, 0.0), P);
+  Driver<false> drv(coefficients(mu, 0.0));
   const int n = 1000000;
   const double A = 0.6 * md.d, B = 0.5 * md.d;
   drv.move_to(A, static_cast<int>(0.6 * n), P);
@@ -201,7 +201,7 @@ TEST(MindlinEnergy, SmallLoopHysteresisScalesAsCube)
   double previous = 0.0;
   for (double frac : {0.4, 0.2, 0.1, 0.05}) {
     const double A = frac * md.d;
-    Driver<false> drv(coefficients(mu, 0.0), P);
+    Driver<false> drv(coefficients(mu, 0.0));
     const int n = 40000;
     drv.move_to(A, n, P);
     const double d0 = drv.dissipation, T0 = drv.Tx();
@@ -229,7 +229,7 @@ TEST(MindlinProportional, RatioTangentialToNormal)
 {
   const double mu = 0.5, c_ratio = 0.25;
   const double lambda = c_ratio * kEstar / (4.0 * kGstar);    // delta_t/delta
-  Driver<false> drv(coefficients(mu, 0.0), 0.0);
+  Driver<false> drv(coefficients(mu, 0.0));
   const double delta_end = 1e-7;
   const int n = 100000;
   for (int i = 1; i <= n; ++i) {
@@ -248,7 +248,7 @@ TEST(MindlinProportional, NoSlipPathDissipatesNothing)
 {
   const double mu = 0.5, c_ratio = 0.25;
   const double lambda = c_ratio * kEstar / (4.0 * kGstar);
-  Driver<false> drv(coefficients(mu, 0.0), 0.0);
+  Driver<false> drv(coefficients(mu, 0.0));
   const double delta_end = 1e-7;
   const int n = 100000;
   double work = 0.0;
@@ -267,11 +267,11 @@ TEST(MindlinProportional, NoSlipPathDissipatesNothing)
 // with mu = 0 or a non-adhesive contact at zero load there is no tangential force
 TEST(MindlinLimits, FrictionlessAndUnloadedContactCarryNoShear)
 {
-  Driver<false> drv(coefficients(0.0, 0.0), 1e-3);
+  Driver<false> drv(coefficients(0.0, 0.0));
   drv.step(1e-3, Vector3d(1e-9, 2e-9, 0));
   EXPECT_EQ(drv.T().norm(), 0.0);
   EXPECT_EQ(drv.h.sliding, 1.0);
-  Driver<false> d2(coefficients(0.3, 0.0), 1e-3);
+  Driver<false> d2(coefficients(0.3, 0.0));
   d2.step(1e-3, Vector3d(1e-9, 0, 0));
   EXPECT_GT(d2.T().norm(), 0.0);
   d2.step(0.0, Vector3d(1e-9, 0, 0));
@@ -284,7 +284,7 @@ TEST(MindlinRotation, TwistAboutNormal)
 {
   const double P = 1e-2, psi = 0.37;
   const Vector3d n(0, 0, 1), T0(3e-4, -1e-4, 0);
-  Driver<false> drv(coefficients(0.3, 0.0), P);
+  Driver<false> drv(coefficients(0.3, 0.0));
   drv.step(P, Vector3d::Zero());
   drv.hold(T0, P);
   ASSERT_LT(T0.norm(), 0.3 * P);
@@ -302,7 +302,7 @@ TEST(MindlinRotation, TwistAboutNormal)
 TEST(MindlinRotation, TiltOfNormalCarriesT)
 {
   const double P = 1e-2;
-  Driver<false> drv(coefficients(0.3, 0.0), P);
+  Driver<false> drv(coefficients(0.3, 0.0));
   drv.step(P, Vector3d::Zero());
   const Vector3d n(0, 0, 1), T0(2e-4, 0, 0);
   drv.hold(T0, P);
@@ -321,7 +321,7 @@ TEST(MindlinRotation, ObjectivityUnderRigidRotation)
   const double mu = 0.3;
   const Eigen::Matrix3d Q =
       Eigen::AngleAxisd(0.9, Vector3d(1, 2, -0.5).normalized()).toRotationMatrix();
-  Driver<false> a(coefficients(mu, 0.0), 1e-3), b(coefficients(mu, 0.0), 1e-3);
+  Driver<false> a(coefficients(mu, 0.0)), b(coefficients(mu, 0.0));
   const Vector3d n(0, 0, 1);
   for (int i = 0; i < 3000; ++i) {    // micro-slip, reversals, varying P; below gross sliding
     const double P = 1e-3 * (1.0 + 0.5 * std::sin(0.01 * i));
@@ -398,7 +398,7 @@ TEST(MindlinAdhesion, PeeledRadiusFromJkrToHertzOfEffectiveLoad)
       return std::cbrt(3.0 * kRstar * (P + 2.0 * Pc + std::sqrt(root)) / (4.0 * kEstar));
     };
     ASSERT_NEAR(a_peel(0.0), a_jkr, 1e-12 * a_jkr);
-    Driver<true> drv(c, P);
+    Driver<true> drv(c);
     const double dx = 0.02 * Tc / (8.0 * kGstar * a_jkr);
     double prev = 2.0 * a_jkr;
     int peeled_steps = 0;
@@ -447,7 +447,7 @@ TEST(MindlinAdhesion, PeelingBelowTcIsElasticWithoutMicroSlip)
   }
   ASSERT_LT(Tref, Tc);
 
-  Driver<true> drv(c, P);
+  Driver<true> drv(c);
   const double ds0 = 1e-14;
   drv.step(P, Vector3d(ds0, 0, 0));
   EXPECT_NEAR(drv.Tx(), 8.0 * kGstar * a_peel(0.0) * ds0, 1e-10 * drv.Tx());
@@ -478,7 +478,7 @@ TEST(MindlinAdhesion, PeelingThenMicroSlipThenSlidingAtMuPPlus2Pc)
   const double Tc = 4.0 * std::sqrt(Pc * (P + Pc) * kGstar / kEstar);
   const double a_T = std::cbrt(3.0 * kRstar * Peff / (4.0 * kEstar));
   const double d_eff = 3.0 * mu * Peff / (16.0 * kGstar * a_T);
-  Driver<true> drv(c, P);
+  Driver<true> drv(c);
   const double dx = d_eff / 200000;
   int steps = 0;
   while (drv.h.peeling != 0.0 && steps < 10000000) {
@@ -515,7 +515,7 @@ TEST(MindlinAdhesion, SlidingDuringPeelingAtLowLoad)
   const double Pc = tycore::jkr::pull_off_force(c.Gamma, kRstar);
   for (double p : {-0.5, 0.0, 5.0}) {
     const double P = p * Pc, limit = mu * (P + 2.0 * Pc);
-    Driver<true> drv(c, P);
+    Driver<true> drv(c);
     const double k0 = 8.0 * kGstar * hertz_radius(P + 2.0 * Pc);
     const double dx = limit / k0 / 20000;
     int steps = 0;
@@ -542,7 +542,7 @@ TEST(MindlinSliding, ForceTurnsTowardsNewSlipDirection)
 {
   const double P = 1e-3, mu = 0.3;
   const Mindlin md(mu, P, hertz_radius(P));
-  Driver<false> drv(coefficients(mu, 0.0), P);
+  Driver<false> drv(coefficients(mu, 0.0));
   drv.move_to(2.0 * md.d, 20000, P);
   ASSERT_EQ(drv.h.sliding, 1.0);
   const double d0 = drv.dissipation;
@@ -563,7 +563,7 @@ TEST(MindlinTurn, SidewaysIncrementIsElasticAndTurnsTheMemory)
 {
   const double P = 1e-2;
   const Vector3d n(0, 0, 1), T0(1e-3, 0, 0);
-  Driver<false> drv(coefficients(0.3, 0.0), P);
+  Driver<false> drv(coefficients(0.3, 0.0));
   drv.step(P, Vector3d::Zero());
   drv.hold(T0, P);
   const Vector3d ds(0, 2e-10, 0);

@@ -71,7 +71,7 @@ TEST(ThorntonYinHertz, NormalForceAndInitialShearStiffness)
 {
   const auto c = coefficients(0.3, 0.0);
   for (double d : {1e-9, 1e-8, 1e-7}) {
-    Contact<false> h(c, 0.0);
+    Contact<false> h(c);
     const double hertz = 4.0 / 3.0 * kEstar * std::sqrt(kRstar) * std::pow(d, 1.5);
     h.step(d, Vector3d::Zero());
     const Vector3d ds(1e-14, 0, 0);
@@ -99,8 +99,8 @@ TEST(ThorntonYinHertz, NormalForceAndInitialShearStiffness)
 TEST(ThorntonYinSpecialisation, GammaZeroEqualsAdhesiveTemplate)
 {
   const auto c = coefficients(0.3, 0.0);
-  Contact<true> ha(c, 0.0);
-  Contact<false> hh(c, 0.0);
+  Contact<true> ha(c);
+  Contact<false> hh(c);
   double max_T = 0.0;
   int strict_steps = 0;
   for (int i = 0; i < 5000; ++i) {
@@ -134,8 +134,8 @@ TEST(ThorntonYinSpecialisation, GammaZeroEqualsAdhesiveTemplate)
 TEST(ThorntonYinSpecialisation, GammaZeroEqualsAdhesiveTemplateWithSliding)
 {
   const auto c = coefficients(0.3, 0.0);
-  Contact<true> ha(c, 0.0);
-  Contact<false> hh(c, 0.0);
+  Contact<true> ha(c);
+  Contact<false> hh(c);
   double worst = 0.0, worst_norm = 0.0;
   int worst_at = -1, slides = 0;
   for (int i = 0; i < 5000; ++i) {
@@ -166,7 +166,7 @@ TEST(ThorntonYinHistory, ZeroIncrementIsIdempotent)
   };
   for (const Case& k : {Case{0.3, 2e-11, 40}, Case{0.3, 3e-11, 3}, Case{0.3, 5e-10, 50}}) {
     const auto c = coefficients(k.mu, 0.3);
-    Contact<true> h(c, -8.0 / 9.0 * s.Pc);
+    Contact<true> h(c);
     const double d = 20.0 * s.du;
     Result r{};
     for (int i = 0; i < k.steps; ++i) r = h.step(d, Vector3d(k.ds, 0.3 * k.ds, 0));
@@ -190,8 +190,8 @@ TEST(ThorntonYinSymmetry, ActionReactionBetweenPartners)
 {
   const Jkr s(0.3);
   const auto c = coefficients(0.3, 0.3);
-  Contact<true> hi(c, -8.0 / 9.0 * s.Pc);
-  Contact<true> hj(c, -8.0 / 9.0 * s.Pc);
+  Contact<true> hi(c);
+  Contact<true> hj(c);
   for (int i = 0; i < 4000; ++i) {
     const double d = path_delta(i, 5.0 * s.du);
     const Vector3d ds = path_ds(i, 2e-10);
@@ -219,7 +219,7 @@ TEST(ThorntonYinNormalCycle, SnapOnCompressRetractBreak)
 {
   const Jkr s(0.3);
   const auto c = coefficients(0.3, 0.3);
-  Contact<true> h(c, -8.0 / 9.0 * s.Pc);
+  Contact<true> h(c);
   auto r = h.step(0.0, Vector3d::Zero());
   EXPECT_NEAR(r.P, -8.0 / 9.0 * s.Pc, 1e-12 * s.Pc);
   EXPECT_NEAR(r.contact_radius, std::cbrt(4.0 / 9.0) * s.a0, 1e-12 * s.a0);
@@ -280,7 +280,7 @@ TEST(ThorntonYinOblique, PeelingRadiusThenSlidingLimit)
     const double d = dd * s.du;
     const double P = s.P(s.radius(d));
     const double Peff = P + 2.0 * s.Pc;
-    Contact<true> h(c, -8.0 / 9.0 * s.Pc);
+    Contact<true> h(c);
     Result r = h.step(d, Vector3d::Zero());
     const double dx = 1e-12;
     bool was_peeling = true;
@@ -338,7 +338,7 @@ TEST(ThorntonYinOblique, PeelingRadiusThenSlidingLimit)
 double balance_defect(int refine, double& dissipated)
 {
   const auto c = coefficients(0.3, 0.0);
-  Contact<false> h(c, 0.0);
+  Contact<false> h(c);
   const double d = 2e-8;
   auto r = h.step(d, Vector3d::Zero());
   double work = 0.0, diss = 0.0;
@@ -378,7 +378,7 @@ TEST(ThorntonYinEnergy, PeelingLoadingDissipatesNothing)
   const double d = 0.0, P = -8.0 / 9.0 * s.Pc;
   const double Tc = 4.0 * std::sqrt(s.Pc * (P + s.Pc) * kGstar / kEstar);
   ASSERT_LT(Tc, c.mu * (P + 2.0 * s.Pc));
-  Contact<true> h(c, P);
+  Contact<true> h(c);
   auto r = h.step(d, Vector3d::Zero());
   double work = 0.0, diss = 0.0;
   const double dx = 1e-14;
