@@ -1,0 +1,62 @@
+// Does a box's rate explain its change? A pair style that adds the affine contact velocity
+// L (x_i - x_j) reads L = h_rate h^-1 from LAMMPS's domain->h_rate (docs/theory.md §5.1, §10.1);
+// a fix that changes the box without setting h_rate (LAMMPS 2021's fix deform 'volume', a
+// barostat) silently removes part of that velocity. The check compares the change of the box
+// over a step with what h_rate predicts. Plain C++, no LAMMPS (tests/core/test_box_rate.cpp).
+//
+// Boxes and rates are in LAMMPS's layout h[6] = lx ly lz yz xz xy. A tilt flip (fix deform
+// 'flip yes', fix cell/servo) replaces the box h by h M, M unit upper-triangular with integer flip
+// counts (docs/theory.md §10.3): the same lattice of images. Its jumps are no change of the box:
+// the box and the rate are compared in the basis of the box before the flip, h M^-1 and h_rate
+// M^-1 (a flip leaves L = h_rate h^-1 unchanged, so h_rate goes to h_rate M with the box).
+#ifndef TYCORE_BOX_RATE_HPP
+#define TYCORE_BOX_RATE_HPP
+
+#include "cell_kinematics.hpp"
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+
+#include <cmath>
+
+namespace tycore {
+
+// the component (index into the LAMMPS layout) whose change from h0 to h1 over dt the rate
+// h_rate does not explain, or -1. h_rate explains a change if it was held over the step
+// (fix deform erate), or if the strain rate L = h_rate/h was, with h at the end of the step
+// (fix cell/servo: h1 = h0 exp(L dt)) or at its start (fix deform trate: h1 = h0 exp(L dt) with
+// h_rate = L h0): exact at any rate for the edges; the tilts are compared linearly. Changes
+// below 1e-12 of the edge a component is measured against are round-off.
+inline int unexplained_box_change(const double h0[6], const double h1[6], const double h_rate[6],
+                                  double dt)
+{
+  const Eigen::Matrix3d H0 = cell_matrix_from_lammps(h0), H1 = cell_matrix_from_lammps(h1);
+  const Eigen::Matrix3d R = cell_matrix_from_lammps(h_rate);
+  // the flip counts: H0^-1 H1 is M up to one step's change
+  Eigen::Matrix3d M = (H0.inverse() * H1).array().round().matrix();
+  M.diagonal().setOnes();
+  M(1, 0) = M(2, 0) = M(2, 1) = 0.0;
+  const Eigen::Matrix3d Minv = M.inverse();
+  const Eigen::Matrix3d box = H1 * Minv, rate = R * Minv;
+  // (row, column) of h[k] and the edge its change is measured against
+  constexpr int row[6] = {0, 1, 2, 1, 0, 0}, column[6] = {0, 1, 2, 2, 2, 1};
+  constexpr int edge[6] = {0, 1, 2, 1, 0, 0};
+  for (int k = 0; k < 6; ++k) {
+    const int i = row[k], j = column[k];
+    const double before = H0(i, j), after = box(i, j);
+    const double change = after - before;
+    const double from_rate = rate(i, j) * dt;
+    const double scale = std::fabs(change) + std::fabs(from_rate);
+    const auto agrees = [&](double expected) { return std::fabs(change - expected) <= 1e-3 * scale; };
+    const bool explained = agrees(from_rate) ||
+        (k < 3 && after > 0.0 && agrees(-after * std::expm1(-from_rate / after))) ||
+        (k < 3 && before > 0.0 && agrees(before * std::expm1(from_rate / before)));
+    // (a tilt is measured against the edge it shears, not against its own size, which may be 0)
+    if (!explained && scale > 1e-12 * std::fabs(box(edge[k], edge[k]))) return k;
+  }
+  return -1;
+}
+
+}    // namespace tycore
+
+#endif
