@@ -21,14 +21,20 @@
 
 namespace tycore {
 
-// the component (index into the LAMMPS layout) whose change from h0 to h1 over dt the rate
-// h_rate does not explain, or -1. h_rate explains a change if it was held over the step
+// a component (index into the LAMMPS layout) whose change from h0 to h1 over dt the rate
+// h_rate does not explain (-1: none), its change and what the rate gives (flips taken out)
+struct BoxChange {
+  int component = -1;
+  double change = 0.0, from_rate = 0.0;
+};
+
+// The first component whose change h_rate does not explain. h_rate explains a change if it was held over the step
 // (fix deform erate), or if the strain rate L = h_rate/h was, with h at the end of the step
 // (fix cell/servo: h1 = h0 exp(L dt)) or at its start (fix deform trate: h1 = h0 exp(L dt) with
 // h_rate = L h0): exact at any rate for the edges; the tilts are compared linearly. Changes
 // below 1e-12 of the edge a component is measured against are round-off.
-inline int unexplained_box_change(const double h0[6], const double h1[6], const double h_rate[6],
-                                  double dt)
+inline BoxChange unexplained_box_change(const double h0[6], const double h1[6],
+                                        const double h_rate[6], double dt)
 {
   const Eigen::Matrix3d H0 = cell_matrix_from_lammps(h0), H1 = cell_matrix_from_lammps(h1);
   const Eigen::Matrix3d R = cell_matrix_from_lammps(h_rate);
@@ -52,9 +58,10 @@ inline int unexplained_box_change(const double h0[6], const double h1[6], const 
         (k < 3 && after > 0.0 && agrees(-after * std::expm1(-from_rate / after))) ||
         (k < 3 && before > 0.0 && agrees(before * std::expm1(from_rate / before)));
     // (a tilt is measured against the edge it shears, not against its own size, which may be 0)
-    if (!explained && scale > 1e-12 * std::fabs(box(edge[k], edge[k]))) return k;
+    if (!explained && scale > 1e-12 * std::fabs(box(edge[k], edge[k])))
+      return {k, change, from_rate};
   }
-  return -1;
+  return {};
 }
 
 }    // namespace tycore

@@ -582,8 +582,8 @@ void PairThorntonYin::check_box_rate()
   box_from_setup = update->setupflag;
   if (!update->setupflag && !domain->deform_vremap && !box_rate_warned && comparable) {
     static const char *const component[6] = {"xx", "yy", "zz", "yz", "xz", "xy"};
-    const int k = tycore::unexplained_box_change(box_h, h, domain->h_rate, update->dt);
-    if (k >= 0) {
+    const tycore::BoxChange c = tycore::unexplained_box_change(box_h, h, domain->h_rate, update->dt);
+    if (c.component >= 0) {
       box_rate_warned = 1;
       if (comm->me == 0)
         error->warning(FLERR, "pair thornton/yin: box component h_{} changed by {:.4g} in the "
@@ -592,7 +592,7 @@ void PairThorntonYin::check_box_rate()
                        "version, a barostat), so the affine part of the contact velocity "
                        "is missing for that direction. Use fix cell/servo, fix deform with "
                        "erate/trate/final on every changing dimension, or fix deform remap v",
-                       component[k], h[k] - box_h[k], domain->h_rate[k] * update->dt);
+                       component[c.component], c.change, c.from_rate);
     }
   }
   for (int k = 0; k < 6; ++k) box_h[k] = h[k];
