@@ -80,7 +80,7 @@ class CellProgramme {
 
   // ---- its keywords and what it needs
   // read keyword `key`'s values from args when it is one of its own (true), else false
-  virtual bool keyword(const std::string& key, ArgList& args) { return false; }
+  virtual bool keyword(const std::string&, ArgList&) { return false; }
   // after the keywords: build what depends on them and refuse what does not fit (throws)
   virtual void finish() {}
   virtual ProgrammeProfile profile() const = 0;
@@ -100,7 +100,7 @@ class CellProgramme {
   // ---- the test
   // enter from the cumulative strain of the test (paths: a leg to their first point); the text
   // to log, if any
-  virtual std::string enter(const Vector6d& strain, double dt) { return ""; }
+  virtual std::string enter(const Vector6d&, double) { return ""; }
   // at the setup of each run: what needs the cell (sigma_n0), evaluations and checks (throws);
   // returns a warning to give, if any
   virtual std::string begin_run(const CellState&, SettingValues&) { return ""; }
@@ -114,7 +114,7 @@ class CellProgramme {
 
   // ---- its outputs
   // its own outputs (profile().columns) into the output vector o
-  virtual void outputs(const CellState&, double* o) const {}
+  virtual void outputs(const CellState&, double*) const {}
   // the fraction of its own course done, and the simulated time left (paths); NaN if none
   virtual double progress() const { return std::numeric_limits<double>::quiet_NaN(); }
   virtual double remaining_time() const { return std::numeric_limits<double>::quiet_NaN(); }
