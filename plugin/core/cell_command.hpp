@@ -228,6 +228,74 @@ inline void check_extra_column(const std::string& name, const std::string& ref,
 
 
 // ---------------------------------------------------------------------------------------------
+// The extra columns of a record (`extra N name ref ...`): a reference c_ID, c_ID[i], f_ID, f_ID[i]
+// or v_name names a global scalar or vector or an equal-style variable; an unindexed global
+// vector gives one column per element, name[1] ... name[n]
+
+struct Reference {
+  char kind;              // 'c' compute, 'f' fix, 'v' variable
+  std::string id;         // its ID or name
+  int index = 0;          // [i], 0 without
+};
+
+inline Reference parse_reference(const std::string& ref)
+{
+  const std::size_t open = ref.find('[');
+  Reference r{ref[0], ref.substr(2, open == std::string::npos ? open : open - 2)};
+  if (open != std::string::npos) r.index = std::atoi(ref.c_str() + open + 1);
+  return r;
+}
+
+// what a reference names, as the fix finds it
+struct ReferenceTarget {
+  bool exists = false;
+  bool scalar = false, vector = false, array = false, peratom = false, local = false;
+  int size = 0;                  // of a global vector
+  bool variable_size = false;    // its size known only when it is computed
+  bool equal_style = false, atom_style = false, vector_style = false;    // a variable
+};
+
+// the columns (name, reference) of the request `name ref`; a RecordError names what is wrong
+inline std::vector<std::pair<std::string, std::string>>
+extra_columns_of(const std::string& name, const std::string& ref, const ReferenceTarget& t)
+{
+  const char* accepted = "extra takes global scalars and vectors (c_ID, c_ID[i], f_ID, f_ID[i]) "
+                         "and equal-style variables (v_name)";
+  const Reference r = parse_reference(ref);
+  const std::string column = "extra column " + name + ": ";
+  if (r.kind == 'v') {
+    if (!t.exists) throw RecordError(column + "variable " + r.id + " does not exist");
+    if (!t.equal_style)
+      throw RecordError(column + "variable " + r.id + " is not a number each step (" +
+                        (t.atom_style ? "it is per-atom" : t.vector_style
+                                            ? "it is vector-style" : "it is a string, read as 0")
+                        + "); " + accepted);
+    return {{name, ref}};
+  }
+  const std::string source = (r.kind == 'c' ? "compute " : "fix ") + r.id;
+  if (!t.exists) throw RecordError(column + source + " does not exist");
+  const bool indexed = r.index != 0 || ref.find('[') != std::string::npos;
+  const char* kind = (!indexed && t.scalar) || t.vector ? nullptr
+                     : t.array                          ? "a global array"
+                     : t.peratom                        ? "per-atom (not global)"
+                     : t.local                          ? "local (not global)"
+                     : indexed                          ? "no global vector"
+                                                        : "no global scalar or vector";
+  if (kind)
+    throw RecordError(column + source + " is " + kind + "; " + accepted + " (reduce per-atom or "
+                      "local values first, e.g. with compute reduce)");
+  if (indexed && !t.variable_size && (r.index < 1 || r.index > t.size))
+    throw RecordError(column + ref + " is out of range: " + source + " has a global vector of "
+                      + std::to_string(t.size) + " values (index 1 to " + std::to_string(t.size)
+                      + ")");
+  if (indexed || t.scalar) return {{name, ref}};
+  std::vector<std::pair<std::string, std::string>> columns;
+  for (int k = 1; k <= t.size; ++k)
+    columns.emplace_back(name + "[" + std::to_string(k) + "]", ref + "[" + std::to_string(k) + "]");
+  return columns;
+}
+
+// ---------------------------------------------------------------------------------------------
 // Checks of a test at the setup of each run and while it runs: the messages (empty when all is
 // well), which the fix gives as errors or warnings naming itself
 
@@ -315,6 +383,39 @@ inline UntilDirection judge_until_direction(const UntilTarget& u, double run_sta
                             "of the rates", name, u.value, name, run_start + 0.0, now, step);
   return d;
 }
+
+// A servo at its cap whose stress error has grown since it reached the cap has lost control of
+// the stress: a warning says what to change, once per run. At the cap while the error shrinks
+// (an approach to a far target at the cap's pace) the cap only sets the pace, and is no fault.
+struct CapWatch {
+  static constexpr int WARN_STEPS = 1000;    // at the cap this long before a warning
+  long long steps = 0;                       // steps at the cap in a row
+  double error_at_cap = 0.0;                 // the stress error when it reached the cap
+  bool warned = false;                       // in this run
+
+  // whether the warning is due after a step (enabled: keyword cap_warning; loaded: contacts)
+  bool due(const ServoCommandOf<6>& c, bool enabled, bool loaded)
+  {
+    if (!c.saturated) {
+      steps = 0;
+      return false;
+    }
+    if (++steps == 1) {
+      error_at_cap = c.stress_error;
+      return false;
+    }
+    if (steps % WARN_STEPS != 0 || !enabled || warned || !loaded || !(c.stress_error > error_at_cap))
+      return false;
+    return warned = true;
+  }
+  std::string message(double cap, double error_now, const std::string& held, double rate) const
+  {
+    return printf_text("the servo has been at its strain-rate cap max_rate = %.3g for %lld "
+                       "steps and its stress error grew from %.4g to %.4g (%s; prescribed rate "
+                       "%.4g 1/s); raise max_rate or lower the prescribed rate (said once per "
+                       "run)", cap, steps, error_at_cap, error_now, held.c_str(), rate);
+  }
+};
 
 }    // namespace tycore
 

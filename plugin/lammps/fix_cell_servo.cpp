@@ -41,7 +41,6 @@ namespace out = tycore::out;
 namespace {
 
 constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
-constexpr int SATURATION_WARN_STEPS = 1000;
 
 // the key of a fix's carry (tycore::TestCarry): its LAMMPS instance and ID
 std::string carry_key(LAMMPS *lmp, const char *id)
@@ -76,7 +75,6 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, a
   force_reneighbor = 1;    // a tilt flip (pre_exchange) needs a neighbor list rebuild
   next_reneighbor = -1;
   stress.setZero();
-  std::fill(std::begin(stiffness_sums), std::end(stiffness_sums), 0.0);
   std::fill(std::begin(output), std::end(output), NaN);
   std::fill(std::begin(origin), std::end(origin), NaN);
   std::fill(std::begin(box_left), std::end(box_left), NaN);
@@ -244,8 +242,7 @@ void FixCellServo::init()
   mean_density = total.mean_density();
   solid_volume = total.solid_volume();
   if (record) record->resolve_extra();
-  saturated_steps = 0;
-  saturation_warned = false;
+  cap_watch = {};
 }
 
 // a setting's value at this step: the number, or its equal-style variable, checked
@@ -346,7 +343,11 @@ void FixCellServo::end_of_step()
     error->all(FLERR, "fix cell/servo: {}", e.what());
   }
   check_equilibrium();
-  watch_rate_cap(next);
+  // a servo at its cap whose stress error grows (tycore::CapWatch), once per run
+  if (cap_watch.due(next, command.cap_warning, contacts > 0.0) && comm->me == 0)
+    error->warning(FLERR, "fix cell/servo: {}", cap_watch.message(
+        command.settings.max_strain_rate, next.stress_error, programme().held_targets(stress),
+        programme().largest_rate()));
   const double fastest = next.strain_rate.cwiseAbs().maxCoeff();
   if (fastest * update->dt > tycore::MAX_STRAIN_PER_STEP)
     error->all(FLERR, "fix cell/servo: at step {} the strain rate {:.4g} 1/s strains the cell by "
@@ -446,28 +447,6 @@ void FixCellServo::check_rates()
   if (!fast.empty() && comm->me == 0) error->warning(FLERR, "fix cell/servo {}: {}", id, fast);
 }
 
-// a servo at its cap whose stress error has grown since it reached the cap has lost control
-// of the stress: say what to change, once per run (`cap_warning no` for a deck at the cap on
-// purpose); at the cap while the error shrinks the cap only sets the pace
-void FixCellServo::watch_rate_cap(const tycore::ServoCommandOf<6> &next)
-{
-  if (!next.saturated) {
-    saturated_steps = 0;
-  } else if (++saturated_steps == 1) {
-    saturated_error = next.stress_error;
-  } else if (saturated_steps % SATURATION_WARN_STEPS == 0 && command.cap_warning &&
-             !saturation_warned && contacts > 0.0 && next.stress_error > saturated_error) {
-    saturation_warned = true;
-    if (comm->me == 0)
-      error->warning(FLERR, "fix cell/servo: the servo has been at its strain-rate cap "
-                     "max_rate = {:.3g} for {} steps and its stress error grew from {:.4g} to "
-                     "{:.4g} ({}; prescribed rate {:.4g} 1/s); raise max_rate or lower the "
-                     "prescribed rate (said once per run)", command.settings.max_strain_rate,
-                     saturated_steps, saturated_error, next.stress_error,
-                     programme().held_targets(stress), programme().largest_rate());
-  }
-}
-
 /* ----------------------------------------------------------------------
    the measurement: stress (compression positive) from the pair virial, affine stiffness and
    contact statistics from the pair's tallies
@@ -485,7 +464,7 @@ void FixCellServo::measure()
   MPI_Allreduce(const_cast<double *>(pair->cell_tallies().sum), total.sum, CellTallies::SIZE,
                 MPI_DOUBLE, MPI_SUM, world);
   std::copy(total.sum + CellTallies::STIFFNESS,
-            total.sum + CellTallies::STIFFNESS + tycore::AffineStiffnessSums::size, stiffness_sums);
+            total.sum + CellTallies::STIFFNESS + stiffness_sums.size, stiffness_sums.sum.begin());
   contacts = total.sum[CellTallies::CONTACTS];
   sliding = total.sum[CellTallies::SLIDING];
   force_sum = total.sum[CellTallies::FORCE];
@@ -500,14 +479,8 @@ Eigen::Matrix3d FixCellServo::cell_matrix() const
 // the stiffness entries the tallies do not make read 0 here (the servo uses none of them)
 tycore::CellMeasurementOf<6> FixCellServo::cell_measurement() const
 {
-  tycore::CellMeasurementOf<6> cell;
-  const double volume = domain->xprd * domain->yprd * domain->zprd;
-  tycore::AffineStiffnessSums sums;
-  std::copy(stiffness_sums, stiffness_sums + sums.size, sums.sum.begin());
-  cell.stress = stress;
-  cell.stiffness = sums.stiffness(volume);
-  cell.strain = test.strain.voigt(cell_matrix());
-  return cell;
+  return {stress, stiffness_sums.stiffness(domain->xprd * domain->yprd * domain->zprd),
+          test.strain.voigt(cell_matrix())};
 }
 
 /* ----------------------------------------------------------------------

@@ -50,7 +50,7 @@ class FixCellServo : public Fix, private tycore::SettingValues {
 
   // measurements of the last step
   tycore::Vector6d stress;
-  double stiffness_sums[tycore::AffineStiffnessSums::size];
+  tycore::AffineStiffnessSums stiffness_sums;
   unsigned tallied_entries = 0;
   double contacts = 0.0, sliding = 0.0, force_sum = 0.0;
   bigint measured_step = -1, output_step = -1, particle_step = -1;
@@ -65,10 +65,9 @@ class FixCellServo : public Fix, private tycore::SettingValues {
   // the end of the test ('until'), progress, the cap watch
   double wall_start = 0.0, progress_at_setup = 0.0;
   double until_run_start = 0.0;
-  bigint step_start = 0, saturated_steps = 0;
+  bigint step_start = 0;
   bool until_met = false, until_direction_checked = false;
-  double saturated_error = 0.0;
-  bool saturation_warned = false;
+  tycore::CapWatch cap_watch;
   tycore::TiltFlip pending_flip;
   class Irregular *irregular = nullptr;
 
@@ -91,7 +90,6 @@ class FixCellServo : public Fix, private tycore::SettingValues {
   void check_equilibrium();
   void choose_rate_cap();
   void check_rates();
-  void watch_rate_cap(const tycore::ServoCommandOf<6> &command);
 };
 
 }    // namespace LAMMPS_NS

@@ -32,17 +32,6 @@ std::vector<std::pair<const LAMMPS *, const CellRecord *>> &live_records()
   return records;
 }
 
-// what a reference c_ID, c_ID[i], f_ID or f_ID[i] names, for the messages
-template <class T> const char *global_kind(const T *source, bool indexed)
-{
-  if (!indexed && source->scalar_flag) return nullptr;                     // a scalar: fine
-  if (source->vector_flag) return nullptr;                                 // a vector: fine
-  if (source->array_flag) return "a global array";
-  if (source->peratom_flag) return "per-atom";
-  if (source->local_flag) return "local";
-  return indexed ? "no global vector" : "no global scalar or vector";
-}
-
 }    // namespace
 
 CellRecord::CellRecord(LAMMPS *lmp, const std::string &fix_id, const std::string &path,
@@ -60,73 +49,39 @@ CellRecord::~CellRecord()
                 records.end());
 }
 
-// a global vector without an index gives its elements NAME[1..n]; an index beyond the
-// vector is refused here (LAMMPS would stop on it at the first row without naming the column)
+// what each request names (tycore::extra_columns_of): the columns it gives, checked
 void CellRecord::resolve_extra()
 {
-  const char *accepted = "extra takes global scalars and vectors (c_ID, c_ID[i], f_ID, "
-                         "f_ID[i]) and equal-style variables (v_name)";
   columns_.clear();
   for (const auto &request : requests_) {
-    const std::string &name = request.first, &ref = request.second;
-    auto add = [&](const std::string &column, const std::string &reference) {
-      try {
-        tycore::check_extra_column(column, reference, columns_);
-      } catch (std::exception &x) {
-        error->all(FLERR, "fix cell/servo {}: {}", fix_id_, x.what());
-      }
-      columns_.emplace_back(column, reference);
+    const tycore::Reference r = tycore::parse_reference(request.second);
+    tycore::ReferenceTarget t;
+    auto inspect = [&t](auto *source) {
+      t.exists = true;
+      t.scalar = source->scalar_flag, t.vector = source->vector_flag;
+      t.array = source->array_flag, t.peratom = source->peratom_flag;
+      t.local = source->local_flag;
+      t.size = source->size_vector, t.variable_size = source->size_vector_variable;
     };
-    if (ref.compare(0, 2, "v_") == 0) {
-      const int ivar = input->variable->find(ref.c_str() + 2);
-      if (ivar < 0)
-        error->all(FLERR, "fix cell/servo {}: extra column {}: variable {} does not exist",
-                   fix_id_, name, ref.substr(2));
-      if (!input->variable->equalstyle(ivar))
-        error->all(FLERR, "fix cell/servo {}: extra column {}: variable {} is not a number "
-                   "each step ({}); {}", fix_id_, name, ref.substr(2),
-                   input->variable->atomstyle(ivar) ? "it is per-atom"
-                   : input->variable->vectorstyle(ivar) ? "it is vector-style"
-                                                        : "it is a string, read as 0",
-                   accepted);
-      add(name, ref);
-      continue;
+    if (r.kind == 'v') {
+      const int ivar = input->variable->find(r.id.c_str());
+      t.exists = ivar >= 0;
+      t.equal_style = t.exists && input->variable->equalstyle(ivar);
+      t.atom_style = t.exists && input->variable->atomstyle(ivar);
+      t.vector_style = t.exists && input->variable->vectorstyle(ivar);
+    } else if (r.kind == 'c' && modify->find_compute(r.id) >= 0) {
+      inspect(modify->compute[modify->find_compute(r.id)]);
+    } else if (r.kind == 'f' && modify->find_fix(r.id) >= 0) {
+      inspect(modify->fix[modify->find_fix(r.id)]);
     }
-    // c_ID or f_ID, with or without [i]
-    const std::size_t open = ref.find('[');
-    const std::string source_id = ref.substr(2, open == std::string::npos ? open : open - 2);
-    const bool indexed = open != std::string::npos;
-    const int index = indexed ? std::atoi(ref.c_str() + open + 1) : 0;
-    const bool is_compute = ref[0] == 'c';
-    const char *kind = nullptr;
-    int length = 0, size = 0;    // length: the columns of an unindexed vector
-    bool variable_size = false;
-    auto inspect = [&](auto *source) {
-      kind = global_kind(source, indexed);
-      size = source->size_vector;
-      variable_size = source->size_vector_variable;
-      if (!kind && !indexed && !source->scalar_flag) length = size;
-    };
-    const int i = is_compute ? modify->find_compute(source_id) : modify->find_fix(source_id);
-    if (i < 0)
-      error->all(FLERR, "fix cell/servo {}: extra column {}: {} {} does not exist", fix_id_, name,
-                 is_compute ? "compute" : "fix", source_id);
-    if (is_compute) inspect(modify->compute[i]);
-    else inspect(modify->fix[i]);
-    if (kind)
-      error->all(FLERR, "fix cell/servo {}: extra column {}: {} {} is {}; {} (reduce per-atom "
-                 "or local values first, e.g. with compute reduce)", fix_id_, name,
-                 is_compute ? "compute" : "fix", source_id,
-                 std::strcmp(kind, "per-atom") == 0 || std::strcmp(kind, "local") == 0
-                     ? fmt::format("{} (not global)", kind) : std::string(kind),
-                 accepted);
-    if (indexed && !variable_size && (index < 1 || index > size))
-      error->all(FLERR, "fix cell/servo {}: extra column {}: {} is out of range: {} {} has a "
-                 "global vector of {} values (index 1 to {})", fix_id_, name, ref,
-                 is_compute ? "compute" : "fix", source_id, size, size);
-    if (length == 0) add(name, ref);
-    for (int k = 1; k <= length; ++k)
-      add(fmt::format("{}[{}]", name, k), fmt::format("{}[{}]", ref, k));
+    try {
+      for (const auto &column : tycore::extra_columns_of(request.first, request.second, t)) {
+        tycore::check_extra_column(column.first, request.second, columns_);
+        columns_.push_back(column);
+      }
+    } catch (std::exception &x) {
+      error->all(FLERR, "fix cell/servo {}: {}", fix_id_, x.what());
+    }
   }
 }
 
