@@ -7,13 +7,16 @@
 
 #include "cell_control.hpp"
 #include "cell_kinematics.hpp"
+#include "cell_statistics.hpp"
 #include "pi_plane.hpp"
 
 #include <Eigen/Core>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace tycore {
@@ -177,6 +180,42 @@ inline void cell_outputs(const CellSnapshot& s, double* o)
   o[STRESS_ANGLE] = major_angle_in_plane_deg(sigma, i, j);
   o[RATE_ANGLE] = rate.norm() > 0.0 ? major_angle_in_plane_deg(strain_rate, i, j) : NaN;
   o[NONCOAXIALITY] = rate.norm() > 0.0 ? non_coaxiality_deg(sigma, strain_rate, i, j) : NaN;
+}
+
+// the outputs from the particles (cell_statistics.hpp)
+inline void particle_outputs(const ParticleStatistics& st, double* o)
+{
+  o[out::Z] = st.Z;
+  o[out::ZM] = st.Zm;
+  o[out::UNBALANCED] = st.unbalanced;
+  o[out::P_KINETIC] = st.p_kinetic;
+  o[out::KINETIC_RATIO] = st.kinetic_ratio;
+}
+
+// the quasi-equilibrium outputs of a check (docs/theory.md §6.4)
+inline void equilibrium_outputs(const EquilibriumCheck& check, double* o)
+{
+  o[out::EQUILIBRIUM] = check.reached;
+  o[out::EQ_STRESS_OK] = check.stress_ok;
+  o[out::EQ_UNBALANCED_OK] = check.force_ok;
+  o[out::EQ_KINETIC_OK] = check.energy_ok;
+  o[out::EQ_COORDINATION_OK] = check.coordination_ok;
+}
+
+// the components of a box (LAMMPS's layout lx ly lz yz xz xy) that differ between two, as
+// text ("" if none): a box changed behind a test's back
+inline std::string box_changes(const double before[6], const double now[6])
+{
+  static const char* const names[6] = {"lx", "ly", "lz", "yz", "xz", "xy"};
+  std::string text;
+  for (int k = 0; k < 6; ++k)
+    if (before[k] != now[k]) {
+      char item[96];
+      std::snprintf(item, sizeof item, "%s%s %.10g -> %.10g", text.empty() ? "" : ", ",
+                    names[k], before[k], now[k]);
+      text += item;
+    }
+  return text;
 }
 
 }    // namespace tycore

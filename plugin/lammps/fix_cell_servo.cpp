@@ -310,17 +310,13 @@ void FixCellServo::setup(int)
 // since (change_box) would be counted by neither the strains nor gamma
 void FixCellServo::require_box_unchanged()
 {
-  if (std::isnan(box_left[0]) || std::equal(box_left, box_left + 6, domain->h)) return;
-  static const char *const names[6] = {"lx", "ly", "lz", "yz", "xz", "xy"};
-  std::string changed;
-  for (int k = 0; k < 6; ++k)
-    if (box_left[k] != domain->h[k])
-      changed += fmt::format("{}{} {:.10g} -> {:.10g}", changed.empty() ? "" : ", ", names[k],
-                             box_left[k], domain->h[k]);
-  error->all(FLERR, "fix cell/servo {}: the box was changed between runs ({}) by another "
-             "command (change_box?): the test's strains and shears would not count the change; "
-             "start a new test from the changed box ('continue no', or unfix the fix first) or "
-             "leave the box to the fix", id, changed);
+  if (std::isnan(box_left[0])) return;
+  const std::string changed = tycore::box_changes(box_left, domain->h);
+  if (!changed.empty())
+    error->all(FLERR, "fix cell/servo {}: the box was changed between runs ({}) by another "
+               "command (change_box?): the test's strains and shears would not count the "
+               "change; start a new test from the changed box ('continue no', or unfix the fix "
+               "first) or leave the box to the fix", id, changed);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -402,12 +398,7 @@ void FixCellServo::check_equilibrium()
   sample.unbalanced_force_ratio = output[out::UNBALANCED];
   sample.kinetic_energy_ratio = output[out::KINETIC_RATIO];
   sample.coordination = output[out::Z];
-  const tycore::EquilibriumCheck check = programme().check_equilibrium(sample);
-  output[out::EQUILIBRIUM] = check.reached;
-  output[out::EQ_STRESS_OK] = check.stress_ok;
-  output[out::EQ_UNBALANCED_OK] = check.force_ok;
-  output[out::EQ_KINETIC_OK] = check.energy_ok;
-  output[out::EQ_COORDINATION_OK] = check.coordination_ok;
+  tycore::equilibrium_outputs(programme().check_equilibrium(sample), output);
 }
 
 // the default cap of the servo part (tycore::default_rate_cap), chosen at the first run's
@@ -620,14 +611,10 @@ void FixCellServo::compute_particle_outputs()
   MPI_Allreduce(local.sum, total.sum, tycore::ParticleSums::size, MPI_DOUBLE, MPI_SUM, world);
   // the kinetic ratio relative to the held p, else to the measured one
   const double p = profile.mean_stress;
-  const tycore::ParticleStatistics st = tycore::particle_statistics(
-      total, contacts, force_sum, domain->xprd * domain->yprd * domain->zprd,
-      p > 0.0 ? p : output[out::P]);
-  output[out::Z] = st.Z;
-  output[out::ZM] = st.Zm;
-  output[out::UNBALANCED] = st.unbalanced;
-  output[out::P_KINETIC] = st.p_kinetic;
-  output[out::KINETIC_RATIO] = st.kinetic_ratio;
+  tycore::particle_outputs(tycore::particle_statistics(total, contacts, force_sum,
+                                                      domain->xprd * domain->yprd * domain->zprd,
+                                                      p > 0.0 ? p : output[out::P]),
+                           output);
   particle_step = update->ntimestep;
 }
 
@@ -642,10 +629,7 @@ void FixCellServo::write_row()
 
 double FixCellServo::compute_vector(int n)
 {
-  if (output_step != update->ntimestep) {
-    measure();
-    compute_outputs();
-  }
+  if (output_step != update->ntimestep) measure(), compute_outputs();
   if (out::of_particles(n)) compute_particle_outputs();
   return output[n];
 }
@@ -655,10 +639,7 @@ double FixCellServo::compute_vector(int n)
 double FixCellServo::compute_array(int i, int j)
 {
   if (!(tallied_entries & tycore::AffineStiffnessSums::entry(i, j))) return NaN;
-  if (output_step != update->ntimestep) {
-    measure();
-    compute_outputs();
-  }
+  if (output_step != update->ntimestep) measure(), compute_outputs();
   return cell_measurement().stiffness(i, j);
 }
 
