@@ -747,9 +747,10 @@ def test_record_has_a_row_at_the_start_of_each_run(tmp_path):
     """The record holds a row every N steps and one at the start of each run (it was written
     only when that step was a multiple of N): runs of 5, 12 and 0 steps with N = 10 give the
     rows 0, 5, 10 and 17, each step once, and each row the state of its step (eps1 of the
-    prescribed rate, the cell moving from the second step on)."""
+    prescribed rate, the cell moving from the second step on). (The first run ends with
+    `post no`: the box the fix left is still known to the next run, no change is reported.)"""
     run_ok(small_deck(f"fix c all cell/servo axes x rate {RATE} y rate 0 z rate 0 csv a.csv 10\n"
-                      "run 5\nrun 12\nrun 0", run=0), tmp_path)
+                      "run 5 post no\nrun 12\nrun 0", run=0), tmp_path)
     rows = read_csv(tmp_path / "a.csv")
     assert list(rows["step"]) == [0, 5, 10, 17]
     np.testing.assert_allclose(rows["eps1"], RATE * DT * np.maximum(rows["step"] - 1, 0),

@@ -164,7 +164,9 @@ FixCellServo::~FixCellServo()
   // left for a fix that redefines this one (take_over_replaced_fix)
   tycore::TestCarry c{test, programme().carried(), {}, "", {}, {}};
   if (record) c.record_path = record->path(), c.record = tycore::file_identity(c.record_path);
+  // the box as the fix left it (a change since is a change behind the test's back)
   std::copy(domain->h, domain->h + 6, c.box.begin());
+  if (!std::isnan(box_left[0])) std::copy(box_left, box_left + 6, c.box.begin());
   std::copy(origin, origin + out::COUNT, c.origin.begin());
   tycore::test_carries()[carry_key(lmp, id)] = c;
 
@@ -187,7 +189,6 @@ void FixCellServo::post_run()
   // a run stopped by 'until' leaves the timer expired: later runs must be allowed to run
   if (until_met) timer->reset_timeout();
   until_met = false;
-  std::copy(domain->h, domain->h + 6, box_left);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -273,6 +274,7 @@ tycore::CellState FixCellServo::cell_state() const
 void FixCellServo::setup(int)
 {
   require_box_unchanged();
+  std::copy(domain->h, domain->h + 6, box_left);
   // the rate of the last step carries on across runs and restarts
   set_box_rate(test.memory.last_strain_rate, cell_matrix());
   if (update->ntimestep > test.clock_step)
@@ -306,8 +308,8 @@ void FixCellServo::setup(int)
   if (!record->holds(update->ntimestep)) write_row();
 }
 
-// the box as this test left it at the end of its last run (or the fix it continues): a change
-// since (change_box) would be counted by neither the strains nor gamma
+// the box as this test left it (this fix's last move, or the fix it continues): a change since
+// (change_box between runs) would be counted by neither the strains nor gamma
 void FixCellServo::require_box_unchanged()
 {
   if (std::isnan(box_left[0])) return;
@@ -525,6 +527,7 @@ void FixCellServo::change_box(const tycore::Vector6d &rate)
   domain->set_local_box();
   domain->lamda2x(atom->nlocal);
   set_box_rate(rate, next);    // (next, not boxhi - boxlo, which differs by round-off)
+  std::copy(domain->h, domain->h + 6, box_left);
   if (domain->triclinic) {
     pending_flip = tycore::tilt_flip_of(cell_matrix());
     if (pending_flip.any()) next_reneighbor = update->ntimestep;
@@ -550,6 +553,7 @@ void FixCellServo::pre_exchange()
   irregular->migrate_atoms();
   domain->lamda2x(atom->nlocal);
   set_box_rate(test.memory.last_strain_rate, flipped);
+  std::copy(domain->h, domain->h + 6, box_left);
   pending_flip = {};
 }
 

@@ -46,7 +46,7 @@ class FixCellServo : public Fix, private tycore::SettingValues {
   bool restored = false, continued = false;
   tycore::FileIdentity continued_csv;
   double origin[tycore::out::COUNT];    // the outputs when the test began (NaN: not known)
-  double box_left[6];                   // the box as this test left it (NaN: not yet)
+  double box_left[6];                   // the box as this test last set it (NaN: not yet)
 
   // measurements of the last step
   tycore::Vector6d stress;
