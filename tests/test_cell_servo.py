@@ -608,9 +608,9 @@ BAD_INPUT = [
     ("unknown_keyword", small_deck(f"fix c all cell/servo iso {P0} gian 0.1"),
      "unknown keyword 'gian'"),
     ("b_outside", small_deck(f"fix c all cell/servo constant_b 1.5 x 1e-5 {P0}"),
-     "b = 1.5 is outside [0, 1]"),
+     "constant_b b = 1.5 is outside the accepted range [0, 1]"),
     ("b_negative", small_deck(f"fix c all cell/servo constant_b -0.1 x 1e-5 {P0}"),
-     "is outside [0, 1]"),
+     "is outside the accepted range [0, 1]"),
     ("p_zero", small_deck("fix c all cell/servo iso 0"), "must be positive"),
     ("p_negative", small_deck("fix c all cell/servo axisym x 1e-5 -1e5"), "must be positive"),
     ("axes_stress_negative", small_deck("fix c all cell/servo axes x stress -1 y rate 0 z rate 0"),
@@ -743,6 +743,20 @@ def test_redefined_fix_continues_the_test(specimen, tmp_path):
     assert abs(w[at + 1] - w[at]) < 0.1 * abs(w[at] - w[at - 10])
 
 
+def test_record_has_a_row_at_the_start_of_each_run(tmp_path):
+    """The record holds a row every N steps and one at the start of each run (it was written
+    only when that step was a multiple of N): runs of 5, 12 and 0 steps with N = 10 give the
+    rows 0, 5, 10 and 17, each step once, and each row the state of its step (eps1 of the
+    prescribed rate, the cell moving from the second step on). (The first run ends with
+    `post no`: the box the fix left is still known to the next run, no change is reported.)"""
+    run_ok(small_deck(f"fix c all cell/servo axes x rate {RATE} y rate 0 z rate 0 csv a.csv 10\n"
+                      "run 5 post no\nrun 12\nrun 0", run=0), tmp_path)
+    rows = read_csv(tmp_path / "a.csv")
+    assert list(rows["step"]) == [0, 5, 10, 17]
+    np.testing.assert_allclose(rows["eps1"], RATE * DT * np.maximum(rows["step"] - 1, 0),
+                               rtol=1e-9, atol=0)
+
+
 def test_continue_no_starts_a_new_test(specimen, tmp_path):
     r = AXIAL_RATE
     run_ok(two_stages(specimen, f"axisym x {r} {P0} csv a.csv 10",
@@ -779,32 +793,36 @@ def test_resume_after_crash_appends_without_repeated_steps(specimen, tmp_path):
     assert max_relative_difference(a, b, ["eps1", "eps2", "eps3", "p", "q"]) < 1e-9
 
 
-def restart_record_offset(data, tag=8462.0, version=3.0):
+def restart_record_offset(data, tag=8462.0, version=4.0):
     import struct
     at = data.find(struct.pack("<dd", tag, version))
     assert at >= 0, "no cell/servo record in the restart file"
     return at
 
 
-@pytest.mark.parametrize("damage", ["path", "version", "size", "old"])
+@pytest.mark.parametrize("damage", ["path", "plane", "version", "version3", "size", "old"])
 def test_mismatched_restart_record_is_refused(tmp_path, damage):
-    """The restart record carries tag, version, size and the path; resuming another path, or
-    a record of another version or size, is refused (issue 15)."""
+    """The restart record carries tag, version, size, the path or plane of its programme;
+    resuming another path or plane, or a record of another version (an earlier build's: 3) or
+    size, is refused by name (issue 15)."""
     import struct
-    first = small_deck(f"fix c all cell/servo circle 0.001 {P0} speed 1e-4\n"
-                       "write_restart c.restart", run=10)
-    first = first.replace("write_restart c.restart\nrun 10\n", "run 10\nwrite_restart c.restart\n")
-    run_ok(first, tmp_path, name="in.first")
-    fix = f"fix c all cell/servo circle 0.001 {P0} speed 1e-4"
+    programme = f"shear xz 1e-4 {P0}" if damage == "plane" else f"circle 0.001 {P0} speed 1e-4"
+    first = small_deck(("change_box all triclinic\n" if damage == "plane" else "")
+                       + f"fix c all cell/servo {programme}", run=10)
+    run_ok(first + "write_restart c.restart\n", tmp_path, name="in.first")
+    fix = f"fix c all cell/servo {programme}"
+    size = None
     if damage == "path":
         fix = f"fix c all cell/servo triangle 0.001 {P0} speed 1e-4"
+    elif damage == "plane":
+        fix = f"fix c all cell/servo shear yz 1e-4 {P0}"
     else:
         data = bytearray((tmp_path / "c.restart").read_bytes())
         at = restart_record_offset(bytes(data))
-        if damage == "version":
-            data[at + 8:at + 16] = struct.pack("<d", 99.0)
+        size = struct.unpack("<d", data[at + 16:at + 24])[0]
+        if damage.startswith("version"):
+            data[at + 8:at + 16] = struct.pack("<d", 3.0 if damage == "version3" else 99.0)
         elif damage == "size":
-            size = struct.unpack("<d", data[at + 16:at + 24])[0]
             data[at + 16:at + 24] = struct.pack("<d", size - 1)
         else:
             data[at:at + 8] = struct.pack("<d", 8461.0)
@@ -813,8 +831,13 @@ def test_mismatched_restart_record_is_refused(tmp_path, damage):
               + fix + "\nrun 10\n")
     rc, out = run_deck(second, tmp_path, name="in.second")
     expected = {"path": "written by a run on another Pi-plane path",
-                "version": "has version 99, this build reads version 3",
-                "size": "says it holds 63 numbers, but its parts hold 64",
+                "plane": "written by a run on another plane; this one shears yz: resume it on "
+                         "the same plane",
+                "version": "has version 99, this build reads version 4",
+                "version3": "has version 3, this build reads version 4 (a record of an earlier "
+                            "build of tylmp)",
+                "size": f"says it holds {size - 1:.0f} numbers, but its parts hold {size:.0f}"
+                        if size else "",
                 "old": "is not a cell/servo record"}[damage]
     error_line = next((line for line in out.splitlines() if "ERROR" in line), out[-2000:])
     assert expected in error_line, error_line

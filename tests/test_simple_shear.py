@@ -198,17 +198,16 @@ def replay(t, csr, ru_limit=RU_LIMIT, da_limit=DA_LIMIT):
     n_ru = n_da = 0.0
     after = np.zeros(len(t["tau"]))
     turns = []
-    after[0] = 0.5
     for k in range(1, len(t["tau"])):
         if direction * t["tau"][k] >= amplitude:
             direction, reversals, gamma_rev = -direction, reversals + 1, t["gamma"][k]
             turns.append(k)
-        n = 0.5 * (reversals + 1)
+        # the cycles completed, and the count of the running half cycle (N_L)
+        after[k], n = 0.5 * reversals, 0.5 * (reversals + 1)
         if n_ru == 0.0 and 1.0 - t["sig_n"][k] / t["sig_n"][0] >= ru_limit:
             n_ru = n
         if n_da == 0.0 and abs(t["gamma"][k] - gamma_rev) >= da_limit:
             n_da = n
-        after[k] = n
     return np.array(turns), after, (n_ru, n_da)
 
 
@@ -477,10 +476,11 @@ def test_one_and_two_ranks_agree_over_a_short_run(flipped):
 def test_analysis_of_a_hand_made_cyclic_record():
     """tyanalysis.shear on a record written by hand: three half cycles of 4 rows, the count
     growing at the rows after the reversals; the double amplitude is measured from gamma at the
-    last row of the half cycle before, and r_u's first crossing gives its half cycle's N."""
+    last row of the half cycle before, and r_u's first crossing gives its half cycle's count
+    (its cycles completed + 0.5)."""
     from tylmp.analysis import io, shear
     gamma = [0.0, 0.01, 0.02, 0.03, 0.02, 0.0, -0.01, -0.02, -0.01, 0.0, 0.02, 0.04]
-    cycles = [0.5] * 4 + [1.0] * 4 + [1.5] * 4
+    cycles = [0.0] * 4 + [0.5] * 4 + [1.0] * 4
     r_u = [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.96, 0.9, 0.97, 0.99]
     t = io.Table({"time": np.arange(12.0), "gamma": gamma, "cycles": cycles, "r_u": r_u,
                   "tau": np.zeros(12), "sig_n": np.ones(12), "tau_ratio": np.zeros(12)})

@@ -1,11 +1,12 @@
 """fix cell/servo on a triclinic cell (docs/theory.md §10-13, docs/fix_cell_servo.md "The
 six-component cell"): a principal programme on a triclinic cell with zero tilts is the
 orthogonal cell's test (the shears idle, the servo the three-component one), and a held shear
-stress gets the shear gains."""
+stress gets the shear gains; a tilt flip while the cell stretches leaves the contact forces
+alone."""
 import numpy as np
 
 from cellspec import read_csv
-from lmprun import run_deck
+from lmprun import LOAD_TYLMP, run_deck, run_ok
 from test_cell_servo import P0, shear_run, small_deck, specimen  # noqa: F401 (fixture)
 
 
@@ -29,6 +30,10 @@ def test_principal_programme_on_a_triclinic_cell_is_the_orthogonal_test(specimen
     for k in ("gamma_xy", "gamma_xz", "gamma_yz", "rate_xy", "rate_xz", "rate_yz"):
         assert np.all(b[k] == 0.0), k
     assert np.array_equal(a["step"], b["step"])
+    parted = [max(abs(a[k][row] - b[k][row]) / np.abs(a[k]).max() for k in ("sig1", "sig2", "sig3"))
+              for row in (0, -1)]
+    print(f"orthogonal against triclinic: the stresses differ by {parted[0]:.2g} at step 0, "
+          f"{parted[1]:.2g} at step {a['step'][-1] - a['step'][0]:.0f}")
     for k in ("eps1", "eps2", "eps3", "sig1", "sig2", "sig3", "p", "q", "volume"):
         scale = np.abs(a[k]).max()
         assert np.abs(a[k] - b[k]).max() <= 1e-7 * scale, k
@@ -51,3 +56,73 @@ def test_a_held_shear_stress_with_a_large_gain_is_warned_about(tmp_path):
                                   f"stress {P0} y stress {P0} z stress {P0} xz stress 0"),
                        tmp_path)
     assert rc == 0 and "held shear stress" not in out, out[-2000:]
+
+
+# ---------------------------------------------------------------------------------------------
+# A tilt flip while the cell also stretches (docs/theory.md §10.3): the flip replaces h by h M,
+# and h_rate, from which the pair reads L = h_rate h^-1 for the affine contact velocity, must
+# go to L h M with it. Under simple shear alone (L_xz only) L M^-1 = L, so a stale h_rate is
+# invisible; with L_xx != 0 the pair would read L_xz + n L_xx (n the flip count) for the force
+# evaluation after the flip.
+
+FLIP_R, FLIP_DELTA0, FLIP_BOX, FLIP_DT = 1e-3, 1e-6, 7e-3, 1e-7     # as tests/test_triclinic_pair.py
+FLIP_STEPS = 1000
+FLIP_RATE = 0.9          # 1/s: L_xx = L_xz; the contact reaches about half of Mindlin's u*
+FLIP_WINDOW = FLIP_RATE * FLIP_STEPS * FLIP_DT     # the change of xz/lx over the run
+
+
+def stretching_cell(tilt):
+    """Two spheres touching along z at the centre of a triclinic cell whose tilt xz starts at
+    tilt * lx; no integrator: the atoms move with the cell (L_xx = L_xz = FLIP_RATE)."""
+    centre = np.array([0.5 * (FLIP_BOX + tilt * FLIP_BOX), 0.5 * FLIP_BOX, 0.5 * FLIP_BOX])
+    half = 0.5 * (2 * FLIP_R - FLIP_DELTA0)
+    columns = ["step", "fx[1]", "fy[1]", "fz[1]", "xz", "lx"]
+    defs = "".join(f"variable c{k} equal {c}\n" for k, c in enumerate(columns))
+    line = " ".join(f"${{c{k}}}" for k in range(len(columns)))
+    return f"""units si
+atom_style sphere
+atom_modify map array
+boundary p p p
+comm_modify vel yes
+region box prism 0 {FLIP_BOX!r} 0 {FLIP_BOX!r} 0 {FLIP_BOX!r} 0 {tilt * FLIP_BOX!r} 0 units box
+create_box 1 box
+create_atoms 1 single {centre[0]!r} {centre[1]!r} {centre[2] - half!r} units box
+create_atoms 1 single {centre[0]!r} {centre[1]!r} {centre[2] + half!r} units box
+set atom * diameter {2 * FLIP_R!r} density 2650
+{LOAD_TYLMP}pair_style thornton/yin
+pair_coeff * * 70e9 0.3 0.3 0.0
+neighbor 1e-5 bin
+neigh_modify every 1 delay 0 check yes
+timestep {FLIP_DT!r}
+fix c all cell/servo axes x rate {-FLIP_RATE!r} y rate 0 z rate 0 xz rate {-FLIP_RATE!r}
+{defs}fix out all print 1 "{line}" file out.txt screen no
+run {FLIP_STEPS}
+"""
+
+
+def test_a_flip_of_a_stretching_cell_changes_no_contact_force(tmp_path):
+    """The same contact in two cells that differ only by their tilt: one starts just below half
+    a box length and flips half-way through the run, the other starts at -lx/4 and does not.
+    The branch vector follows exp(L t) l0 in both, so the contact forces (its tangential force
+    is all affine loading) agree to round-off across the flip. (With the refresh of h_rate at
+    the flip left out, they part by 1.9e-4 of the force after the flip, and the pair warns that
+    h_rate does not explain the box change.)"""
+    runs = {}
+    for name, tilt in (("flip", 0.5 - 0.5 * FLIP_WINDOW), ("reference", -0.25)):
+        work = tmp_path / name
+        work.mkdir()
+        out = run_ok(stretching_cell(tilt), work)
+        warnings = [l for l in out.splitlines()
+                    if "WARNING" in l and "No fixes with time integration" not in l]
+        assert not warnings, warnings
+        runs[name] = np.loadtxt(work / "out.txt", ndmin=2)
+    flip, ref = runs["flip"], runs["reference"]
+    jumps = np.flatnonzero(np.diff(flip[:, 4]) < -0.5 * flip[1:, 5])
+    assert len(jumps) == 1 and 0.3 * FLIP_STEPS < jumps[0] < 0.7 * FLIP_STEPS, jumps
+    assert np.all(np.abs(np.diff(ref[:, 4])) < 1e-3 * FLIP_BOX)      # no flip there
+    F, F_ref = flip[:, 1:4], ref[:, 1:4]
+    tangential = np.abs(F_ref[:, 0]).max()        # the contact along z: x is tangential
+    assert tangential > 0.05 * np.abs(F_ref[:, 2]).max()      # well loaded (mu P = 0.3 P)
+    difference = np.abs(F - F_ref).max() / np.abs(F_ref).max()
+    print(f"flip at step {flip[jumps[0] + 1, 0]:.0f}: |F - F_ref| <= {difference:.2g} |F|")
+    assert difference < 1e-9

@@ -19,7 +19,6 @@
 
 #include <array>
 #include <cmath>
-#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -30,9 +29,9 @@ using MixedControl6 = MixedControlOf<6>;
 // ---------------------------------------------------------------------------------------------
 // The principal programmes in six components (docs/theory.md §11.2): a three-component control
 // is the six-component one whose shears are idle (prescribed at zero rate, no held stress or
-// actuator touching them). With idle shears the six-component step reduces exactly to the
-// three-component one of the principal block, which is what the fix steps then, so that a
-// principal programme gives the same numbers on any cell.
+// actuator touching them). servo_step on six components steps it to the same numbers as the
+// three-component servo on the principal block (the shears outside the programme set nothing,
+// cell_servo.hpp's used_components), so a principal programme gives the same numbers on any cell.
 
 inline MixedControl6 six_component_control(const MixedControl& c)
 {
@@ -42,54 +41,6 @@ inline MixedControl6 six_component_control(const MixedControl& c)
   six.actuators.topLeftCorner<3, 3>() = c.actuators;
   six.stress_rows.topLeftCorner<3, 3>() = c.stress_rows;
   six.stress_targets.head<3>() = c.stress_targets;
-  return six;
-}
-
-inline std::optional<MixedControl> principal_control(const MixedControl6& c)
-{
-  const int m = c.actuator_count;
-  if (m > 3 || c.prescribed_strain_rate.tail<3>() != Eigen::Vector3d::Zero()) return std::nullopt;
-  for (int k = 0; k < m; ++k)
-    if (c.actuators.col(k).tail<3>() != Eigen::Vector3d::Zero()
-        || c.stress_rows.row(k).tail<3>() != Eigen::RowVector3d::Zero())
-      return std::nullopt;
-  MixedControl three;
-  three.prescribed_strain_rate = c.prescribed_strain_rate.head<3>();
-  three.actuator_count = m;
-  three.actuators = c.actuators.topLeftCorner<3, 3>();
-  three.stress_rows = c.stress_rows.topLeftCorner<3, 3>();
-  three.stress_targets = c.stress_targets.head<3>();
-  return three;
-}
-
-inline CellMeasurement principal_measurement(const CellMeasurementOf<6>& cell)
-{
-  return {cell.stress.head<3>(), cell.stiffness.topLeftCorner<3, 3>(), cell.strain.head<3>()};
-}
-
-inline ServoMemory principal_memory(const ServoMemoryOf<6>& memory)
-{
-  ServoMemory m;
-  m.integral = memory.integral.head<3>();
-  m.last_strain_rate = memory.last_strain_rate.head<3>();
-  m.path_length = memory.path_length;
-  return m;
-}
-
-// the six-component memory and command after a principal step (idle shears: zero)
-inline ServoMemoryOf<6> six_component_memory(const ServoMemory& memory)
-{
-  ServoMemoryOf<6> m;
-  m.integral.head<3>() = memory.integral;
-  m.last_strain_rate.head<3>() = memory.last_strain_rate;
-  m.path_length = memory.path_length;
-  return m;
-}
-
-inline ServoCommandOf<6> six_component_command(const ServoCommand& command)
-{
-  ServoCommandOf<6> six{Vector6d::Zero(), command.saturated, command.stress_error};
-  six.strain_rate.head<3>() = command.strain_rate;
   return six;
 }
 
@@ -175,12 +126,14 @@ struct LiquefactionCriteria {
   double double_amplitude_strain = 0.0375;    // peak-to-peak gamma at liquefaction
 };
 
-// Cyclic constant-volume simple shear with a stress-controlled amplitude: gamma_dot = +-rate,
-// reversed when tau reaches +-tau_cyc = +-CSR sigma_n0. Half cycles end at the reversals; the
-// cycle count is N = (half cycles begun)/2, so that the first half cycle is N = 0.5 and the
-// first full cycle ends at N = 1. The double amplitude strain of the running half cycle is
-// |gamma - gamma at the last reversal| (the peak-to-peak swing once it reaches the next peak);
-// N_L is the count when a criterion first holds (0 while it has not).
+// Cyclic constant-volume simple shear with a stress-controlled amplitude: gamma_dot = +rate
+// first (tau rises towards +tau_cyc), reversed each time tau reaches +-tau_cyc = +-CSR sigma_n0.
+// Half cycles end at the reversals; the cycle count is N = (half cycles completed)/2, 0 during
+// the first half cycle, 0.5 from the first reversal on, N once 2N half cycles are over (so that
+// a test run until N cycles has made N). The double amplitude strain of the running half cycle
+// is |gamma - gamma at the last reversal| (the peak-to-peak swing once it reaches the next
+// peak); N_L counts the half cycle in which a criterion first holds, (half cycles completed +
+// 1)/2: 0.5 in the first half cycle, N at the end of the 2N-th (0 while it has not held).
 struct CyclicSimpleShear {
   ShearPlane plane;
   double shear_rate;                 // |gamma_dot| [1/s]
@@ -223,7 +176,8 @@ struct CyclicSimpleShear {
   }
 
   double amplitude() const { return cyclic_stress_ratio * initial_normal_stress; }
-  double cycles(const State& s) const { return 0.5 * (s.reversals + 1); }
+  double cycles(const State& s) const { return 0.5 * s.reversals; }
+  double cycles_to_now(const State& s) const { return 0.5 * (s.reversals + 1); }
 
   // the state after a step ended at (tau, gamma, sigma_n): reverse at the amplitude, record N_L
   void update(State& s, double tau, double gamma, double normal_stress) const
@@ -236,10 +190,10 @@ struct CyclicSimpleShear {
     if (s.cycles_to_pore_pressure == 0.0
         && pore_pressure_ratio(normal_stress, initial_normal_stress)
                >= criteria.pore_pressure_ratio)
-      s.cycles_to_pore_pressure = cycles(s);
+      s.cycles_to_pore_pressure = cycles_to_now(s);
     if (s.cycles_to_double_amplitude == 0.0
         && std::abs(gamma - s.gamma_at_reversal) >= criteria.double_amplitude_strain)
-      s.cycles_to_double_amplitude = cycles(s);
+      s.cycles_to_double_amplitude = cycles_to_now(s);
   }
 
   MixedControl6 control(const State& s) const

@@ -37,6 +37,7 @@
 #ifndef TYCORE_CELL_SERVO_HPP
 #define TYCORE_CELL_SERVO_HPP
 
+#include "affine_stiffness_entries.hpp"
 #include "cell_kinematics.hpp"
 #include "pi_plane.hpp"
 #include "strain_path.hpp"
@@ -90,18 +91,6 @@ inline void require_b_in_range(double b)
 // is K_i = (1/V) sum_c k_N (n_i l_i)^2. The normal part alone already gives the exact affine
 // bulk stiffness (the tangential part carries no volume change).
 
-// one contact's share of V*C, branch = x2 - x1 (image-shifted); sum over contacts, each once
-inline Eigen::Matrix3d affine_stiffness_contribution(const Eigen::Vector3d& branch,
-                                                     double normal_stiffness,
-                                                     double tangential_stiffness = 0.0)
-{
-  const double l2 = branch.squaredNorm();
-  const Eigen::Vector3d n2 = branch.cwiseAbs2() / l2;
-  Eigen::Matrix3d c = (normal_stiffness - tangential_stiffness) * l2 * (n2 * n2.transpose());
-  c.diagonal() += tangential_stiffness * l2 * n2;
-  return c;
-}
-
 // C from the summed contributions, given as 6 numbers in LAMMPS virial order
 // (11, 22, 33, 12, 13, 23), and the cell volume
 inline Eigen::Matrix3d affine_stiffness(const double sums[6], double volume)
@@ -113,6 +102,20 @@ inline Eigen::Matrix3d affine_stiffness(const double sums[6], double volume)
        sums[4], sums[5], sums[2];
   // clang-format on
   return c / volume;
+}
+
+// one contact's share of V*C, branch = x2 - x1 (image-shifted); sum over contacts, each once
+// (the formula: affine_stiffness_entries.hpp)
+inline Eigen::Matrix3d affine_stiffness_contribution(const Eigen::Vector3d& branch,
+                                                     double normal_stiffness,
+                                                     double tangential_stiffness = 0.0)
+{
+  const double l2 = branch.squaredNorm();
+  const Eigen::Vector3d n = branch / std::sqrt(l2);
+  double sums[6];
+  affine_principal_entries(n(0), n(1), n(2), l2, normal_stiffness, tangential_stiffness,
+                           [&sums](int m, double value) { sums[m] = value; });
+  return affine_stiffness(sums, 1.0);
 }
 
 // strain rate at inertial number I: I = eps_dot d sqrt(rho/p)
@@ -163,19 +166,16 @@ template <int N>
 struct ServoMemoryOf {
   VectorN<N> integral = VectorN<N>::Zero();          // S [Pa], one per held stress
   VectorN<N> last_strain_rate = VectorN<N>::Zero();  // rate commanded last step
-  double path_length = 0.0;                          // progress s along a PiPath
 
-  static constexpr int size = 2 * N + 1;
+  static constexpr int size = 2 * N;
   void to_array(double* a) const
   {
     for (int i = 0; i < N; ++i) a[i] = integral(i), a[N + i] = last_strain_rate(i);
-    a[2 * N] = path_length;
   }
   static ServoMemoryOf from_array(const double* a)
   {
     ServoMemoryOf m;
     for (int i = 0; i < N; ++i) m.integral(i) = a[i], m.last_strain_rate(i) = a[N + i];
-    m.path_length = a[2 * N];
     return m;
   }
 };
@@ -325,6 +325,35 @@ inline void require_valid(const ServoSettings& s)
 
 namespace detail {
 
+// The components a control works on: every normal component, and a shear (N = 6) that it
+// prescribes a rate, moves or holds a stress of. A shear outside the programme does not set the
+// scale of the stiffness floor, so that a principal programme is stepped on six components to
+// the same numbers as on three (docs/theory.md §11.2).
+template <int N>
+std::array<bool, N> used_components(const MixedControlOf<N>& c)
+{
+  std::array<bool, N> used;
+  for (int j = 0; j < N; ++j)
+    used[j] = j < 3 || c.prescribed_strain_rate(j) != 0.0 || c.actuators.row(j).any()
+              || c.stress_rows.col(j).any();
+  return used;
+}
+
+// the largest stiffness, stress and target of the used components: the scale of the floor
+template <int N>
+double floor_scale(const MixedControlOf<N>& control, const CellMeasurementOf<N>& cell)
+{
+  const std::array<bool, N> used = used_components(control);
+  double scale = control.stress_targets.cwiseAbs().maxCoeff();
+  for (int i = 0; i < N; ++i) {
+    if (!used[i]) continue;
+    scale = std::max(scale, std::abs(cell.stress(i)));
+    for (int j = 0; j < N; ++j)
+      if (used[j]) scale = std::max(scale, std::abs(cell.stiffness(i, j)));
+  }
+  return scale;
+}
+
 // Rate floor (docs/theory.md §6.2): an actuator that moves no held stress, because no
 // contact carries load along it (an axis of a loose specimen that no contact crosses),
 // would be normalised by the stiffness floor alone, and the cap, which scales the servo
@@ -425,10 +454,7 @@ ServoCommandOf<N> servo_step(const MixedControlOf<N>& control, const CellMeasure
   // stiffness floor so that an empty cell (C = 0) still gets a direction; the cap sets the
   // pace. Nothing held, or nothing to scale by (no stiffness, target or stress): the
   // prescribed rates alone
-  const double scale = m == 0 ? 0.0
-                              : std::max({cell.stiffness.cwiseAbs().maxCoeff(),
-                                          control.stress_targets.cwiseAbs().maxCoeff(),
-                                          cell.stress.cwiseAbs().maxCoeff()});
+  const double scale = m == 0 ? 0.0 : detail::floor_scale(control, cell);
   if (scale == 0.0) {
     memory.last_strain_rate = command.strain_rate;
     return command;
@@ -483,22 +509,33 @@ inline MixedControl plane_strain_control(double mean_stress,
 
 enum class PlaneStrain { TOTAL, DEVIATORIC };
 
-// constant p* while the deviatoric strain follows a Pi-plane path at speed v (|de/dt|); on a
-// leg with a zero deviatoric rate along one axis, PlaneStrain::TOTAL also keeps that axis'
-// total strain rate at zero (true plane strain), DEVIATORIC lets the p servo act on all axes
-inline ServoCommand path_servo_step(const PiPath& path, double speed, double mean_stress,
-                                    const CellMeasurement& cell, const ServoSettings& settings,
-                                    double dt, ServoMemory& memory,
-                                    PlaneStrain plane_strain = PlaneStrain::TOTAL)
+// constant p* while the deviatoric strain follows a Pi-plane path at speed v (|de/dt|): the
+// control of the step from the principal strains and the progress s along the path, which it
+// advances; on a leg with a zero deviatoric rate along one axis, PlaneStrain::TOTAL also keeps
+// that axis' total strain rate at zero (true plane strain), DEVIATORIC lets the p servo act on
+// all axes (docs/theory.md §6.3, §7.4)
+inline MixedControl path_control(const PiPath& path, double speed, double mean_stress,
+                                 const Eigen::Vector3d& strain, double dt, double& path_length,
+                                 PlaneStrain plane_strain = PlaneStrain::TOTAL)
 {
-  const int leg = path.segment_at(std::clamp(memory.path_length, 0.0, path.length()));
+  const int leg = path.segment_at(std::clamp(path_length, 0.0, path.length()));
   const int fixed_axis = plane_strain == PlaneStrain::TOTAL
                              ? plane_strain_axis(path.segments()[leg]) : -1;
-  const PathStep step = follow_path(path, memory.path_length, cell.strain, speed, dt);
-  memory.path_length = step.path_length;
+  const PathStep step = follow_path(path, path_length, strain, speed, dt);
+  path_length = step.path_length;
+  return fixed_axis >= 0
+             ? plane_strain_control(mean_stress, step.deviatoric_strain_rate, fixed_axis)
+             : mean_stress_control(mean_stress, step.deviatoric_strain_rate);
+}
+
+// the step of a path's control by the three-component servo
+inline ServoCommand path_servo_step(const PiPath& path, double speed, double mean_stress,
+                                    const CellMeasurement& cell, const ServoSettings& settings,
+                                    double dt, ServoMemory& memory, double& path_length,
+                                    PlaneStrain plane_strain = PlaneStrain::TOTAL)
+{
   const MixedControl control =
-      fixed_axis >= 0 ? plane_strain_control(mean_stress, step.deviatoric_strain_rate, fixed_axis)
-                      : mean_stress_control(mean_stress, step.deviatoric_strain_rate);
+      path_control(path, speed, mean_stress, cell.strain, dt, path_length, plane_strain);
   return servo_step(control, cell, settings, dt, memory);
 }
 

@@ -62,6 +62,25 @@ inline ParticleStatistics particle_statistics(const ParticleSums& s, double cont
   return out;
 }
 
+
+// the sizes of the particles: number-mean diameter and density, solid volume
+struct ParticleSizes {
+  static constexpr int size = 4;
+  double sum[size] = {0, 0, 0, 0};    // particles, diameters, densities, volumes
+
+  void add(double radius, double mass)
+  {
+    const double volume = 4.0 / 3.0 * M_PI * radius * radius * radius;
+    sum[0] += 1.0;
+    sum[1] += 2.0 * radius;
+    sum[2] += volume > 0.0 ? mass / volume : 0.0;
+    sum[3] += volume;
+  }
+  double mean_diameter() const { return sum[1] / sum[0]; }
+  double mean_density() const { return sum[2] / sum[0]; }
+  double solid_volume() const { return sum[3]; }
+};
+
 }    // namespace tycore
 
 #endif

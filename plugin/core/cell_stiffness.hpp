@@ -4,13 +4,13 @@
 //   sym(delta_ik n_j n_l)
 //     = (delta_ik n_j n_l + delta_jk n_i n_l + delta_il n_j n_k + delta_jl n_i n_k)/4,
 // from 21 independent sums over the contacts. Its principal block (I, J < 3) is cell_servo.hpp's
-// affine_stiffness, computed by the same function.
+// affine_stiffness; one contact's share of either is affine_stiffness_entries.hpp's.
 #ifndef TYCORE_CELL_STIFFNESS_HPP
 #define TYCORE_CELL_STIFFNESS_HPP
 
 #include "cell_kinematics.hpp"
 #include "cell_servo.hpp"
-#include "affine_shear_entries.hpp"
+#include "affine_stiffness_entries.hpp"
 
 #include <Eigen/Core>
 
@@ -41,14 +41,17 @@ struct AffineStiffnessSums {
     return 15 + (I - 3) * 3 - (I - 3) * (I - 4) / 2 + (J - I);   // (3,3) 15 ... (5,5) 20
   }
 
+  // sets of the entries (bit index(I, J)): the principal block, all 21; one entry
+  static constexpr unsigned principal_entries = 0x3Fu;
+  static constexpr unsigned all_entries = 0x1FFFFFu;
+  static constexpr unsigned entry(int I, int J) { return 1u << index(I, J); }
+
   // one contact, branch = x2 - x1 (image-shifted), counted once
   void add_contact(const Eigen::Vector3d& branch, double normal_stiffness,
                    double tangential_stiffness)
   {
-    const Matrix6d c = affine_stiffness_contribution_voigt(branch, normal_stiffness,
-                                                           tangential_stiffness);
-    for (int I = 0; I < 6; ++I)
-      for (int J = I; J < 6; ++J) sum[index(I, J)] += c(I, J);
+    contact_entries(branch, normal_stiffness, tangential_stiffness,
+                    [this](int k, double value) { sum[k] += value; });
   }
 
   AffineStiffnessSums& operator+=(const AffineStiffnessSums& other)
@@ -65,19 +68,17 @@ struct AffineStiffnessSums {
     return c;
   }
 
-  // one contact's share of V*C (Voigt6); the principal block is cell_servo.hpp's
+  // one contact's share of V*C (Voigt6)
   static Matrix6d affine_stiffness_contribution_voigt(const Eigen::Vector3d& branch,
                                                       double normal_stiffness,
                                                       double tangential_stiffness)
   {
+    double entries[size];
+    contact_entries(branch, normal_stiffness, tangential_stiffness,
+                    [&entries](int k, double value) { entries[k] = value; });
     Matrix6d c;
-    c.topLeftCorner<3, 3>() =
-        affine_stiffness_contribution(branch, normal_stiffness, tangential_stiffness);
-    double shear[shear_size];
-    shear_entries(branch, normal_stiffness, tangential_stiffness, shear);
     for (int I = 0; I < 6; ++I)
-      for (int J = std::max(I, 3); J < 6; ++J)
-        c(I, J) = c(J, I) = shear[index(I, J) - principal_size];
+      for (int J = 0; J < 6; ++J) c(I, J) = entries[index(I, J)];
     return c;
   }
 
@@ -91,6 +92,18 @@ struct AffineStiffnessSums {
     const Eigen::Vector3d n = branch / std::sqrt(l2);
     affine_shear_entries(n(0), n(1), n(2), l2, normal_stiffness, tangential_stiffness,
                          [entries](int k, double value) { entries[k] = value; });
+  }
+
+  // one contact's 21 entries, entry k handed to store(k, value) (affine_stiffness_entries.hpp)
+  template <class Store>
+  static void contact_entries(const Eigen::Vector3d& branch, double normal_stiffness,
+                              double tangential_stiffness, Store&& store)
+  {
+    const double l2 = branch.squaredNorm();
+    const Eigen::Vector3d n = branch / std::sqrt(l2);
+    affine_principal_entries(n(0), n(1), n(2), l2, normal_stiffness, tangential_stiffness, store);
+    affine_shear_entries(n(0), n(1), n(2), l2, normal_stiffness, tangential_stiffness,
+                         [&store](int k, double value) { store(principal_size + k, value); });
   }
 };
 

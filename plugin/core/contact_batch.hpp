@@ -22,6 +22,7 @@
 #ifndef TYCORE_CONTACT_BATCH_HPP
 #define TYCORE_CONTACT_BATCH_HPP
 
+#include "affine_stiffness_entries.hpp"
 #include "contact_kernel.hpp"
 #include "contact_types.hpp"
 #include "jkr.hpp"
@@ -308,14 +309,9 @@ template <bool Adhesive, bool Damped, bool Tally>
     const law::NormalLoad<double> load = law::normal_load<Adhesive>(k, R, P);
     const double a_T = law::micro_slip_radius<Adhesive>(k, R, a, load);
     const double k_T = k_T_law >= 0.0 ? k_T_law : 8.0 * c.G_star * a_T;
-    const double n2[3] = {nx * nx, ny * ny, nz * nz};
-    constexpr int a_of[6] = {0, 1, 2, 0, 0, 1}, b_of[6] = {0, 1, 2, 1, 2, 2};
-#pragma GCC unroll 6
-    for (int m = 0; m < 6; ++m) {
-      const double nn = n2[a_of[m]] * n2[b_of[m]];
-      const double entry = rsq * (k_N * nn + k_T * ((m < 3 ? n2[a_of[m]] : 0.0) - nn));
+    affine_principal_entries(nx, ny, nz, rsq, k_N, k_T, [&](int m, double entry) {
       b.affine_stiffness[m][i] = gone ? 0.0 : entry;
-    }
+    });
     b.force_magnitude[i] = gone ? 0.0 : std::sqrt(fx * fx + fy * fy + fz * fz);
     b.normal_stiffness[i] = gone ? 0.0 : k_N;
     b.tangential_stiffness[i] = gone ? 0.0 : k_T;

@@ -25,18 +25,16 @@ struct CellTallies {
     SIZE = 24
   };
   double sum[SIZE];
-
-  // sets of the 21 stiffness entries, bit k for entry STIFFNESS + k
-  static constexpr unsigned PRINCIPAL_ENTRIES = 0x3Fu;
-  static constexpr unsigned ALL_ENTRIES = 0x1FFFFFu;
 };
 
 // what the servo asks of the pair
 class CellTallySource {
  public:
   // make the tallies from the next force evaluation on (off again at the pair's init), with at
-  // least the stiffness entries of the set `entries` (CellTallies bits); returns the set made
-  // (a superset: a source offers a few sets, each with its own branch-free loop)
+  // least the stiffness entries of the set `entries` (bit k for entry STIFFNESS + k, k =
+  // tycore::AffineStiffnessSums::index(I, J)); returns the set made (a superset: a source makes
+  // a few shapes of sets, each with its own branch-free summation). The source is told which
+  // entries, never why: the set is the programme's (plugin/core/cell_programme.hpp)
   virtual unsigned request_cell_tallies(unsigned entries) = 0;
   virtual const CellTallies &cell_tallies() const = 0;
   // a source that does not make the tallies during the force evaluation (the route for other

@@ -10,7 +10,6 @@
 
 #include "compute_cell_tally.h"
 
-#include "cell_servo.hpp"
 #include "cell_stiffness.hpp"
 #include "contact_stiffness_estimate.hpp"
 #include "lammps_compat.h"
@@ -47,7 +46,8 @@ unsigned ComputeCellTally::request_cell_tallies(unsigned entries)
 {
   // the principal block alone, or all 21 entries (the estimate walks the neighbor list once
   // per measurement, not the pair's contact loop)
-  with_shear = (entries & ~CellTallies::PRINCIPAL_ENTRIES) != 0;
+  using Sums = tycore::AffineStiffnessSums;
+  with_shear = (entries & ~Sums::principal_entries) != 0;
   Pair *pair = force->pair;
   if (!pair)
     error->all(FLERR, "fix cell/servo needs a pair style: the servo's stress and stiffness "
@@ -74,7 +74,7 @@ unsigned ComputeCellTally::request_cell_tallies(unsigned entries)
                    "mean-field shear; pair_style thornton/yin has both",
                    force->pair_style);
   warned = true;
-  return with_shear ? CellTallies::ALL_ENTRIES : CellTallies::PRINCIPAL_ENTRIES;
+  return with_shear ? Sums::all_entries : Sums::principal_entries;
 }
 
 void ComputeCellTally::refresh_cell_tallies()
@@ -114,16 +114,12 @@ void ComputeCellTally::refresh_cell_tallies()
       const bool j_owned = j < nlocal || newton_pair;
       const double share = j_owned ? 1.0 : 0.5;
       const double k_N = tycore::hertz_normal_stiffness(normal_force, radsum - r);
-      const Eigen::Matrix3d c = tycore::affine_stiffness_contribution(branch, k_N);
-      const double virial_order[6] = {c(0, 0), c(1, 1), c(2, 2), c(0, 1), c(0, 2), c(1, 2)};
-      for (int k = 0; k < 6; ++k) tallies.sum[CellTallies::STIFFNESS + k] += share * virial_order[k];
-      if (with_shear) {    // a cell with shears: the 15 entries with a shear component
-        using Stiffness = tycore::AffineStiffnessSums;
-        double shear[Stiffness::shear_size];
-        Stiffness::shear_entries(branch, k_N, 0.0, shear);
-        for (int k = 0; k < Stiffness::shear_size; ++k)
-          tallies.sum[CellTallies::STIFFNESS + Stiffness::principal_size + k] += share * shear[k];
-      }
+      // the principal block, and with shears asked for the 15 entries with a shear component
+      using Sums = tycore::AffineStiffnessSums;
+      Sums::contact_entries(branch, k_N, 0.0, [&](int k, double value) {
+        if (k < Sums::principal_size || with_shear)
+          tallies.sum[CellTallies::STIFFNESS + k] += share * value;
+      });
       tallies.sum[CellTallies::CONTACTS] += share;
       tallies.sum[CellTallies::FORCE] += share * std::fabs(normal_force);
       count[i] += 1.0;

@@ -1,141 +1,146 @@
 /* ----------------------------------------------------------------------
-   fix cell/servo: the checks of its record (keywords csv and extra; docs/fix_cell_servo.md)
-
-   * the record may not be a file LAMMPS itself writes or reads (log and screen files, the
-     input script, dump and restart files, the record of another fix cell/servo): compared by
-     file identity (tycore::file_identity), so ./c.csv, a symbolic link and ../d/c.csv are seen
-     to be c.csv;
-   * extra columns name global scalars and vectors of computes and fixes and numeric
-     variables; a vector without an index gives one column per element, NAME[i].
+   The record of a fix cell/servo test (fix_cell_servo_record.h)
 ------------------------------------------------------------------------- */
 
-#include "fix_cell_servo.h"
+#include "fix_cell_servo_record.h"
+
+#include "cell_command.hpp"
 
 #include "comm.h"
 #include "compute.h"
 #include "dump.h"
 #include "error.h"
+#include "fix.h"
 #include "input.h"
 #include "modify.h"
 #include "output.h"
 #include "universe.h"
+#include "update.h"
 #include "variable.h"
 
+#include <algorithm>
 #include <cstring>
 
 using namespace LAMMPS_NS;
 
 namespace {
 
-// what a reference c_ID, c_ID[i], f_ID or f_ID[i] names, for the messages
-template <class T> const char *global_kind(const T *source, bool indexed)
+// the records of this process's fixes cell/servo, to refuse a second one on the same file
+std::vector<std::pair<const LAMMPS *, const CellRecord *>> &live_records()
 {
-  if (!indexed && source->scalar_flag) return nullptr;                     // a scalar: fine
-  if (source->vector_flag) return nullptr;                                 // a vector: fine
-  if (source->array_flag) return "a global array";
-  if (source->peratom_flag) return "per-atom";
-  if (source->local_flag) return "local";
-  return indexed ? "no global vector" : "no global scalar or vector";
+  static std::vector<std::pair<const LAMMPS *, const CellRecord *>> records;
+  return records;
 }
 
 }    // namespace
 
-// the name of a column: not a built-in column, not a column already taken
-void FixCellServo::check_extra_name(const std::string &name, const std::string &ref,
-                                    const std::vector<std::pair<std::string, std::string>> &taken)
-    const
+CellRecord::CellRecord(LAMMPS *lmp, const std::string &fix_id, const std::string &path,
+                       int every, const Columns &extra) :
+    Pointers(lmp), fix_id_(fix_id), path_(path), every_(every), requests_(extra)
 {
-  if (name.empty() || name.find_first_of(",\"' ") != std::string::npos)
-    error->all(FLERR, "fix cell/servo {}: extra column name '{}' may not hold commas, quotes or "
-               "blanks", id, name);
-  if (name == "step")
-    error->all(FLERR, "fix cell/servo {}: extra column {} ({}) has the name of the record's "
-               "built-in column step: choose another name", id, name, ref);
-  for (int k = 0; k < N_OUTPUT; ++k)
-    if (name == output_name(k))
-      error->all(FLERR, "fix cell/servo {}: extra column {} ({}) has the name of the fix's "
-                 "built-in output {} (output {}): choose another name", id, name, ref,
-                 output_name(k), k + 1);
-  for (const auto &e : taken)
-    if (name == e.first)
-      error->all(FLERR, "fix cell/servo {}: extra column {} ({}) has the name of extra column "
-                 "{} ({}): choose another name", id, name, ref, e.first, e.second);
+  live_records().emplace_back(lmp, this);
 }
 
-// the columns of `extra N name ref ...`, resolved now that the computes, fixes and variables
-// they name exist (init): a global vector without an index gives its elements NAME[1..n]
-void FixCellServo::resolve_extra_columns()
+CellRecord::~CellRecord()
 {
-  const char *accepted = "extra takes global scalars and vectors (c_ID, c_ID[i], f_ID, "
-                         "f_ID[i]) and equal-style variables (v_name)";
-  extra_columns.clear();
-  for (const auto &request : extra_requests) {
-    const std::string &name = request.first, &ref = request.second;
-    auto add = [&](const std::string &column, const std::string &reference) {
-      check_extra_name(column, ref, extra_columns);
-      extra_columns.emplace_back(column, reference);
+  auto &records = live_records();
+  records.erase(std::remove(records.begin(), records.end(), std::make_pair(
+                                static_cast<const LAMMPS *>(lmp), static_cast<const CellRecord *>(this))),
+                records.end());
+}
+
+// what each request names (tycore::extra_columns_of): the columns it gives, checked
+void CellRecord::resolve_extra()
+{
+  columns_.clear();
+  for (const auto &request : requests_) {
+    const tycore::Reference r = tycore::parse_reference(request.second);
+    tycore::ReferenceTarget t;
+    auto inspect = [&t](auto *source) {
+      t.exists = true;
+      t.scalar = source->scalar_flag, t.vector = source->vector_flag;
+      t.array = source->array_flag, t.peratom = source->peratom_flag;
+      t.local = source->local_flag;
+      t.size = source->size_vector, t.variable_size = source->size_vector_variable;
     };
-    if (ref.compare(0, 2, "v_") == 0) {
-      const int ivar = input->variable->find(ref.c_str() + 2);
-      if (ivar < 0)
-        error->all(FLERR, "fix cell/servo {}: extra column {}: variable {} does not exist", id,
-                   name, ref.substr(2));
-      if (!input->variable->equalstyle(ivar))
-        error->all(FLERR, "fix cell/servo {}: extra column {}: variable {} is not a number "
-                   "each step ({}); {}", id, name, ref.substr(2),
-                   input->variable->atomstyle(ivar) ? "it is per-atom"
-                   : input->variable->vectorstyle(ivar) ? "it is vector-style"
-                                                        : "it is a string, read as 0",
-                   accepted);
-      add(name, ref);
-      continue;
+    if (r.kind == 'v') {
+      const int ivar = input->variable->find(r.id.c_str());
+      t.exists = ivar >= 0;
+      t.equal_style = t.exists && input->variable->equalstyle(ivar);
+      t.atom_style = t.exists && input->variable->atomstyle(ivar);
+      t.vector_style = t.exists && input->variable->vectorstyle(ivar);
+    } else if (r.kind == 'c' && modify->find_compute(r.id) >= 0) {
+      inspect(modify->compute[modify->find_compute(r.id)]);
+    } else if (r.kind == 'f' && modify->find_fix(r.id) >= 0) {
+      inspect(modify->fix[modify->find_fix(r.id)]);
     }
-    // c_ID or f_ID, with or without [i]
-    const std::size_t open = ref.find('[');
-    const std::string source_id = ref.substr(2, open == std::string::npos ? open : open - 2);
-    const bool indexed = open != std::string::npos;
-    const bool is_compute = ref[0] == 'c';
-    const char *kind = nullptr;
-    int length = 0;    // elements of an unindexed global vector; 0 for a scalar or an element
-    auto inspect = [&](auto *source) {
-      kind = global_kind(source, indexed);
-      if (!kind && !indexed && !source->scalar_flag) length = source->size_vector;
-    };
-    if (is_compute) {
-      const int i = modify->find_compute(source_id);
-      if (i < 0)
-        error->all(FLERR, "fix cell/servo {}: extra column {}: compute {} does not exist", id,
-                   name, source_id);
-      inspect(modify->compute[i]);
-    } else {
-      const int i = modify->find_fix(source_id);
-      if (i < 0)
-        error->all(FLERR, "fix cell/servo {}: extra column {}: fix {} does not exist", id, name,
-                   source_id);
-      inspect(modify->fix[i]);
+    try {
+      for (const auto &column : tycore::extra_columns_of(request.first, request.second, t)) {
+        tycore::check_extra_column(column.first, request.second, columns_);
+        columns_.push_back(column);
+      }
+    } catch (std::exception &x) {
+      error->all(FLERR, "fix cell/servo {}: {}", fix_id_, x.what());
     }
-    if (kind)
-      error->all(FLERR, "fix cell/servo {}: extra column {}: {} {} is {}; {} (reduce per-atom "
-                 "or local values first, e.g. with compute reduce)", id, name,
-                 is_compute ? "compute" : "fix", source_id,
-                 std::strcmp(kind, "per-atom") == 0 || std::strcmp(kind, "local") == 0
-                     ? fmt::format("{} (not global)", kind) : std::string(kind),
-                 accepted);
-    if (length == 0) add(name, ref);
-    for (int k = 1; k <= length; ++k)
-      add(fmt::format("{}[{}]", name, k), fmt::format("{}[{}]", ref, k));
+  }
+}
+
+std::string CellRecord::extra_header() const
+{
+  std::string header;
+  for (const auto &e : columns_) header += "," + e.first;
+  return header;
+}
+
+// a new test starts its record; a continued one appends to it (tycore::CsvRecord: superseded
+// rows of a crashed run dropped)
+void CellRecord::open(const std::string &header, bool resume, bigint step)
+{
+  if (comm->me != 0 || csv_.is_open()) return;
+  refuse_aliases();
+  try {
+    if (resume) csv_.resume(path_, header, step);
+    else csv_.start(path_, header);
+  } catch (std::exception &e) {
+    error->one(FLERR, "fix cell/servo: {}", e.what());
+  }
+  if (csv_.dropped_rows() > 0)
+    utils::logmesg(lmp, "fix cell/servo: {} continues at step {}: dropped {} row(s) written "
+                   "after that step by an earlier run\n", path_, step, csv_.dropped_rows());
+}
+
+bool CellRecord::holds(bigint step) const
+{
+  int held = comm->me == 0 && csv_.last_step() >= step;
+  MPI_Bcast(&held, 1, MPI_INT, 0, world);
+  return held;
+}
+
+void CellRecord::write(bigint step, const std::vector<double> &values)
+{
+  // the extra columns first, on every rank (computes and variables are collective)
+  std::vector<double> row = values;
+  if (!columns_.empty()) {
+    modify->clearstep_compute();
+    for (const auto &e : columns_) row.push_back(input->variable->compute_equal(e.second));
+    modify->addstep_compute(step + 1);
+  }
+  if (comm->me != 0 || !csv_.is_open()) return;
+  try {
+    csv_.write_row(step, row);
+  } catch (std::exception &e) {
+    error->one(FLERR, "fix cell/servo: {}", e.what());
   }
 }
 
 // the record may not overwrite a file LAMMPS writes or reads, nor another cell/servo record
 // (rank 0: it alone knows the log and screen files)
-void FixCellServo::refuse_record_aliases() const
+void CellRecord::refuse_aliases() const
 {
-  if (csv_path.empty()) return;
-  const tycore::FileIdentity record = tycore::file_identity(csv_path);
+  const tycore::FileIdentity record = tycore::file_identity(path_);
   auto refuse = [&](const std::string &what) {
     error->one(FLERR, "fix cell/servo {}: csv {} is {}: the record would overwrite it; name "
-               "another file", id, csv_path, what);
+               "another file", fix_id_, path_, what);
   };
   const std::pair<FILE *, const char *> streams[] = {
       {lmp->logfile, "the log file of this LAMMPS run"},
@@ -145,18 +150,16 @@ void FixCellServo::refuse_record_aliases() const
       {lmp->infile, "the input script LAMMPS is reading"}};
   for (const auto &s : streams)
     if (s.first && tycore::file_identity(s.first) == record) refuse(s.second);
-  for (int i = 0; i < lmp->output->ndump; ++i)
-    if (lmp->output->dump[i]->filename &&
-        tycore::names_file_of(csv_path, lmp->output->dump[i]->filename))
-      refuse(fmt::format("the file of dump {}", lmp->output->dump[i]->id));
-  const LAMMPS_NS::Output *out = lmp->output;
+  const Output *out = lmp->output;
+  for (int i = 0; i < out->ndump; ++i)
+    if (out->dump[i]->filename && tycore::names_file_of(path_, out->dump[i]->filename))
+      refuse(fmt::format("the file of dump {}", out->dump[i]->id));
   for (const char *restart : {out->restart1, out->restart2a, out->restart2b})
-    if (restart && tycore::names_file_of(csv_path, restart))
+    if (restart && tycore::names_file_of(path_, restart))
       refuse("a restart file this run writes ('restart' command)");
-  for (int i = 0; i < modify->nfix; ++i) {
-    auto other = dynamic_cast<FixCellServo *>(modify->fix[i]);
-    if (other && other != this && !other->csv_path.empty() &&
-        tycore::file_identity(other->csv_path) == record)
-      refuse(fmt::format("the record of fix {} (csv {})", other->id, other->csv_path));
-  }
+  for (const auto &other : live_records())
+    if (other.first == lmp && other.second != this &&
+        tycore::file_identity(other.second->path_) == record)
+      refuse(fmt::format("the record of fix {} (csv {})", other.second->fix_id_,
+                         other.second->path_));
 }

@@ -8,6 +8,7 @@
 #include "tylmp_numeric.h"
 #include "tylmp_citations.h"
 
+#include "box_rate.hpp"
 #include "cell_stiffness.hpp"
 #include "contact_geometry.hpp"
 #include "contact_kernel.hpp"
@@ -112,7 +113,8 @@ PairThorntonYin::PairThorntonYin(LAMMPS *lmp) : PairWithHistory(lmp)
   dt = 0.0;
   tally_cell = 0;
   batch_energy = false;
-  stiffness_set = PRINCIPAL;
+  principal_by_contact = true;
+  lane_principal = lane_shear = -1;
   lane_entries = 0;
   record_contacts = 0;
   record_step = -1;
@@ -566,9 +568,8 @@ double PairThorntonYin::affine_velocity_gradient(double L[3][3]) const
 /* ----------------------------------------------------------------------
    The affine contact velocity is built from domain->h_rate (affine_velocity_gradient).
    A fix that changes the box without setting h_rate (in LAMMPS 2021: fix deform 'volume'
-   dimensions, barostats) silently removes part of it, so compare h_rate dt with the box
-   change since the previous step (less the jumps of a tilt flip) and warn once if they
-   disagree.
+   dimensions, barostats) silently removes part of it: warn once when h_rate does not explain
+   the box change since the previous step (tycore::unexplained_box_change, box_rate.hpp).
 ------------------------------------------------------------------------- */
 
 void PairThorntonYin::check_box_rate()
@@ -581,49 +582,17 @@ void PairThorntonYin::check_box_rate()
   box_from_setup = update->setupflag;
   if (!update->setupflag && !domain->deform_vremap && !box_rate_warned && comparable) {
     static const char *const component[6] = {"xx", "yy", "zz", "yz", "xz", "xy"};
-    // a tilt flip (fix deform flip yes) replaced the box h by h M, M unit upper-triangular with
-    // integer flip counts: the same lattice of images, every image's affine velocity unchanged
-    // (docs/theory.md §10.3). Its jumps are no change of the box: take them out
-    double flip[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-    if (domain->triclinic) {
-      double before[6];    // the box of the last step advanced by the rate, before any flip
-      for (int k = 0; k < 6; ++k) before[k] = box_h[k] + domain->h_rate[k] * update->dt;
-      const double p = std::nearbyint((h[3] - before[3]) / h[1]);                  // yz by ly
-      const double m = std::nearbyint((h[5] - before[5]) / h[0]);                  // xy by lx
-      const double n = std::nearbyint((h[4] - before[4] - p * before[5]) / h[0]);  // xz by lx
-      flip[3] = p * h[1];
-      flip[4] = n * h[0] + p * before[5];
-      flip[5] = m * h[0];
-    }
-    for (int k = 0; k < 6; ++k) {
-      const double change = h[k] - box_h[k] - flip[k];
-      const double from_rate = domain->h_rate[k] * update->dt;
-      const double scale = std::fabs(change) + std::fabs(from_rate);
-      const auto agrees = [&](double expected) {
-        return std::fabs(change - expected) <= 1e-3 * scale;
-      };
-      // h_rate explains the change if it was held over the step (fix deform erate), or if
-      // the strain rate L = h_rate/h was, with h at the end of the step (fix cell/servo:
-      // L <- L exp(-eps_dot dt), h_rate = -eps_dot L_new, so h_old = h exp(-L dt)) or at its
-      // start (fix deform trate: h_rate = rate h_old, h = h_old exp(L dt)). Exact at any rate
-      // for the three; tilts are only changed linearly
-      const bool explained = agrees(from_rate) ||
-          (k < 3 && h[k] > 0.0 && agrees(-h[k] * std::expm1(-from_rate / h[k]))) ||
-          (k < 3 && box_h[k] > 0.0 && agrees(box_h[k] * std::expm1(from_rate / box_h[k])));
-      // (a tilt is measured against the edge it shears, not against its own size, which may be 0)
-      const double length = k < 3 ? h[k] : (k == 3 ? h[1] : h[0]);
-      if (!explained && scale > 1e-12 * std::fabs(length)) {
-        box_rate_warned = 1;
-        if (comm->me == 0)
-          error->warning(FLERR, "pair thornton/yin: box component h_{} changed by {:.4g} in the "
-                         "last step but its rate h_rate dt = {:.4g}: a fix changes the box "
-                         "without setting domain->h_rate (fix deform 'volume' in this LAMMPS "
-                         "version, a barostat), so the affine part of the contact velocity "
-                         "is missing for that direction. Use fix cell/servo, fix deform with "
-                         "erate/trate/final on every changing dimension, or fix deform remap v",
-                         component[k], change, from_rate);
-        break;
-      }
+    const tycore::BoxChange c = tycore::unexplained_box_change(box_h, h, domain->h_rate, update->dt);
+    if (c.component >= 0) {
+      box_rate_warned = 1;
+      if (comm->me == 0)
+        error->warning(FLERR, "pair thornton/yin: box component h_{} changed by {:.4g} in the "
+                       "last step but its rate h_rate dt = {:.4g}: a fix changes the box "
+                       "without setting domain->h_rate (fix deform 'volume' in this LAMMPS "
+                       "version, a barostat), so the affine part of the contact velocity "
+                       "is missing for that direction. Use fix cell/servo, fix deform with "
+                       "erate/trate/final on every changing dimension, or fix deform remap v",
+                       component[c.component], c.change, c.from_rate);
     }
   }
   for (int k = 0; k < 6; ++k) box_h[k] = h[k];
@@ -722,7 +691,7 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
 
   begin_tallies();
   begin_batches(evflag && eflag_either);
-  const bool by_contact = stiffness_set <= FULL;
+  const bool by_contact = principal_by_contact;
   const auto run = [&](Batch &bt) {
     if (by_contact) run_batch<ADHESIVE, DAMPED, true>(bt, sweep);
     else run_batch<ADHESIVE, DAMPED, false>(bt, sweep);
@@ -934,15 +903,8 @@ template <bool BY_CONTACT> void PairThorntonYin::tally_batch(const Batch &bt, in
   tallies.sum[CellTallies::CONTACTS] = contacts;
   tallies.sum[CellTallies::SLIDING] = sliding;
   tallies.sum[CellTallies::FORCE] = force_sum;
-  if (BY_CONTACT) {
-    if (stiffness_set == FULL) tally_stiffness_lanes<FULL>(bt, n);
-  } else if (stiffness_set == HELD_XY) {
-    tally_stiffness_lanes<HELD_XY>(bt, n);
-  } else if (stiffness_set == HELD_XZ) {
-    tally_stiffness_lanes<HELD_XZ>(bt, n);
-  } else {
-    tally_stiffness_lanes<HELD_YZ>(bt, n);
-  }
+  if (lane_principal >= 0) tally_principal_lane(bt, n);
+  if (lane_shear >= 0) (this->*shear_lane_tally(lane_shear))(bt, n);
 }
 
 // the per-lane stiffness sums into the tallies, and the reverse communication of the contact
@@ -961,53 +923,45 @@ void PairThorntonYin::end_tallies()
    the servo's stiffness sums: which entries, and how they are summed
 ------------------------------------------------------------------------- */
 
-namespace {
-// the sets summed per lane (bit k: entry k of tycore::AffineStiffnessSums): all 15 with a shear
-// component; or, holding sigma_n = sigma_jj of a shear plane, C_jj and C_j,ij
-constexpr unsigned bit(int I, int J) { return 1u << tycore::AffineStiffnessSums::index(I, J); }
-constexpr unsigned SHEAR_ENTRIES = CellTallies::ALL_ENTRIES & ~CellTallies::PRINCIPAL_ENTRIES;
-constexpr unsigned held_entries(int normal, int shear)
-{
-  return bit(normal, normal) | bit(normal, shear);
-}
-}    // namespace
-
-// the smallest offered set that holds `entries`: the principal block (orthogonal cells, the
-// principal programmes), a shear plane's held normal stress (drained simple shear: its servo
-// uses C_jj and the feed-forward C_j,ij alone, docs/theory.md §11.2), or all 21
+// The entries asked for (bits of tycore::AffineStiffnessSums::index) are made in one of a few
+// shapes, each with its own branch-free summation: the principal block contact by contact (the
+// batch law computes it for every contact), or one of its entries per batch lane; and none, one
+// or all 15 of the entries with a shear component per lane. Returns the set made, a superset.
 unsigned PairThorntonYin::request_cell_tallies(unsigned entries)
 {
+  using Sums = tycore::AffineStiffnessSums;
   tally_cell = 1;
-  struct Offer { int set; unsigned made, lanes; };
-  const Offer offers[] = {
-      {PRINCIPAL, CellTallies::PRINCIPAL_ENTRIES, 0u},
-      {HELD_XY, held_entries(1, 3), held_entries(1, 3)},
-      {HELD_XZ, held_entries(2, 4), held_entries(2, 4)},
-      {HELD_YZ, held_entries(2, 5), held_entries(2, 5)},
-      {FULL, CellTallies::ALL_ENTRIES, SHEAR_ENTRIES}};
-  for (const Offer &o : offers)
-    if ((entries & ~o.made) == 0) {
-      stiffness_set = o.set;
-      lane_entries = o.lanes;
-      return o.made;
-    }
-  stiffness_set = FULL;
-  lane_entries = SHEAR_ENTRIES;
-  return CellTallies::ALL_ENTRIES;
+  const unsigned principal = entries & Sums::principal_entries;
+  const unsigned shear = (entries & Sums::all_entries) >> Sums::principal_size;
+  const auto single = [](unsigned bits) { return bits != 0 && (bits & (bits - 1)) == 0; };
+  const auto lowest = [](unsigned bits) { return __builtin_ctz(bits); };
+  lane_shear = shear == 0 ? -1 : single(shear) ? lowest(shear) : ALL_SHEAR;
+  principal_by_contact = principal != 0 && !(single(principal) && lane_shear != ALL_SHEAR);
+  lane_principal = principal != 0 && !principal_by_contact ? lowest(principal) : -1;
+  lane_entries = (lane_principal >= 0 ? 1u << lane_principal : 0u) |
+      (lane_shear == ALL_SHEAR ? Sums::all_entries & ~Sums::principal_entries
+       : lane_shear >= 0 ? 1u << (Sums::principal_size + lane_shear) : 0u);
+  return (principal_by_contact ? Sums::principal_entries : 0u) | lane_entries;
 }
 
-// one batch's stiffness entries of the set SET, summed lane by lane (a broken lane has
-// k_N = k_T = 0): the 15 with a shear component (docs/theory.md §11.1), or a plane's normal
-// entry C_jj (the batch law's, as the principal block) and C_j,ij. The set is fixed at compile
-// time, so the lane loop has no branch and computes no entry it does not keep.
-template <int SET> void PairThorntonYin::tally_stiffness_lanes(const Batch &bt, int n)
+// one principal entry of a batch summed lane by lane (the batch law's, as the block's)
+void PairThorntonYin::tally_principal_lane(const Batch &bt, int n)
+{
+  double *__restrict sum = stiffness_lanes[lane_principal];
+  const double *__restrict share = bt.share;
+  const double *__restrict c = bt.b.affine_stiffness[lane_principal];
+#pragma GCC ivdep
+  for (int l = 0; l < n; ++l) sum[l] += share[l] * c[l];
+}
+
+// the entries with a shear component of a batch, lane by lane (a broken lane has k_N = k_T = 0):
+// all 15 (K = ALL_SHEAR, docs/theory.md §11.1) or entry K alone. K is fixed at compile time, so
+// that the lane loop has no branch and computes no entry it does not keep.
+template <int K> void PairThorntonYin::tally_shear_lane(const Batch &bt, int n)
 {
   constexpr int P = tycore::AffineStiffnessSums::principal_size;
-  constexpr int normal = SET == HELD_XY ? 1 : 2;    // the principal entry (virial order)
-  constexpr int shear = SET == HELD_XY ? 3 : SET == HELD_XZ ? 4 : 5;
-  constexpr int coupling = tycore::AffineStiffnessSums::index(normal, shear) - P;
   const tycore::ContactBatch &b = bt.b;
-  if (SET == FULL) {
+  if constexpr (K == ALL_SHEAR) {
     for (int l = 0; l < n; ++l) {
       const double share = bt.share[l];
       tycore::affine_shear_entries(b.n[0][l], b.n[1][l], b.n[2][l], b.rsq[l],
@@ -1016,24 +970,35 @@ template <int SET> void PairThorntonYin::tally_stiffness_lanes(const Batch &bt, 
                                      stiffness_lanes[P + k][l] += share * value;
                                    });
     }
-    return;
-  }
-  // two sums that alias nothing the loop reads, so that it vectorises
-  double *__restrict sum_normal = stiffness_lanes[normal];
-  double *__restrict sum_coupling = stiffness_lanes[P + coupling];
-  const double *__restrict share = bt.share;
-  const double *__restrict c_normal = b.affine_stiffness[normal];
+  } else {
+    // one sum that aliases nothing the loop reads, so that it vectorises
+    double *__restrict sum = stiffness_lanes[P + K];
+    const double *__restrict share = bt.share;
 #pragma GCC ivdep
-  for (int l = 0; l < n; ++l) {
-    double value = 0.0;
-    tycore::affine_shear_entries(b.n[0][l], b.n[1][l], b.n[2][l], b.rsq[l],
-                                 b.normal_stiffness[l], b.tangential_stiffness[l],
-                                 [&](int k, double entry) {
-                                   if (k == coupling) value = entry;
-                                 });
-    sum_normal[l] += share[l] * c_normal[l];
-    sum_coupling[l] += share[l] * value;
+    for (int l = 0; l < n; ++l) {
+      double value = 0.0;
+      tycore::affine_shear_entries(b.n[0][l], b.n[1][l], b.n[2][l], b.rsq[l],
+                                   b.normal_stiffness[l], b.tangential_stiffness[l],
+                                   [&](int k, double entry) {
+                                     if (k == K) value = entry;
+                                   });
+      sum[l] += share[l] * value;
+    }
   }
+}
+
+// the summation of shear entry K (0..14) or of all (ALL_SHEAR), as a member pointer
+template <std::size_t... K>
+std::array<PairThorntonYin::ShearLaneTally, sizeof...(K)>
+PairThorntonYin::shear_lane_tallies(std::index_sequence<K...>)
+{
+  return {&PairThorntonYin::tally_shear_lane<int(K)>...};
+}
+
+PairThorntonYin::ShearLaneTally PairThorntonYin::shear_lane_tally(int k)
+{
+  static const auto table = shear_lane_tallies(std::make_index_sequence<ALL_SHEAR + 1>());
+  return table[k];
 }
 
 /* ----------------------------------------------------------------------

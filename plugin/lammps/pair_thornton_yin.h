@@ -11,11 +11,13 @@
 #include "cell_tally.h"
 #include "lammps_compat.h"
 
-#include "affine_shear_entries.hpp"
+#include "affine_stiffness_entries.hpp"
 #include "contact_batch.hpp"
 #include "contact_geometry.hpp"
 
+#include <array>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -112,18 +114,23 @@ class PairThorntonYin : public tylmp_compat::PairWithHistory, public CellTallySo
 
   int tally_cell;
   // which stiffness entries the tallies make, and how (request_cell_tallies): the principal
-  // block summed contact by contact; with it the 15 entries with a shear component summed
-  // per lane (FULL); or, for a programme that holds the normal stress of one shear plane
-  // (drained simple shear), only that normal entry and its coupling to the plane's shear,
-  // both summed per lane (HELD_XY, HELD_XZ, HELD_YZ)
-  enum StiffnessSet { PRINCIPAL, FULL, HELD_XY, HELD_XZ, HELD_YZ };
-  int stiffness_set;
-  unsigned lane_entries;    // the entries summed per lane (CellTallies bits)
+  // block contact by contact, or one of its entries per batch lane; and none, one or all 15
+  // entries with a shear component per lane. Each shape has its own branch-free summation.
+  bool principal_by_contact;
+  int lane_principal;    // the principal entry summed per lane (virial order), -1 none
+  int lane_shear;        // the shear entry (0..14) summed per lane, ALL_SHEAR all, -1 none
+  static constexpr int ALL_SHEAR = tycore::affine_shear_size;
+  unsigned lane_entries;    // the entries summed per lane (AffineStiffnessSums bits)
   CellTallies tallies;
   // per batch lane, the entries of lane_entries (summed over the lanes into tallies after the
   // force evaluation)
   alignas(64) double stiffness_lanes[6 + tycore::affine_shear_size][tycore::batch_lanes];
-  template <int SET> __attribute__((noinline)) void tally_stiffness_lanes(const Batch &, int n);
+  void tally_principal_lane(const Batch &, int n);
+  template <int K> __attribute__((noinline)) void tally_shear_lane(const Batch &, int n);
+  using ShearLaneTally = void (PairThorntonYin::*)(const Batch &, int);
+  template <std::size_t... K>
+  static std::array<ShearLaneTally, sizeof...(K)> shear_lane_tallies(std::index_sequence<K...>);
+  static ShearLaneTally shear_lane_tally(int k);
   double *atom_contacts;    // per atom (local after reverse communication)
   int nmax_count;
 
@@ -171,8 +178,8 @@ class PairThorntonYin : public tylmp_compat::PairWithHistory, public CellTallySo
   };
 
   template <bool ADHESIVE, bool DAMPED> void eval(int eflag, int vflag);
-  // BY_CONTACT: the principal stiffness block is summed contact by contact (stiffness_set
-  // PRINCIPAL or FULL), else per lane with the rest of its set
+  // BY_CONTACT: the principal stiffness block is summed contact by contact
+  // (principal_by_contact)
   template <bool ADHESIVE, bool DAMPED, bool BY_CONTACT> void run_batch(Batch &, Sweep &);
   __attribute__((noinline, cold)) void report_overlap(const Batch &, int n);
   template <bool DAMPED> void scatter(const Batch &, int n, Sweep &);

@@ -101,6 +101,59 @@ TEST(CellControl, SixComponentServoReducesToThePrincipalServo)
   }
 }
 
+// A principal programme is stepped on six components to the same numbers as on three, bit for
+// bit, on a cell whose shears carry stress and whose stiffness couples them to the normal
+// components (a triclinic cell's full tally): its shears are outside the programme (cell_servo's
+// used_components), so they set neither the step nor the scale of the stiffness floor. The
+// principal controls of the paper, on random stiffnesses and stresses, one with an axis so
+// soft that the rate floor acts, and at a cap that saturates.
+TEST(CellControl, PrincipalProgrammeOnSixComponentsIsBitwiseTheThreeComponentStep)
+{
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int steps = 0;
+  for (int trial = 0; trial < 600; ++trial) {
+    Matrix6d c6 = random_spd(rng, 1e8);
+    c6.topLeftCorner<3, 3>() *= trial % 7 == 0 ? 1e-12 : 1.0;
+    c6.bottomRightCorner<3, 3>() *= 3.0;    // shear entries above the normal ones
+    Vector6d stress6;
+    for (int k = 0; k < 6; ++k) stress6(k) = 1e5 * (1.0 + 0.3 * u(rng)) * (k < 3 ? 1.0 : 2.0);
+    tycore::ServoSettings s = settings();
+    s.max_strain_rate = trial % 3 == 0 ? 1e-9 : 1e-2;
+    tycore::MixedControl c3;
+    const Vector3d rate(u(rng), u(rng), u(rng));
+    switch (trial % 6) {
+      case 0: c3 = tycore::isotropic_compression_control(1e5); break;
+      case 1: c3 = tycore::axisymmetric_control(trial % 3, 1e-4 * rate(0), 1e5); break;
+      case 2: c3 = tycore::constant_b_control(1e5, 0.3, 1e-4, 2, 0, 1); break;
+      case 3: c3 = tycore::mean_stress_control(1e5, 1e-4 * rate); break;
+      case 4: c3 = tycore::plane_strain_control(1e5, 1e-4 * rate, trial % 3); break;
+      default:
+        c3 = tycore::per_axis_control({tycore::AxisProgramme{tycore::AxisControl::STRAIN_RATE, 1e-4},
+                                       {tycore::AxisControl::STRESS, 1e5},
+                                       {tycore::AxisControl::STRESS, 1.2e5}});
+    }
+    tycore::ServoMemory m3;
+    tycore::ServoMemoryOf<6> m6;
+    for (int k = 0; k < 3; ++k) m3.integral(k) = m6.integral(k) = 100.0 * u(rng);
+    const tycore::MixedControl6 six = tycore::six_component_control(c3);
+    for (int step = 0; step < 3; ++step, ++steps) {
+      const tycore::ServoCommand a = tycore::servo_step(
+          c3, {stress6.head<3>(), c6.topLeftCorner<3, 3>(), Vector3d::Zero()}, s, 1e-6, m3);
+      const tycore::ServoCommandOf<6> b =
+          tycore::servo_step(six, {stress6, c6, Vector6d::Zero()}, s, 1e-6, m6);
+      for (int k = 0; k < 3; ++k) {
+        ASSERT_EQ(b.strain_rate(k), a.strain_rate(k)) << trial << " " << step;
+        ASSERT_EQ(m6.integral(k), m3.integral(k)) << trial << " " << step;
+      }
+      ASSERT_EQ(b.strain_rate.tail<3>(), Vector3d::Zero());
+      ASSERT_EQ(b.saturated, a.saturated);
+      stress6.head<3>() += 0.5 * c6.topLeftCorner<3, 3>() * a.strain_rate * 1e-6;
+    }
+  }
+  EXPECT_EQ(steps, 1800);
+}
+
 // one step on a full C: the strain-controlled components take their prescribed increments and
 // the stress-controlled ones solve C_SS de_S = g (t_S - sigma_S) - C_SE de_E, so that the
 // predicted stress C de removes the fraction g of each held error
@@ -284,6 +337,7 @@ TEST(CellControl, CyclicSimpleShearCountsCyclesToLiquefaction)
     }
   }
   EXPECT_EQ(reversals_seen, state.reversals);
+  EXPECT_EQ(test.cycles(state), 0.5 * reversals_seen);    // cycles completed
   EXPECT_NEAR(std::abs(extreme), gamma_a, 2 * rate * dt);
   // half cycle k ends after a travel of gamma_a (2k - 1)
   const double travel_at_liquefaction = 0.95 * sigma_n0 / beta;

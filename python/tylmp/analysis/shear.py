@@ -3,8 +3,9 @@ docs/theory.md §13): the kind of test, the shear rate, the cycle count and liqu
 
 A record of a test in a plane has the columns gamma, tau (= -sigma_ij, positive while gamma
 grows), sig_n and tau_ratio; a constant-volume test adds r_u = 1 - sig_n/sig_n0, a cyclic one
-also cycles (N = (half cycles begun)/2: the first half cycle is N = 0.5), N_L_ru and N_L_gamma
-(the N at which r_u >= 0.95 and the double-amplitude gamma >= 3.75 % first held; 0 before).
+also cycles (N = (half cycles completed)/2: 0 during the first half cycle, N once 2N are over),
+N_L_ru and N_L_gamma (the count of the half cycle in which r_u >= 0.95 and the double-amplitude
+gamma >= 3.75 % first held, (half cycles completed + 1)/2; 0 before).
 """
 import numpy as np
 
@@ -42,9 +43,10 @@ def half_cycle_starts(table):
 
 
 def continuous_cycles(table):
-    """The cycle count as a continuous measure: within the half cycle counted N (rows of equal
-    `cycles`), from N - 0.5 at its first row to N at the first row of the next, linear in
-    time; the running half cycle at the record's end reaches N at the record's last row."""
+    """The cycle count as a continuous measure: within the half cycle whose rows show N (rows
+    of equal `cycles`, N the cycles completed before it), from N at its first row to N + 0.5
+    at the first row of the next, linear in time; the running half cycle at the record's end
+    reaches N + 0.5 at the record's last row."""
     c = np.asarray(table["cycles"], float)
     t = np.asarray(table["time"], float)
     starts = [0] + [int(k) for k in half_cycle_starts(table)]
@@ -54,7 +56,7 @@ def continuous_cycles(table):
         t_end = t[b] if b < len(c) else t[b - 1]
         span = t_end - t[a]
         if span > 0:
-            out[a:b] = c[a] - 0.5 + 0.5 * (t[a:b] - t[a]) / span
+            out[a:b] = c[a] + 0.5 * (t[a:b] - t[a]) / span
     return out
 
 
@@ -72,11 +74,11 @@ def liquefaction_rows(table, ru_limit=RU_LIMIT, da_limit=DA_LIMIT):
 
 
 def liquefaction_from_record(table, ru_limit=RU_LIMIT, da_limit=DA_LIMIT):
-    """N_L by both criteria recomputed from the record's rows: the cycle count of the first row
-    at which each criterion holds (liquefaction_rows); 0 where it never holds, as the fix
-    reports it."""
+    """N_L by both criteria recomputed from the record's rows: the count of the half cycle of
+    the first row at which each criterion holds (liquefaction_rows), its cycles + 0.5; 0 where
+    it never holds, as the fix reports it."""
     c = np.asarray(table["cycles"], float)
-    return tuple(float(c[r]) if r is not None else 0.0
+    return tuple(float(c[r]) + 0.5 if r is not None else 0.0
                  for r in liquefaction_rows(table, ru_limit, da_limit))
 
 

@@ -1,11 +1,34 @@
-// The entries of the full affine stiffness with a shear component (docs/theory.md §11.1), one
-// contact at a time: what the pair's contact batch tallies on a triclinic cell
-// (pair_thornton_yin.cpp) and tycore::AffineStiffnessSums sums (cell_stiffness.hpp). No
-// dependencies, so that the batch kernel includes it without Eigen.
-#ifndef TYCORE_AFFINE_SHEAR_ENTRIES_HPP
-#define TYCORE_AFFINE_SHEAR_ENTRIES_HPP
+// One contact's share of the affine stiffness V C (docs/theory.md §6.1, §11.1), the one
+// definition of the formula: the principal block that the pair's contact batch computes for
+// every contact (contact_batch.hpp), the entries with a shear component that it tallies on a
+// triclinic cell (pair_thornton_yin.cpp), and tycore::AffineStiffnessSums (cell_stiffness.hpp),
+// which the estimate for other pair styles sums (compute_cell_tally.cpp). No dependencies, so
+// that the batch kernel includes it without Eigen; plain arithmetic, so that it vectorises in
+// the batch's lane loops.
+#ifndef TYCORE_AFFINE_STIFFNESS_ENTRIES_HPP
+#define TYCORE_AFFINE_STIFFNESS_ENTRIES_HPP
 
 namespace tycore {
+
+// one contact's 6 entries of V C of the principal block (I, J < 3) in LAMMPS's virial order
+// xx yy zz xy xz yz (entry m is AffineStiffnessSums::sum[m]), each handed to store(m, value):
+// l^2 [k_N n_a^2 n_b^2 + k_T (delta_ab n_a^2 - n_a^2 n_b^2)]; n the unit branch direction
+// (either sign), l2 = |branch|^2
+template <class Store>
+[[gnu::always_inline]] inline void affine_principal_entries(double nx, double ny, double nz,
+                                                            double l2, double normal_stiffness,
+                                                            double tangential_stiffness,
+                                                            Store&& store)
+{
+  const double n2[3] = {nx * nx, ny * ny, nz * nz};
+  constexpr int a_of[6] = {0, 1, 2, 0, 0, 1}, b_of[6] = {0, 1, 2, 1, 2, 2};
+#pragma GCC unroll 6
+  for (int m = 0; m < 6; ++m) {
+    const double nn = n2[a_of[m]] * n2[b_of[m]];
+    store(m, l2 * (normal_stiffness * nn
+                   + tangential_stiffness * ((m < 3 ? n2[a_of[m]] : 0.0) - nn)));
+  }
+}
 
 inline constexpr int affine_shear_size = 15;
 
