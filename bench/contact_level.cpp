@@ -1,5 +1,5 @@
-// Contact-level benchmark of the tycore physics core (issue 5, "Contact level" of
-// docs/performance.md). Pure C++ on plugin/core, no LAMMPS.
+// Contact-level benchmark of the tycore physics core (issue 5; docs/performance.md,
+// "Choosing the strain rate and the timestep"). Pure C++ on plugin/core, no LAMMPS.
 //
 // Build and run (a few seconds; the timings use the thread's CPU clock, so a busy machine slows
 // the run but distorts the ns/call figures less than wall time would):

@@ -6,7 +6,7 @@ the rest, as shares of the samples of the whole run.
 
     /usr/bin/python3 bench/perf_profile.py [--cases "thornton/yin G=0.6" "thornton/yin G=0"]
         [--steps 5000] [--data bench/data/dense_paper_100kPa.data]
-        [--out bench/results/perf_profile]
+        [--out PREFIX]   (default: perf_profile in the repository's bench results)
 
 Each case runs the deck of bench/pair_speed.py (same data file, neighbor settings, timestep,
 plain NVE, one rank) under `perf record -e cpu-clock` (the kernel's timer, so it works without

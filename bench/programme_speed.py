@@ -30,9 +30,8 @@ with the sum of its jobs' loop times and steps beside it.
 
 Paper scale: a call of one build takes hours, more than a working session (whose processes end
 when it stops), and the speed of the same machine differs from session to session by more than
-the difference between the builds (docs/performance.md, "The paper programme before and
-after"), so halves measured in different sessions cannot be compared. The two builds run side
-by side instead, at the same time, one core each (two reproduce calls, `--jobs 1`, the same
+the difference between the builds (docs/performance.md), so halves measured in different
+sessions cannot be compared. The two builds run side by side instead, at the same time, one core each (two reproduce calls, `--jobs 1`, the same
 runs in the same order), and every job is compared with the same job of the other build that
 ran beside it: a pair. Job rows are saved as the jobs finish, so a call stopped with its
 session keeps its finished pairs; `--missing` calls only the runs that lack a pair (their

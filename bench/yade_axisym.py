@@ -1,6 +1,6 @@
 """Axisymmetric compression at constant mean stress in YADE's periodic cell, started from the
 same LAMMPS data file as the LAMMPS side (bench/yade_axisym.in): the independent-engine
-cross-check of docs/fidelity.md ("Cross-check against YADE").
+cross-check of docs/validation.md ("Axisymmetric compression against YADE").
 
     nice yade -n -x bench/yade_axisym.py [--data bench/data/dense_paper_100kPa.data]
         [--law mindlin|deresiewitz] [--rate 5e-5] [--p 1e5] [--strain 0.10]
@@ -288,7 +288,7 @@ def main():
              if i.isReal]
     result = {"step0": state0, "law": args.law, "dt": O.dt, "steps": O.iter,
               # tangential forces of the last step: Law2_ScGeom_MindlinPhys_MindlinDeresiewitz
-              # of YADE 2023.02a applies none (docs/fidelity.md, "Cross-check against YADE")
+              # of YADE 2023.02a applies none (docs/validation.md, "Axisymmetric compression against YADE")
               "end_max_shear_force_N": max((fs for fs, _ in shear), default=0.0),
               "end_mean_shear_to_normal": (sum(fs / fn for fs, fn in shear if fn > 0)
                                            / max(1, sum(1 for _, fn in shear if fn > 0))),

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Compare the records of the YADE cross-check (docs/fidelity.md, "Cross-check against YADE"):
+"""Compare the records of the YADE cross-check (docs/validation.md, "Axisymmetric compression against YADE"):
 the LAMMPS run of bench/yade_axisym.in and the YADE run(s) of bench/yade_axisym.py, all in the
 fix cell/servo column layout.
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Compare the records of the simple-shear cross-check against YADE (docs/comparison.md,
+"""Compare the records of the simple-shear cross-check against YADE (docs/validation.md,
 "Simple shear against YADE"): LAMMPS runs of bench/yade_simple_shear.in (fix cell/servo shear
 xz) and YADE runs of bench/yade_simple_shear.py, each a record with the columns gamma, tau,
 sig_n, tau_ratio and eps_v.

@@ -1,6 +1,6 @@
 """Drained simple shear at constant normal stress in YADE's periodic cell, started from the same
 LAMMPS data file as the LAMMPS side (bench/yade_simple_shear.in, fix cell/servo shear xz): the
-independent-engine cross-check of docs/comparison.md ("Simple shear against YADE").
+independent-engine cross-check of docs/validation.md ("Simple shear against YADE").
 
     nice yade -n -x bench/yade_simple_shear.py [--data bench/data/dense_paper_100kPa.data]
         [--rate 1e-4] [--sigma-n 1e5] [--gamma 0.10] [--csv OUT.csv] [--every 200]

@@ -18,11 +18,14 @@ if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 export DEBIAN_FRONTEND=noninteractive
 
 # python3-dev: the PYTHON package of the LAMMPS that scripts/lammps2025.sh builds; clang: the
-# second compiler of the core tests (tests/test_clang_build.py)
+# second compiler of the core tests (tests/test_clang_build.py); clang-format: the style of
+# plugin/ (.clang-format, scripts/format.sh, tests/test_format.py); python3-sphinx,
+# python3-myst-parser and furo: the documentation site (docs/conf.py, tests/test_docs_site.py)
 PACKAGES="lammps liblammps-dev python3-lammps openmpi-bin libopenmpi-dev libeigen3-dev
-  cmake make g++ clang libgtest-dev dpkg-dev xz-utils python3-dev
+  cmake make g++ clang clang-format libgtest-dev dpkg-dev xz-utils python3-dev
   python3-numpy python3-scipy python3-matplotlib python3-pytest
-  python3-venv python3-setuptools python3-wheel"
+  python3-venv python3-setuptools python3-wheel
+  python3-sphinx python3-myst-parser furo"
 # LIGGGHTS 3.8 and the headers of exactly its library (Debian's patched ones) for the
 # Thornton-Yin model in LIGGGHTS (cmake/Liggghts.cmake), where the release has them; apt-cache
 # knows only what the package lists hold, so a machine without lists gets them first

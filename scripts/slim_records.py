@@ -1,5 +1,5 @@
-"""The committed copy of a `fix cell/servo` record (docs/validation.md, "Records in the
-repository"): the columns tyanalysis reads (tyanalysis.io.SERVO_COLUMNS, in the record's order),
+"""The committed copy of a `fix cell/servo` record (docs/validation.md, "How the runs were
+made", "Records in the repository"): the columns tyanalysis reads (tyanalysis.io.SERVO_COLUMNS, in the record's order),
 xz-compressed, as NAME.csv.xz beside NAME.csv (the tyanalysis readers open .xz transparently).
 `step`, `Z` and `Z_m` stay as written; the columns the analysis computes from (PRIMARY) are
 rounded to 9 significant digits, the others, which it recomputes from those (metrics.derived)

@@ -10,7 +10,6 @@ from lmprun import LOAD_TYLMP, reduce_local, run_ok
 # columns of compute thornton/yin/contacts (docs/compute_thornton_yin_contacts.md)
 COLUMNS = ["id1", "id2", "fnx", "fny", "fnz", "ftx", "fty", "ftz", "lx", "ly", "lz", "P",
            "overlap", "a", "sliding", "peeling"]
-VIRIAL = ["xx", "yy", "zz", "xy", "xz", "yz"]
 A_OF, B_OF = [0, 1, 2, 0, 0, 1], [0, 1, 2, 1, 2, 2]    # LAMMPS's virial: xy = sum l_x f_y
 
 

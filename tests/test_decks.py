@@ -549,7 +549,7 @@ def test_cache_keyed_on_preparation_settings(tmp_path_factory, specimens):
     # the standard settings reuse the standard file
     rc, out = _run("inputs/axisym.in", work, SHORT)
     _check(rc, out, "axisym.in")
-    assert f"reusing specimen tylmp_specimens/dense_quick.restart" in out
+    assert "reusing specimen tylmp_specimens/dense_quick.restart" in out
     # another preparation setting is another specimen, with its own file; the standard one stays
     rc, out = _run("inputs/axisym.in", work, dict(SHORT, **QUICK_PREP))
     _check(rc, out, "axisym.in -var prep_max_steps 3000")

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from cellspec import read_csv, restart_deck
-from lmprun import LOAD_TYLMP, read_table, run_deck, run_ok
+from lmprun import read_table, run_deck, run_ok
 from test_cell_servo import specimen  # noqa: F401  (session fixture: the dense specimen)
 from test_pair_impacts import impact_deck
 

@@ -37,7 +37,6 @@ Atom IDs (hence diameters) must not depend on the rank count: create_atoms numbe
 rank by rank, so the domain is split along the slowest lattice loop index (processors).
 """
 import glob
-import os
 import re
 
 import numpy as np

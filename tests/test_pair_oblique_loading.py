@@ -7,7 +7,6 @@ the same line when both loads fall; above mu it slides from the start at T = mu 
 increment under varying P against theory rather than against another copy of the law. The
 return along the line is a known deviation of the law's branch rule (docs/theory.md §2.3),
 kept here as a strict xfail that will fail once the rule is changed."""
-import numpy as np
 import pytest
 
 from lmprun import LOAD_TYLMP, reduce_local, run_ok, two_spheres_box

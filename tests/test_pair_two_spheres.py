@@ -18,7 +18,6 @@ G_STAR = ref.effective_shear_modulus(E, NU)
 
 def two_sphere_deck(pair_lines, motion, nsteps, dt, columns, every=1, extra=""):
     """Atom 1 at the origin held still, atom 2 moved by `motion` (fix move args)."""
-    names = " ".join(f"v_{c}" for c in columns)
     defs = "\n".join(f"variable {c} equal {expr}" for c, expr in columns.items())
     return two_spheres_box(2 * R, 2 * R, RHO, types=2) + f"""{LOAD_TYLMP}
 {pair_lines}
@@ -41,7 +40,7 @@ def normal_cycle(tmp_path, pair_lines, gap, delta_max, delta_end, speed, dt):
     x0 = 0.0                        # fix move variable: displacement from the start, 2R + gap
     pos = f"({x0}-{speed}*step*dt*(step*dt<{t_in})-({speed}*{t_in}-{speed}*(step*dt-{t_in}))*(step*dt>={t_in}))"
     vel = f"(-{speed}*(step*dt<{t_in})+{speed}*(step*dt>={t_in}))"
-    motion = f"move variable v_px NULL NULL v_vx NULL NULL"
+    motion = "move variable v_px NULL NULL v_vx NULL NULL"
     extra = f"variable px equal {pos}\nvariable vx equal {vel}"
     cols = {"t": "step*dt", "d": f"{2 * R}-x[2]", "fx": "fx[2]", "f1x": "fx[1]"}
     nsteps = int(t_total / dt) + 1

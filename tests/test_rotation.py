@@ -13,7 +13,7 @@ The rotation turns sigma1 by 90 degrees in the xz plane at 0.5 degree/s after th
     alpha(t) = rate t within the lag that tolerance allows, and the out-of-plane shears at zero:
     held with the shear servo's gain 0.02 (at gain 0.03 and above the shear components rang at
     the rate cap, 2-4 % of p in sig_xz, sig_xy and sig_yz with a period of about 40 steps:
-    docs/validation.md, "Principal stress rotation").
+    docs/decks/rotation.md, "The servo's gain").
 About 2 minutes with the specimens' preparation.
 """
 import math

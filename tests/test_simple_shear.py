@@ -165,7 +165,7 @@ def test_cyclic_deck_bad_option_is_an_error(tmp_path, name, value, message):
 # half the rate (the same period at the same stiffness, as a cyclic device runs at one
 # frequency): r_u about 0.2 after twice the large one's N_L. The monotonic constant-volume peak
 # of this specimen is tau/sigma_n0 = 0.18 at 1e-4 (0.13 at 2e-5), so a CSR above it flows in the
-# first half cycle (docs/validation.md, "Cyclic constant-volume simple shear").
+# first half cycle (docs/decks/cyclic_simple_shear.md).
 CSR_LARGE, RATE_LARGE = 0.11, 1e-4
 CSR_SMALL, RATE_SMALL = 0.055, 5e-5
 RU_LIMIT, DA_LIMIT = 0.95, 0.0375           # the deck's defaults, not passed
@@ -295,7 +295,7 @@ def test_cyclic_small_amplitude_does_not_liquefy(tmp_path_factory, specimens, cy
 def test_cyclic_resistance_curve(tmp_path_factory, specimens, cyclic_large):
     """The cyclic resistance curve of the loose specimen at 1e-4 1/s: N_L by each criterion
     falls as CSR grows (0.09, 0.10 and the CI test's 0.11), and each liquefies by both within
-    60 cycles (docs/validation.md, "Cyclic constant-volume simple shear")."""
+    60 cycles (docs/decks/cyclic_simple_shear.md)."""
     t_large, _ = read_csv(cyclic_large[0] / "large.csv")
     curve = {CSR_LARGE: (t_large["N_L_ru"][-1], t_large["N_L_gamma"][-1])}
     for csr in (0.09, 0.10):

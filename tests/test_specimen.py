@@ -4,7 +4,6 @@
 Run from the repository root: /usr/bin/python3 -m pytest tests/test_specimen.py -q -p no:cacheprovider
 """
 import importlib
-import importlib.util
 import math
 import os
 import re
@@ -21,23 +20,23 @@ SRC_PY = os.path.join(REPO, "python")
 
 
 def _import_specimen():
-    """tylmp.specimen from sys.path (build/python via conftest, or an install);
-    fall back to the source tree if that copy is missing."""
+    """tylmp.specimen from sys.path (build/python via conftest, or an install); from the source
+    tree if no tylmp with a specimen generator is there."""
     try:
         mod = importlib.import_module("tylmp.specimen")
         if hasattr(mod, "generate") and hasattr(mod, "paper_size_distribution"):
             return mod
     except ImportError:
         pass
-    path = os.path.join(SRC_PY, "tylmp", "specimen.py")
-    spec = importlib.util.spec_from_file_location("tylmp_specimen_src", path)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    for name in [m for m in sys.modules if m == "tylmp" or m.startswith("tylmp.")]:
+        del sys.modules[name]
+    sys.path.insert(0, SRC_PY)
+    return importlib.import_module("tylmp.specimen")
 
 
 sp = _import_specimen()
-MODULE_DIR = os.path.dirname(os.path.dirname(os.path.abspath(sp.__file__)))
+# the directory that holds the package tylmp that sp belongs to
+MODULE_DIR = os.path.dirname(os.path.dirname(os.path.abspath(sys.modules["tylmp"].__file__)))
 
 MM = 1e-3
 N_QUICK = 500

@@ -16,7 +16,7 @@ tests/test_decks.py does), and `tyanalysis undrained` on its records:
     parameter: the sign of e - e_cs decides);
   * marked slow: at large strain the undrained stress paths end on the drained critical-state
     line of the same specimens in the p–q plane, q/p = M of the drained tests (the critical
-    state is one state whatever the drainage), docs/validation.md "Undrained triaxial test";
+    state is one state whatever the drainage), docs/decks/undrained.md;
   * marked slow: in e–log p, on soft grains (E = 70 MPa) whose critical-state line falls
     with p, the undrained dense and very loose specimens end on the line fitted to drained
     tests at four mean stresses (inputs/axisym.in -var pressure).
@@ -143,7 +143,7 @@ def test_critical_state_line_fit():
 
 
 # ---------------------------------------------------------------------------------------------
-# slow (TYLMP_SLOW=1): the critical state (docs/validation.md, "Undrained triaxial test")
+# slow (TYLMP_SLOW=1): the critical state (docs/decks/undrained.md)
 
 @pytest.mark.skipif(not os.environ.get("TYLMP_SLOW"), reason="slow (about 5 minutes): set "
                     "TYLMP_SLOW=1")
@@ -159,7 +159,7 @@ def test_loose_undrained_ends_on_drained_critical_state_line(tmp_path_factory, s
     it down); a path still on its way (e.g. the dense specimen's q/p = 1.08 at 4 %) misses it.
     The dense specimen (e0 = 0.526, 0.12 below the drained e_cs) is not asserted: at constant
     volume it could reach the critical state only by compressing the grains, and its p grows
-    a hundredfold by eps1 = 4 % (docs/validation.md)."""
+    a hundredfold by eps1 = 4 % (docs/decks/undrained.md)."""
     from tylmp.analysis import io, principal
     drained = []
     for s in ("dense", "loose"):
@@ -186,7 +186,7 @@ SOFT = {"E": "70e6"}    # 1000x softer than glass: the critical-state line has a
 SOFT_RATE = 2.5e-5      # quarter of the quick rate: inertial number ~1e-3, 100 record rows
 DRAINED_P = (5e4, 1e5, 2e5, 4e5)
 # the end states against the line, in e: the line is fitted to four drained points that stray
-# from it by up to 0.011 (its scatter, 0.014 in the run of docs/validation.md, is mostly the
+# from it by up to 0.011 (its scatter, 0.014 in the run of docs/decks/undrained.md, is mostly the
 # curvature of a Hertzian critical-state line in e-ln p: the grains' compression goes as
 # (p/E)^(2/3)); e at the critical state swings by 0.001-0.003 (std over the last third of a
 # drained record) on 500 spheres. Two standard deviations of the points about the line,
@@ -223,7 +223,7 @@ def test_undrained_end_states_on_drained_critical_state_line(tmp_path_factory):
     compression to eps1 = 0.25 (eps1 - eps3 = 0.375) of the dense specimen (mu = 0
     preparation, e0 = 0.42, 0.13 below the line at 100 kPa: p rises) and of a very loose one
     (prep_mu 1.0, e0 = 0.60, 0.05 above it: p falls) end on that line, within E_TOL in e at
-    their end p (docs/validation.md, "Undrained triaxial test"). The critical state is one
+    their end p (docs/decks/undrained.md). The critical state is one
     state whatever the drainage; at constant volume a specimen can reach it only by p."""
     from tylmp.analysis import io, principal
     from test_decks import _workdir, _lmp_cmd, _check, _env

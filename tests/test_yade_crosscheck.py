@@ -1,4 +1,4 @@
-"""The YADE cross-check (docs/fidelity.md, "Cross-check against YADE"): both engines start from
+"""The YADE cross-check (docs/validation.md, "Against YADE"): both engines start from
 the same specimen. YADE's scene (bench/yade_axisym.py) and the LAMMPS deck
 (bench/yade_axisym.in) must hold, at step 0, the solid fraction, contacts and mean stress of
 the data file, computed here independently: contacts as geometric overlaps by a periodic
@@ -109,7 +109,7 @@ def test_compare_reads_the_responses_of_a_known_record(tmp_path, bench):
     assert out["Zm_at_1pct"] == pytest.approx(5.9, rel=1e-9)
 
 
-# ---- simple shear against YADE (docs/comparison.md, "Simple shear against YADE") ----------
+# ---- simple shear against YADE (docs/validation.md, "Simple shear against YADE") ----------
 QUICK = os.path.join(REPO, "bench", "data", "dense_quick_100kPa_seed1.data")
 SHEAR_RATE = 2e-4
 needs_yade = pytest.mark.skipif(shutil.which("yade") is None,
@@ -205,7 +205,7 @@ def test_yade_simple_shear_kinematics_stress_and_servo(tmp_path):
 # Agreement of the engines on the quick specimen (seed 1, gamma_dot = 2e-4 1/s, to gamma =
 # 10 %) within the largest difference measured between two runs of one engine that differ in
 # nothing the engines could disagree on: the other specimen (seed 2), the timestep + 0.1 %
-# (LAMMPS), the rate halved (both engines); docs/comparison.md, "Simple shear against YADE"
+# (LAMMPS), the rate halved (both engines); docs/validation.md, "Simple shear against YADE"
 # (bench/results/yade_simple_shear.json, "pairs"): the peak of tau/sigma_n (averaged over
 # gamma windows of 0.5 %) 0.0078 (LAMMPS, rate halved), the gamma of the peak's onset (the
 # average within 2 % of the peak; the gamma of the maximum itself jumps between near-equal

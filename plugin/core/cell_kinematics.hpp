@@ -50,9 +50,11 @@ inline int voigt_index(int i, int j)
 inline Eigen::Matrix3d tensor_from_stress(const Vector6d& s)
 {
   Eigen::Matrix3d t;
+  // clang-format off
   t << s(0), s(3), s(4),
        s(3), s(1), s(5),
        s(4), s(5), s(2);
+  // clang-format on
   return t;
 }
 
@@ -85,9 +87,11 @@ inline Eigen::Matrix3d cell_matrix(double lx, double ly, double lz, double xy, d
                                    double yz)
 {
   Eigen::Matrix3d h;
+  // clang-format off
   h << lx, xy, xz,
        0.0, ly, yz,
        0.0, 0.0, lz;
+  // clang-format on
   return h;
 }
 
@@ -239,9 +243,11 @@ struct TiltFlip {
   Eigen::Matrix3i matrix() const
   {
     Eigen::Matrix3i M;
+    // clang-format off
     M << 1, xy, xz,
          0, 1, yz,
          0, 0, 1;
+    // clang-format on
     return M;
   }
 };

@@ -24,8 +24,9 @@
 // (creep, dilatancy). The integral removes that lag; the closed loop z^2 - (2 - r g - r g_I) z
 // + 1 - r g has poles of modulus sqrt(1 - r g) < 1 for every r in (0, 1]. S only accumulates
 // while every error lies within integral_band of the stress level (a large approach, e.g.
-// preparation from a gas, is proportional only) and is frozen while the cap is active. The servo part W u/dt is scaled down as a whole when an axis
-// would exceed max_strain_rate; the prescribed part is never altered.
+// preparation from a gas, is proportional only) and is frozen while the cap is active. The
+// servo part W u/dt is scaled down as a whole when an axis would exceed max_strain_rate; the
+// prescribed part is never altered.
 //
 // The composite programmes of the paper are mixed controls:
 //   isotropic compression to p*      all axes stress-controlled, sigma_i = p*
@@ -95,9 +96,11 @@ inline void require_b_in_range(double b)
 inline Eigen::Matrix3d affine_stiffness(const double sums[6], double volume)
 {
   Eigen::Matrix3d c;
+  // clang-format off
   c << sums[0], sums[3], sums[4],
        sums[3], sums[1], sums[5],
        sums[4], sums[5], sums[2];
+  // clang-format on
   return c / volume;
 }
 

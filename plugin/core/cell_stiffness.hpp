@@ -1,7 +1,8 @@
 // The full affine stiffness of a periodic cell (docs/theory.md §11): d sigma_I = C_IJ d eps_J in
 // Voigt6 (xx yy zz xy xz yz, engineering shears, compression positive; cell_kinematics.hpp),
-//     C_ijkl = (1/V) sum_c l^2 [k_N n_i n_j n_k n_l + k_T (sym(delta_ik n_j n_l) - n_i n_j n_k n_l)],
-// sym(delta_ik n_j n_l) = (delta_ik n_j n_l + delta_jk n_i n_l + delta_il n_j n_k + delta_jl n_i n_k)/4,
+//   C_ijkl = (1/V) sum_c l^2 [k_N n_i n_j n_k n_l + k_T (sym(delta_ik n_j n_l) - n_i n_j n_k n_l)],
+//   sym(delta_ik n_j n_l)
+//     = (delta_ik n_j n_l + delta_jk n_i n_l + delta_il n_j n_k + delta_jl n_i n_k)/4,
 // from 21 independent sums over the contacts. Its principal block (I, J < 3) is cell_servo.hpp's
 // affine_stiffness; one contact's share of either is affine_stiffness_entries.hpp's.
 #ifndef TYCORE_CELL_STIFFNESS_HPP

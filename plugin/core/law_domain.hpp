@@ -29,8 +29,9 @@ struct LawDomainFault {
 };
 
 // the law at the ends of its range delta_f <= delta <= delta_max and at first touch: contact
-// radius, normal force and stiffness (not at delta_f), stored energy, sliding limit mu (P + 2 Pc), tangential
-// stiffness 8 G* a_T and the tangential energy stored at the sliding limit
+// radius, normal force and stiffness (not at delta_f), stored energy, sliding limit
+// mu (P + 2 Pc), tangential stiffness 8 G* a_T and the tangential energy stored at the sliding
+// limit
 inline LawDomainFault law_domain_fault(const PairCoefficients& c, double R, double delta_max)
 {
   LawDomainFault fault;

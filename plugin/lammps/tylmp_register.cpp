@@ -1,9 +1,10 @@
 // Registration of all tylmp styles into a running LAMMPS.
 //
 // Debian's LAMMPS has no PLUGIN package, so the styles are inserted directly into the
-// public creator maps (Force::pair_map, Modify::fix_map, Modify::compute_map) by tylmp_register(), which
-// python/tylmp/__init__.py calls through ctypes. lammpsplugin_init() offers the same
-// styles to `plugin load` in LAMMPS builds of the same version that have PLUGIN.
+// public creator maps (Force::pair_map, Modify::fix_map, Modify::compute_map) by
+// tylmp_register(), which python/tylmp/__init__.py calls through ctypes. lammpsplugin_init()
+// offers the same styles to `plugin load` in LAMMPS builds of the same version that have
+// PLUGIN.
 
 #include "tylmp_styles.h"
 

@@ -6,12 +6,14 @@
 // error that names what to write instead.
 // the include order of LIGGGHTS's granular_styles.h: contact_models.h defines our model classes
 // where it includes the style_*_model.h lists (normal_model_thornton_yin.h)
+// clang-format off
 #include "comm.h"
 #include "error.h"
 #include "fix_insert_stream.h"
 #include "granular_pair_style.h"
 #include "contact_models.h"
 #include "pair_gran_base.h"
+// clang-format on
 
 namespace {
 

@@ -6,7 +6,7 @@ failure surfaces), metrics (derived histories, key numbers), figures (PNG, Agg),
 paper's numbers), compare (against the paper, markdown tables), programmes (the run lists of
 `tyanalysis reproduce`), reproduce (runs them), fidelity (the trace study's table),
 micromechanics, cyclic, liggghts, cli (the `tyanalysis <subcommand>` command; also
-`python -m tylmp.analysis`).
+`python -m tylmp.analysis`) and commands (its subcommands).
 """
 __all__ = ["io", "invariants", "metrics", "figures", "paper", "compare", "programmes",
-           "reproduce", "fidelity", "micromechanics", "cyclic", "liggghts", "cli"]
+           "reproduce", "fidelity", "micromechanics", "cyclic", "liggghts", "cli", "commands"]

@@ -43,7 +43,7 @@ VALUES = {
 }
 
 # The bands inside which a result counts as reproducing the paper (lo, hi), one per quantity
-# (docs/validation.md, summary): the paper states most numbers as "ca." or reads them off a
+# (docs/validation.md, "The numbers"): the paper states most numbers as "ca." or reads them off a
 # curve, so each band is the width such a reading allows: solid fraction ±0.005, coordination
 # ±0.2, dense peak strain 3–7 %, loose plateau 10–20 %, void ratio at 30 % ±0.015, q after the
 # pre-strain ±15 %, rotation 70–88°, b of the largest sinφ_max 0.4–0.6, extension stronger

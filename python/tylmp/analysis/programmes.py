@@ -23,7 +23,6 @@ PROGRAMME = {
     "plane_strain_cw": ("plane_strain.in", {"rotation": "cw"}, "plane_strain_cw_paper", 7),
     "plane_strain_ccw": ("plane_strain.in", {"rotation": "ccw"}, "plane_strain_ccw_paper", 7),
 }
-SPECIMENS = ("dense", "loose")
 # expected core-minutes of each preparation at paper scale (the two-stage protocol,
 # docs/fidelity.md "Preparation protocol"): preparations start before any run
 PREP_WEIGHT = {"dense": 15, "loose": 5}
