@@ -304,13 +304,15 @@ struct OedometerCourse {
     else if (s.direction < 0 && axial * ocr <= s.largest) s.direction = 0;
   }
 
-  // the fraction of the stress path sigma_a0 -> peak -> peak/R done
+  // the fraction of the stress path sigma_a0 -> peak -> (largest sigma_a)/R done (the largest
+  // sigma_a is the peak until loading ends); 1 only once the course is over
   double progress(const State& s) const
   {
     if (s.direction == 0) return 1.0;
-    const double loading = peak - s.axial0, total = loading + (peak - peak / ocr);
+    const double top = s.direction > 0 ? peak : s.largest;
+    const double loading = peak - s.axial0, total = loading + (top - top / ocr);
     const double done = s.direction > 0 ? s.last - s.axial0 : loading + (s.largest - s.last);
-    return std::clamp(done / total, 0.0, 1.0);
+    return std::clamp(done / total, 0.0, std::nextafter(1.0, 0.0));
   }
 };
 

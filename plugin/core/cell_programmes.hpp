@@ -941,8 +941,15 @@ class OedometerTest : public AxialTest {
     o[out::K0_INC] = axial != state_.axial0 ? (radial - state_.radial0) / (axial - state_.axial0)
                                             : NaN;
     o[out::OCR] = axial > 0.0 ? std::max(state_.largest, axial) / axial : NaN;
+    axial_now_ = axial;
   }
-  double progress() const override { return course_.progress(state_); }
+  // the course with this step's sigma_a: 1 at the step that ends it
+  double progress() const override
+  {
+    OedometerCourse::State now = state_;
+    if (!std::isnan(axial_now_)) course_.update(now, axial_now_);
+    return course_.progress(now);
+  }
   std::vector<double> state() const override { return state_.to_vector(); }
   void restore(const std::vector<double>& s) override { state_ = OedometerCourse::State::from_array(s.data()); }
 
@@ -950,6 +957,7 @@ class OedometerTest : public AxialTest {
   double rate_;
   OedometerCourse course_{0.0};
   OedometerCourse::State state_;
+  mutable double axial_now_ = std::numeric_limits<double>::quiet_NaN();    // of outputs()
 };
 
 // cyclic_triaxial AXIS RATE CSR: undrained cyclic triaxial test, eps_v = 0 and sigma_b = sigma_c

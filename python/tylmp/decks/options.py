@@ -26,6 +26,9 @@ CHOICES = {
     "shear_plane": ("xz", "xy", "yz"),
     "direction": ("compression", "extension"),
     "after_liquefaction": ("continue", "stop"),
+    # the loaded axis of the tests along an axis (k0.in, cyclic_triaxial.in)
+    "axis": ("z", "x", "y"),
+    "loading": ("two_way", "one_way"),
 }
 
 # -var distribution: a candidate of tylmp.specimen or a user's distribution string, checked by
@@ -77,6 +80,10 @@ NUMBERS = {
     "ru_limit": (False, 0.0, "the liquefaction criterion on r_u (at most 1)", True, 1.0 + 1e-12),
     "da_limit": (False, 0.0, "the liquefaction criterion on the double amplitude gamma", True),
     "gamma_max": (False, 0.0, "the |gamma| at which a cyclic test ends", True),
+    # oedometric compression (k0.in)
+    "sigma_max": (False, 0.0, "the axial stress at which the loading of a k0 test ends, Pa", True),
+    "ocr": (False, 1.0, "the overconsolidation ratio at the end of unloading (1: none)"),
+    "eps_max": (False, 0.0, "the |axial strain| at which a k0 or cyclic triaxial test ends", True),
 }
 
 def fragments_dir(deck=None):
