@@ -41,11 +41,23 @@ struct Setting {
   std::string sign_reason;    // why the sign is required (messages)
 
   bool is_variable() const { return !variable.empty(); }
+  // why a value of the variable is refused ("" if it is not)
+  std::string refusal(double v) const;
 };
 
 // A stress beyond any granular material's [Pa]: a larger target is an input error, not a test
 // (in 1/s it would otherwise surface as a strain rate the cell cannot follow)
 constexpr double MAX_STRESS = 1e15;
+
+inline std::string Setting::refusal(double v) const
+{
+  if (!std::isfinite(v)) return "not a finite number";
+  if ((sign == Sign::POSITIVE && !(v > 0.0)) || (sign == Sign::NOT_NEGATIVE && v < 0.0))
+    return sign_reason;
+  if (kind == Kind::STRESS && !(std::fabs(v) <= MAX_STRESS))
+    return "a stress beyond 1e+15 Pa, beyond any granular material";
+  return "";
+}
 
 // what a Setting evaluates to at this step (the fix: LAMMPS's equal-style variables)
 class SettingValues {

@@ -253,16 +253,10 @@ double FixCellServo::operator()(tycore::Setting &s)
   modify->clearstep_compute();
   const double value = input->variable->compute_equal(variable_index.at(s.variable));
   modify->addstep_compute(update->ntimestep + 1);
-  const auto refuse = [&](const std::string &why) {
+  const std::string refused = s.refusal(value);
+  if (!refused.empty())
     error->all(FLERR, "fix cell/servo: variable {} ({}) evaluated to {} at step {}: {}",
-               s.variable, s.what, value, update->ntimestep, why);
-  };
-  if (!std::isfinite(value)) refuse("not a finite number");
-  if ((s.sign == tycore::Setting::Sign::POSITIVE && !(value > 0.0)) ||
-      (s.sign == tycore::Setting::Sign::NOT_NEGATIVE && value < 0.0))
-    refuse(s.sign_reason);
-  if (s.kind == tycore::Setting::Kind::STRESS && !(std::fabs(value) <= tycore::MAX_STRESS))
-    refuse(fmt::format("a stress beyond {:g} Pa, beyond any granular material", tycore::MAX_STRESS));
+               s.variable, s.what, value, update->ntimestep, refused);
   return s.value = value;
 }
 

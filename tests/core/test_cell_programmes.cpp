@@ -180,6 +180,11 @@ TEST(CellProgrammes, ChecksAtTheStartOfARun)
   EXPECT_THROW(fast.programme->begin_run(state, values), std::invalid_argument);    // 2 degrees
   tycore::CellCommand slow = parse("stress_rotation xz 1e5 5e4 0.5 50");
   EXPECT_EQ(slow.programme->begin_run(state, values), "");    // 0.5 degree per step
+  // a cyclic test that begins with tau at the amplitude: its first half cycle ends at once
+  tycore::CellCommand cyclic = parse("cyclic_shear xz 1e-4 0.01");
+  state.stress(4) = -0.02 * state.stress(2);    // tau/sigma_n0 = 0.02 > CSR
+  EXPECT_NE(cyclic.programme->begin_run(state, values).find("is at the amplitude CSR sigma_n0 = "
+                                                            "1000 already"), std::string::npos);
 }
 
 // the restart record: the test and the programme's state read back exactly; a record of

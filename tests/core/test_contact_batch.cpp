@@ -467,8 +467,8 @@ TEST_P(BatchLaw, DampingTalliesAndEnergyAsTheirFormulas)
 // A cell with shears (docs/theory.md §11.1): the pair tallies a contact's 21 affine-stiffness
 // entries as the batch's 6 principal ones and AffineStiffnessSums::shear_entries from the
 // batch's k_N and k_T lanes (pair_thornton_yin.cpp, compute_cell_tally.cpp). These are
-// AffineStiffnessSums::add_contact's for the contact: the shear entries to the bit, the
-// principal ones to round-off (the same formula in another order of operations); and k_N, k_T
+// AffineStiffnessSums::add_contact's for the contact (one formula, affine_stiffness_entries.hpp;
+// to round-off, since add_contact takes the normal from the branch vector); and k_N, k_T
 // are those of the law, dP/d(delta) and 8G* a_T, where the contact was not peeling. Each lane
 // has its own branch length and its normal from the path; the steps and the setup pass.
 TEST_P(BatchLaw, ShearedCellTallyIsTheAffineStiffnessSums)
