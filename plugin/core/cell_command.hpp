@@ -123,7 +123,8 @@ inline void check_until(UntilTarget& until, const CellProgramme& programme)
   const std::string& name = until.name;
   const int k = out::index(name);
   static const int plane_or_undrained[] = {out::GAMMA, out::TAU, out::SIG_N, out::TAU_RATIO,
-                                           out::R_U, out::CYCLES};
+                                           out::R_U, out::CYCLES, out::EPS_A, out::SIG_A,
+                                           out::SIG_R, out::Q_A, out::K0, out::OCR};
   const bool of_a_programme = std::find(std::begin(plane_or_undrained),
                                         std::end(plane_or_undrained), k)
                               != std::end(plane_or_undrained);
@@ -134,8 +135,10 @@ inline void check_until(UntilTarget& until, const CellProgramme& programme)
   if (of_a_programme && !reports(p, k))
     throw std::invalid_argument(
         "until " + name + ": " + programme.name() + " does not report " + name
-        + (k == out::R_U ? " (r_u: shear_cv and cyclic_shear)"
-           : k == out::CYCLES ? " (cycles: cyclic_shear)"
+        + (k == out::R_U ? " (r_u: shear_cv, cyclic_shear and cyclic_triaxial)"
+           : k == out::CYCLES ? " (cycles: cyclic_shear and cyclic_triaxial)"
+           : k == out::K0 || k == out::OCR ? " (" + name + ": k0)"
+           : k >= out::EPS_A ? " (" + name + ": k0 and cyclic_triaxial)"
                               : " (it has no shear plane: use gamma_xy, gamma_xz or gamma_yz, "
                                 "or a programme with a plane)"));
   if (k >= out::GAMMA_XY && k <= out::GAMMA_YZ && !p.strains_shear[k - out::GAMMA_XY])
@@ -144,8 +147,9 @@ inline void check_until(UntilTarget& until, const CellProgramme& programme)
                                 + " stays 0)");
   if (k == out::R_U && until.value > 1.0)
     throw std::invalid_argument("until r_u " + number_text(until.value) + ": r_u = 1 - "
-                                "sigma_n/sigma_n0 cannot exceed 1 (a granular cell carries no "
-                                "tension, sigma_n >= 0): give a target <= 1");
+                                + (p.plane ? "sigma_n/sigma_n0" : "p/p0") + " cannot exceed 1 "
+                                "(a granular cell carries no tension, " + (p.plane ? "sigma_n"
+                                : "p") + " >= 0): give a target <= 1");
   if (k == out::CYCLES && !(until.value > 0.0))
     throw std::invalid_argument("until cycles " + number_text(until.value) + ": the cycle count "
                                 "starts at 0 and grows: give a positive target");

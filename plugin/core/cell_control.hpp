@@ -17,10 +17,13 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace tycore {
 
@@ -126,14 +129,57 @@ struct LiquefactionCriteria {
   double double_amplitude_strain = 0.0375;    // peak-to-peak gamma at liquefaction
 };
 
+// The count of a cyclic test whose load reverses at two bounds (docs/theory.md §13): tau of
+// cyclic simple shear between -+CSR sigma_n0, the deviator of a cyclic triaxial test between
+// -+2 CSR p0 (or 0 and +2 CSR p0, one way). The cycled stress s is driven towards the upper
+// bound first (direction +1), and the direction turns at the step that ends with s at or beyond
+// the bound ahead. Half cycles end at the reversals; the cycle count is N = (half cycles
+// completed)/2, 0 during the first half cycle, 0.5 from the first reversal on, N once 2N half
+// cycles are over (so that a test run until N cycles has made N). The double amplitude strain
+// of the running half cycle is |strain - strain at the last reversal| (the peak-to-peak swing
+// once it reaches the next peak); N_L counts the half cycle in which a criterion first holds,
+// (half cycles completed + 1)/2: 0.5 in the first half cycle, N at the end of the 2N-th (0
+// while it has not held).
+struct CycleCount {
+  int direction = 1;               // +1 towards the upper bound, -1 towards the lower
+  int reversals = 0;               // completed half cycles
+  double strain_at_reversal = 0.0;
+  double cycles_to_pore_pressure = 0.0;      // N_L by r_u
+  double cycles_to_double_amplitude = 0.0;   // N_L by double amplitude strain
+
+  static constexpr int size = 5;
+  void to_array(double* a) const
+  {
+    a[0] = direction, a[1] = reversals, a[2] = strain_at_reversal;
+    a[3] = cycles_to_pore_pressure, a[4] = cycles_to_double_amplitude;
+  }
+  static CycleCount from_array(const double* a)
+  {
+    return {static_cast<int>(a[0]), static_cast<int>(a[1]), a[2], a[3], a[4]};
+  }
+  double cycles() const { return 0.5 * reversals; }
+  double cycles_to_now() const { return 0.5 * (reversals + 1); }
+
+  // after a step that ended at the cycled stress s, the strain of the cycle and r_u
+  void update(double s, double lower, double upper, double strain, double r_u,
+              const LiquefactionCriteria& criteria)
+  {
+    if (direction > 0 ? s >= upper : s <= lower) {
+      direction = -direction;
+      ++reversals;
+      strain_at_reversal = strain;
+    }
+    if (cycles_to_pore_pressure == 0.0 && r_u >= criteria.pore_pressure_ratio)
+      cycles_to_pore_pressure = cycles_to_now();
+    if (cycles_to_double_amplitude == 0.0
+        && std::abs(strain - strain_at_reversal) >= criteria.double_amplitude_strain)
+      cycles_to_double_amplitude = cycles_to_now();
+  }
+};
+
 // Cyclic constant-volume simple shear with a stress-controlled amplitude: gamma_dot = +rate
-// first (tau rises towards +tau_cyc), reversed each time tau reaches +-tau_cyc = +-CSR sigma_n0.
-// Half cycles end at the reversals; the cycle count is N = (half cycles completed)/2, 0 during
-// the first half cycle, 0.5 from the first reversal on, N once 2N half cycles are over (so that
-// a test run until N cycles has made N). The double amplitude strain of the running half cycle
-// is |gamma - gamma at the last reversal| (the peak-to-peak swing once it reaches the next
-// peak); N_L counts the half cycle in which a criterion first holds, (half cycles completed +
-// 1)/2: 0.5 in the first half cycle, N at the end of the 2N-th (0 while it has not held).
+// first (tau rises towards +tau_cyc), reversed each time tau reaches +-tau_cyc = +-CSR sigma_n0;
+// cycles, the double amplitude gamma and N_L as CycleCount counts them.
 struct CyclicSimpleShear {
   ShearPlane plane;
   double shear_rate;                 // |gamma_dot| [1/s]
@@ -141,24 +187,7 @@ struct CyclicSimpleShear {
   double initial_normal_stress;      // sigma_n0 [Pa]
   LiquefactionCriteria criteria;
 
-  struct State {
-    int direction = 1;               // sign of gamma_dot
-    int reversals = 0;               // completed half cycles
-    double gamma_at_reversal = 0.0;
-    double cycles_to_pore_pressure = 0.0;      // N_L by r_u
-    double cycles_to_double_amplitude = 0.0;   // N_L by double amplitude gamma
-
-    static constexpr int size = 5;
-    void to_array(double* a) const
-    {
-      a[0] = direction, a[1] = reversals, a[2] = gamma_at_reversal;
-      a[3] = cycles_to_pore_pressure, a[4] = cycles_to_double_amplitude;
-    }
-    static State from_array(const double* a)
-    {
-      return {static_cast<int>(a[0]), static_cast<int>(a[1]), a[2], a[3], a[4]};
-    }
-  };
+  using State = CycleCount;          // its direction is the sign of gamma_dot
 
   void require_valid() const
   {
@@ -176,24 +205,13 @@ struct CyclicSimpleShear {
   }
 
   double amplitude() const { return cyclic_stress_ratio * initial_normal_stress; }
-  double cycles(const State& s) const { return 0.5 * s.reversals; }
-  double cycles_to_now(const State& s) const { return 0.5 * (s.reversals + 1); }
+  double cycles(const State& s) const { return s.cycles(); }
 
   // the state after a step ended at (tau, gamma, sigma_n): reverse at the amplitude, record N_L
   void update(State& s, double tau, double gamma, double normal_stress) const
   {
-    if (s.direction * tau >= amplitude()) {
-      s.direction = -s.direction;
-      ++s.reversals;
-      s.gamma_at_reversal = gamma;
-    }
-    if (s.cycles_to_pore_pressure == 0.0
-        && pore_pressure_ratio(normal_stress, initial_normal_stress)
-               >= criteria.pore_pressure_ratio)
-      s.cycles_to_pore_pressure = cycles_to_now(s);
-    if (s.cycles_to_double_amplitude == 0.0
-        && std::abs(gamma - s.gamma_at_reversal) >= criteria.double_amplitude_strain)
-      s.cycles_to_double_amplitude = cycles_to_now(s);
+    s.update(tau, -amplitude(), amplitude(), gamma,
+             pore_pressure_ratio(normal_stress, initial_normal_stress), criteria);
   }
 
   MixedControl6 control(const State& s) const
@@ -221,6 +239,114 @@ struct UndrainedTriaxial {
     const Vector6d lateral_difference = Vector6d::Unit(b) - Vector6d::Unit(c);
     control.add(lateral_difference, lateral_difference, 0.0);
     return control;
+  }
+};
+
+// ---------------------------------------------------------------------------------------------
+// Tests along an axis a (docs/theory.md §13): the axial stress sigma_a, the radial stress
+// sigma_r = (sigma_b + sigma_c)/2 (the mean of the two lateral stresses) and the signed deviator
+// q_a = sigma_a - sigma_r (> 0 in compression, sigma1 - sigma3 while sigma_b = sigma_c)
+
+inline double radial_stress(const Vector6d& stress, int axis)
+{
+  return 0.5 * (stress((axis + 1) % 3) + stress((axis + 2) % 3));
+}
+inline double axial_deviator(const Vector6d& stress, int axis)
+{
+  return stress(axis) - radial_stress(stress, axis);
+}
+
+// Oedometric (K0) compression and unloading: the axial rate direction * R (R > 0; direction
+// +1 loading, -1 unloading, 0 at rest), the lateral axes and the shears at zero strain rate, so
+// that the lateral strains stay zero exactly; every component is strain controlled
+struct OedometricCompression {
+  int axis;
+  double axial_strain_rate;
+
+  MixedControl6 control() const
+  {
+    require_axis_index(axis);
+    require_finite("oedometric axial strain rate", axial_strain_rate);
+    std::array<AxisProgramme, 6> c;
+    c.fill({AxisControl::STRAIN_RATE, 0.0});
+    c[axis].value = axial_strain_rate;
+    return per_axis_control<6>(c);
+  }
+};
+
+// The course of an oedometer test: loading until sigma_a reaches the peak stress, then, for an
+// overconsolidation ratio R > 1, unloading until sigma_a = (largest sigma_a)/R, then at rest.
+// OCR = (largest sigma_a)/sigma_a; K0 = sigma_r/sigma_a; the ratio of the stress changes since
+// the test began, (sigma_r - sigma_r0)/(sigma_a - sigma_a0), is the K0 of the increments (the
+// elastic C_ba/C_aa of the stiffness at small strain, docs/theory.md §12).
+struct OedometerCourse {
+  double peak;         // sigma_a at which loading ends [Pa]
+  double ocr = 1.0;    // the overconsolidation ratio at the end of unloading (1: no unloading)
+
+  struct State {
+    int direction = 1;    // +1 loading, -1 unloading, 0 done
+    double axial0 = std::numeric_limits<double>::quiet_NaN();    // sigma_a0 (NaN: not begun)
+    double radial0 = 0.0, largest = 0.0, last = 0.0;             // sigma_r0, max sigma_a, sigma_a
+
+    static constexpr int size = 5;
+    std::vector<double> to_vector() const { return {double(direction), axial0, radial0, largest, last}; }
+    static State from_array(const double* a) { return {int(a[0]), a[1], a[2], a[3], a[4]}; }
+  };
+
+  State begin(double axial, double radial) const { return {1, axial, radial, axial, axial}; }
+
+  // the state after a step that ended at sigma_a
+  void update(State& s, double axial) const
+  {
+    s.largest = std::max(s.largest, axial);
+    s.last = axial;
+    if (s.direction > 0 && axial >= peak) s.direction = ocr > 1.0 ? -1 : 0;
+    else if (s.direction < 0 && axial * ocr <= s.largest) s.direction = 0;
+  }
+
+  // the fraction of the stress path sigma_a0 -> peak -> (largest sigma_a)/R done (the largest
+  // sigma_a is the peak until loading ends); 1 only once the course is over
+  double progress(const State& s) const
+  {
+    if (s.direction == 0) return 1.0;
+    const double top = s.direction > 0 ? peak : s.largest;
+    const double loading = peak - s.axial0, total = loading + (top - top / ocr);
+    const double done = s.direction > 0 ? s.last - s.axial0 : loading + (s.largest - s.last);
+    return std::clamp(done / total, 0.0, std::nextafter(1.0, 0.0));
+  }
+};
+
+// Undrained cyclic triaxial test (the liquefaction test of the triaxial cell): the undrained
+// triaxial control (eps_v = 0 exactly, sigma_b = sigma_c) at the axial rate +-R, compression
+// first, reversed each time q_a reaches +2 CSR p0 or, on the way back, -2 CSR p0 (two-way) or 0
+// (one-way); p0 the mean stress when the test began, r_u = 1 - p/p0, the cycle count and N_L
+// by r_u and by the double amplitude axial strain as CycleCount counts them
+struct CyclicUndrainedTriaxial {
+  int axis;
+  double axial_strain_rate;          // R > 0 [1/s]
+  double cyclic_stress_ratio;        // CSR = q_cyc/(2 p0)
+  double initial_mean_stress;        // p0 [Pa]
+  bool one_way = false;
+  LiquefactionCriteria criteria{0.95, 0.05};
+
+  using State = CycleCount;          // its direction is the sign of the axial rate
+
+  double amplitude() const { return 2.0 * cyclic_stress_ratio * initial_mean_stress; }
+  double lower_bound() const { return one_way ? 0.0 : -amplitude(); }
+  double pore_pressure_ratio_of(const Vector6d& stress) const
+  {
+    return pore_pressure_ratio(mean_stress(stress.head<3>()), initial_mean_stress);
+  }
+
+  void update(State& s, const Vector6d& stress, const Vector6d& strain) const
+  {
+    s.update(axial_deviator(stress, axis), lower_bound(), amplitude(), strain(axis),
+             pore_pressure_ratio_of(stress), criteria);
+  }
+
+  MixedControl6 control(const State& s) const
+  {
+    return UndrainedTriaxial{axis, s.direction * axial_strain_rate}.control();
   }
 };
 

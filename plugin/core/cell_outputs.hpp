@@ -36,6 +36,9 @@ enum Output {
   GAMMA, TAU, SIG_N, TAU_RATIO, STRESS_ANGLE, RATE_ANGLE, NONCOAXIALITY,
   // constant-volume (undrained) shear tests
   R_U, CYCLES, N_L_RU, N_L_GAMMA,
+  // the tests along an axis (k0, cyclic_triaxial): axial strain and stress, radial stress, the
+  // signed deviator; K0, its increments' ratio and OCR (k0); N_L by double amplitude eps_a
+  EPS_A, SIG_A, SIG_R, Q_A, K0, K0_INC, OCR, N_L_EPS,
   COUNT
 };
 
@@ -51,7 +54,8 @@ inline const char* name(int i)
       "sig_xy", "sig_xz", "sig_yz", "gamma_xy", "gamma_xz", "gamma_yz", "rate_xy", "rate_xz",
       "rate_yz", "sig_major", "sig_inter", "sig_minor",
       "gamma", "tau", "sig_n", "tau_ratio", "stress_angle", "rate_angle", "noncoaxiality",
-      "r_u", "cycles", "N_L_ru", "N_L_gamma"};
+      "r_u", "cycles", "N_L_ru", "N_L_gamma",
+      "eps_a", "sig_a", "sig_r", "q_a", "K0", "K0_inc", "ocr", "N_L_eps"};
   return names[i];
 }
 
@@ -88,6 +92,13 @@ inline const std::vector<int>& plane_columns()
 {
   static const std::vector<int> c{GAMMA, TAU, SIG_N, TAU_RATIO, STRESS_ANGLE, RATE_ANGLE,
                                   NONCOAXIALITY};
+  return c;
+}
+
+// the outputs of a test along an axis
+inline const std::vector<int>& axial_columns()
+{
+  static const std::vector<int> c{EPS_A, SIG_A, SIG_R, Q_A};
   return c;
 }
 

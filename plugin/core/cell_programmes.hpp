@@ -851,6 +851,221 @@ class UndrainedTriaxialTest : public CellProgramme {
 };
 
 // ---------------------------------------------------------------------------------------------
+// The laboratory tests along an axis (docs/theory.md §13): k0 and cyclic_triaxial report the
+// axial strain and stress, the radial stress and the signed deviator of their axis, and a
+// restart must be on the same axis
+
+class AxialTest : public CellProgramme {
+ public:
+  ProgrammeProfile profile() const override
+  {
+    ProgrammeProfile p;
+    p.columns = out::axial_columns();
+    return p;
+  }
+  void outputs(const CellState& state, double* o) const override
+  {
+    o[out::EPS_A] = state.strain(axis_);
+    o[out::SIG_A] = state.stress(axis_);
+    o[out::SIG_R] = radial_stress(state.stress, axis_);
+    o[out::Q_A] = axial_deviator(state.stress, axis_);
+  }
+  std::vector<double> identity() const override { return {double(axis_)}; }
+  std::string identity_mismatch() const override
+  {
+    return std::string("the restart file was written by a run along another axis; this one "
+                       "loads ") + axis_name(axis_) + ": resume it along the same axis, or "
+                       "define the fix under a new ID";
+  }
+
+ protected:
+  int axis_ = 2;
+};
+
+// k0 AXIS RATE SIGMA_MAX [ocr R]: oedometric compression, the lateral strains and the shears
+// held at zero, the axis at RATE until sigma_a reaches SIGMA_MAX, then (ocr R > 1) unloading at
+// -RATE until OCR = (largest sigma_a)/sigma_a reaches R; then the cell rests (progress 1)
+class OedometerTest : public AxialTest {
+ public:
+  explicit OedometerTest(ArgList& a)
+  {
+    a.need(3, "k0 AXIS RATE SIGMA_MAX");
+    axis_ = programme_detail::axis_of(a, "k0");
+    rate_ = a.number("k0 axial strain rate");
+    if (!(rate_ > 0.0))
+      throw std::invalid_argument("k0 axial strain rate = " + number_text(rate_) + " must be "
+                                  "positive (loading compresses the axis; the unloading of "
+                                  "keyword 'ocr' runs at -RATE)");
+    course_.peak = a.stress("k0 largest axial stress SIGMA_MAX");
+  }
+  bool keyword(const std::string& key, ArgList& a) override
+  {
+    if (key != "ocr") return false;
+    course_.ocr = a.number_in(key, 1.0, 1e6, false, " (SIGMA_MAX/sigma_a at the end of "
+                                                    "unloading; 1: no unloading)");
+    return true;
+  }
+  ProgrammeProfile profile() const override
+  {
+    ProgrammeProfile p = AxialTest::profile();
+    p.stiffness_entries = 0u;    // no held stress: no servo
+    p.columns.insert(p.columns.end(), {out::K0, out::K0_INC, out::OCR});
+    return p;
+  }
+  double largest_rate() const override { return rate_; }
+  std::vector<NamedRate> constant_rates() const override { return {{"k0 axial strain rate", rate_}}; }
+  std::string held_targets(const Vector6d&) const override { return ""; }
+  std::string begin_run(const CellState& state, SettingValues&) override
+  {
+    if (!std::isnan(state_.axial0)) return "";
+    const double axial = state.stress(axis_);
+    if (!(axial < course_.peak))
+      throw std::invalid_argument(
+          "k0: the axial stress sigma_" + std::string(axis_name(axis_)) + " is "
+          + programme_detail::g4(axial) + " when the test begins, not below SIGMA_MAX = "
+          + programme_detail::g4(course_.peak) + ": give a SIGMA_MAX above it");
+    state_ = course_.begin(axial, radial_stress(state.stress, axis_));
+    return "";
+  }
+  MixedControl6 control(const CellState&, SettingValues&) override
+  {
+    return OedometricCompression{axis_, state_.direction * rate_}.control();
+  }
+  void after_step(const CellState& s) override { course_.update(state_, s.stress(axis_)); }
+  void outputs(const CellState& state, double* o) const override
+  {
+    constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
+    AxialTest::outputs(state, o);
+    const double axial = o[out::SIG_A], radial = o[out::SIG_R];
+    o[out::K0] = axial > 0.0 ? radial / axial : NaN;
+    o[out::K0_INC] = axial != state_.axial0 ? (radial - state_.radial0) / (axial - state_.axial0)
+                                            : NaN;
+    o[out::OCR] = axial > 0.0 ? std::max(state_.largest, axial) / axial : NaN;
+    axial_now_ = axial;
+  }
+  // the course with this step's sigma_a: 1 at the step that ends it
+  double progress() const override
+  {
+    OedometerCourse::State now = state_;
+    if (!std::isnan(axial_now_)) course_.update(now, axial_now_);
+    return course_.progress(now);
+  }
+  std::vector<double> state() const override { return state_.to_vector(); }
+  void restore(const std::vector<double>& s) override { state_ = OedometerCourse::State::from_array(s.data()); }
+
+ private:
+  double rate_;
+  OedometerCourse course_{0.0};
+  OedometerCourse::State state_;
+  mutable double axial_now_ = std::numeric_limits<double>::quiet_NaN();    // of outputs()
+};
+
+// cyclic_triaxial AXIS RATE CSR: undrained cyclic triaxial test, eps_v = 0 and sigma_b = sigma_c
+// as `undrained`, the axial rate +RATE first (compression), reversed each time q_a reaches
+// +2 CSR p0 and -2 CSR p0 (keyword one_way yes: 0); r_u = 1 - p/p0, cycles and N_L
+class CyclicTriaxial : public AxialTest {
+ public:
+  static constexpr double MIN_CSR = 1e-6;    // as cyclic_shear's: below, round-off
+  explicit CyclicTriaxial(ArgList& a)
+  {
+    a.need(3, "cyclic_triaxial AXIS RATE CSR");
+    axis_ = programme_detail::axis_of(a, "cyclic_triaxial");
+    rate_ = a.number("cyclic_triaxial axial strain rate");
+    if (!(rate_ > 0.0))
+      throw std::invalid_argument("cyclic_triaxial axial strain rate = " + number_text(rate_)
+                                  + " must be positive (the first half cycle compresses the "
+                                  "axis; each reversal turns its sign)");
+    csr_ = a.number_in("cyclic_triaxial CSR", MIN_CSR, 10.0, false,
+                       " (below, the cyclic amplitude is lost in round-off)");
+  }
+  bool keyword(const std::string& key, ArgList& a) override
+  {
+    if (key == "ru_limit") criteria_.pore_pressure_ratio = a.number_in(key, 0.0, 1.0, true);
+    else if (key == "da_limit")
+      criteria_.double_amplitude_strain = a.number_in(key, 0.0, 1.0, true,
+                                                      " (a double-amplitude axial strain)");
+    else if (key == "one_way") one_way_ = a.yes_no(key);
+    else return false;
+    return true;
+  }
+  ProgrammeProfile profile() const override
+  {
+    ProgrammeProfile p = AxialTest::profile();
+    p.stiffness_entries = servo_stiffness_entries(cyclic().control({}));
+    p.columns.insert(p.columns.end(), {out::R_U, out::CYCLES, out::N_L_RU, out::N_L_EPS});
+    return p;
+  }
+  double largest_rate() const override { return rate_; }
+  std::vector<NamedRate> constant_rates() const override
+  {
+    return {{"cyclic_triaxial axial strain rate", rate_}};
+  }
+  std::string held_targets(const Vector6d& s) const override
+  {
+    return "sig2 - sig3 = " + programme_detail::g4(s((axis_ + 1) % 3) - s((axis_ + 2) % 3))
+           + ", target 0";
+  }
+  std::string begin_run(const CellState& state, SettingValues&) override
+  {
+    if (std::isnan(p0_)) p0_ = mean_stress(state.stress.head<3>());
+    if (!(p0_ > 0.0))
+      throw std::invalid_argument("cyclic_triaxial: the mean stress is " + programme_detail::g4(p0_)
+                                  + " when the test begins (p0), so r_u = 1 - p/p0 is undefined: "
+                                  "load the specimen first (e.g. fix cell/servo iso P)");
+    const double q = axial_deviator(state.stress, axis_);
+    if (count_.reversals == 0 && q >= cyclic().amplitude())
+      return "cyclic_triaxial: the deviator when the test begins, q_a = " + programme_detail::g4(q)
+             + ", is at the amplitude 2 CSR p0 = " + programme_detail::g4(cyclic().amplitude())
+             + " already: the first half cycle ends at its first step; use a CSR above "
+               "q_a/(2 p0) = " + programme_detail::g4(q / (2.0 * p0_));
+    return "";
+  }
+  MixedControl6 control(const CellState&, SettingValues&) override
+  {
+    return cyclic().control(count_);
+  }
+  void after_step(const CellState& s) override { cyclic().update(count_, s.stress, s.strain); }
+  void outputs(const CellState& state, double* o) const override
+  {
+    AxialTest::outputs(state, o);
+    o[out::R_U] = cyclic().pore_pressure_ratio_of(state.stress);
+    o[out::CYCLES] = count_.cycles();
+    o[out::N_L_RU] = count_.cycles_to_pore_pressure;
+    o[out::N_L_EPS] = count_.cycles_to_double_amplitude;
+  }
+  std::vector<double> state() const override
+  {
+    std::vector<double> s{p0_};
+    s.resize(1 + CycleCount::size);
+    count_.to_array(s.data() + 1);
+    return s;
+  }
+  void restore(const std::vector<double>& s) override
+  {
+    p0_ = s[0];
+    count_ = CycleCount::from_array(s.data() + 1);
+  }
+  // a redefinition continuing the test along the same axis takes p0 over
+  std::vector<double> carried() const override { return {CARRY_TAG + axis_, p0_}; }
+  void take_carried(const std::vector<double>& c) override
+  {
+    if (c.size() == 2 && c[0] == CARRY_TAG + axis_) p0_ = c[1];
+  }
+
+ private:
+  static constexpr double CARRY_TAG = 100.0;    // (a plane programme carries its component)
+  CyclicUndrainedTriaxial cyclic() const
+  {
+    return {axis_, rate_, csr_, p0_, one_way_, criteria_};
+  }
+  double rate_, csr_;
+  double p0_ = std::numeric_limits<double>::quiet_NaN();
+  bool one_way_ = false;
+  LiquefactionCriteria criteria_{0.95, 0.05};
+  CycleCount count_;
+};
+
+// ---------------------------------------------------------------------------------------------
 // The registry: one row per MODE word
 
 struct ProgrammeKind {
@@ -899,6 +1114,11 @@ inline const std::vector<ProgrammeKind>& programme_kinds()
        [](ArgList& a) -> P { return std::make_unique<UndrainedTriaxialTest>(a); }, {}},
       {"stress_rotation", 10, "stress_rotation PLANE P Q B ALPHA_DOT",
        [](ArgList& a) -> P { return std::make_unique<StressRotation>(a); }, {"start_angle"}},
+      {"k0", 11, "k0 AXIS RATE SIGMA_MAX",
+       [](ArgList& a) -> P { return std::make_unique<OedometerTest>(a); }, {"ocr"}},
+      {"cyclic_triaxial", 12, "cyclic_triaxial AXIS RATE CSR",
+       [](ArgList& a) -> P { return std::make_unique<CyclicTriaxial>(a); },
+       {"ru_limit", "da_limit", "one_way"}},
   };
   return kinds;
 }

@@ -1,11 +1,12 @@
 // Six-component mixed control (plugin/core/cell_servo.hpp on N = 6, plugin/core/cell_control.hpp,
 // docs/theory.md §11.2, §13) against independent expectations: today's principal-axis servo
 // as the special case, the partitioned solve written out, closed forms of linear elasticity
-// for simple shear and the undrained triaxial constraint, and counted cycles.
+// for simple shear, the undrained triaxial constraint and the oedometer, and counted cycles.
 #include "cell_control.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -286,6 +287,121 @@ TEST(CellControl, UndrainedTriaxialHoldsVolumeAndLateralStresses)
     EXPECT_NEAR(cell.strain(axis), -0.02 * 1000 * dt, 1e-15);
     EXPECT_NEAR(stress(b), stress(c), 1e-6 * 1e5) << axis;
     EXPECT_EQ(cell.strain.tail<3>(), Vector3d::Zero());
+  }
+}
+
+// oedometric loading and unloading of an anisotropic linear cell along each axis: the lateral
+// strains and the shears stay zero exactly (no servo: every component is strain controlled);
+// the ratio of the stress changes is the elastic K0 of the increments, (C_ba + C_ca)/(2 C_aa);
+// loading ends at the first step with sigma_a >= the peak, unloading at the first with
+// (largest sigma_a)/sigma_a >= OCR, and then the cell rests; the progress grows from 0 to 1
+TEST(CellControl, OedometerHoldsTheLateralStrainsAndGivesTheElasticK0)
+{
+  std::mt19937 rng(7);
+  const double p0 = 1e5, rate = 1.0, dt = 1e-6, peak = 4e5, ocr = 2.0;
+  for (int axis = 0; axis < 3; ++axis) {
+    LinearCell cell{random_spd(rng, 1e8), Vector6d::Zero()};
+    cell.stress0.head<3>().setConstant(p0);
+    const int b = (axis + 1) % 3, c = (axis + 2) % 3;
+    const double k0_elastic =
+        (cell.stiffness(b, axis) + cell.stiffness(c, axis)) / (2.0 * cell.stiffness(axis, axis));
+    const tycore::OedometerCourse course{peak, ocr};
+    tycore::OedometerCourse::State s = course.begin(p0, p0);
+    tycore::ServoMemoryOf<6> memory;
+    double largest = p0, progress = 0.0, last_step = 0.0;
+    int phase_changes = 0, last_direction = 1, steps = 0;
+    for (; s.direction != 0 && steps < 100000; ++steps) {
+      const tycore::MixedControl6 control =
+          tycore::OedometricCompression{axis, s.direction * rate}.control();
+      EXPECT_EQ(control.actuator_count, 0);
+      cell.advance(tycore::servo_step(control, cell.measure(), settings(), dt, memory).strain_rate,
+                   dt);
+      const Vector6d stress = cell.measure().stress;
+      last_step = std::abs(stress(axis) - s.last);
+      largest = std::max(largest, stress(axis));
+      course.update(s, stress(axis));
+      if (s.direction != last_direction) {    // at the first step beyond the bound
+        ++phase_changes;
+        if (last_direction > 0) {
+          EXPECT_GE(stress(axis), peak);
+          EXPECT_LT(stress(axis) - last_step, peak);
+        } else {
+          EXPECT_GE(largest / stress(axis), ocr);
+          EXPECT_LT(largest / (stress(axis) + last_step), ocr);
+        }
+        last_direction = s.direction;
+      }
+      EXPECT_EQ(cell.strain(b), 0.0);
+      EXPECT_EQ(cell.strain(c), 0.0);
+      EXPECT_EQ(cell.strain.tail<3>(), Vector6d::Zero().tail<3>());
+      const double radial = tycore::radial_stress(stress, axis);
+      EXPECT_NEAR((radial - p0) / (stress(axis) - p0), k0_elastic, 1e-9) << axis;
+      EXPECT_NEAR(tycore::axial_deviator(stress, axis), stress(axis) - radial, 1e-9 * p0);
+      EXPECT_GE(course.progress(s), progress);
+      progress = course.progress(s);
+    }
+    EXPECT_EQ(phase_changes, 2);    // loading -> unloading -> at rest
+    EXPECT_EQ(progress, 1.0);
+    EXPECT_EQ(s.largest, largest);
+    EXPECT_EQ((tycore::OedometricCompression{axis, 0.0}.control().prescribed_strain_rate),
+              Vector6d::Zero());
+  }
+  // without unloading (OCR 1) the course ends at the peak
+  const tycore::OedometerCourse loading{peak};
+  tycore::OedometerCourse::State s = loading.begin(p0, p0);
+  loading.update(s, 0.5 * (p0 + peak));
+  EXPECT_DOUBLE_EQ(loading.progress(s), 0.5);
+  loading.update(s, peak);
+  EXPECT_EQ(s.direction, 0);
+}
+
+// undrained cyclic triaxial test on an isotropic linear cell whose mean stress falls by beta
+// per unit of axial strain travelled (a contractive model): at eps_v = 0, q_a = 3 mu eps_a, so
+// the reversals come at eps_a = +-2 CSR p0/(3 mu) (two-way) or at +2 CSR p0/(3 mu) and 0
+// (one-way); eps_v = 0 and sigma_b = sigma_c held; N_L by r_u where the travel 0.95 p0/beta is
+// reached; N_L by double amplitude eps_a >= 5 % in the second half cycle (swing 6 %) two-way,
+// never one-way (swing 3 %)
+TEST(CellControl, CyclicUndrainedTriaxialCountsCyclesToLiquefaction)
+{
+  const double p0 = 1e5, csr = 0.15, lame = 2e6, mu = 1e6 / 3.0, beta = 3e5, rate = 1.0;
+  const double dt = 1e-5;
+  const double eps_amplitude = 2.0 * csr * p0 / (3.0 * mu);    // 0.03
+  for (bool one_way : {false, true}) {
+    const tycore::CyclicUndrainedTriaxial test{2, rate, csr, p0, one_way};
+    tycore::CyclicUndrainedTriaxial::State state;
+    LinearCell cell{isotropic_stiffness(lame, mu), Vector6d::Zero()};
+    cell.stress0.head<3>().setConstant(p0);
+    tycore::ServoMemoryOf<6> memory;
+    double travel = 0.0;
+    int reversals_seen = 0;
+    while (travel < 2.0 && state.cycles_to_pore_pressure == 0.0) {
+      const tycore::MixedControl6 control = test.control(state);
+      const Vector6d rate6 =
+          tycore::servo_step(control, cell.measure(), settings(), dt, memory).strain_rate;
+      cell.advance(rate6, dt);
+      travel += std::abs(rate6(2)) * dt;
+      Vector6d stress = cell.measure().stress;
+      stress.head<3>().array() -= beta * travel;
+      const int before = state.reversals;
+      test.update(state, stress, cell.strain);
+      EXPECT_NEAR(cell.strain.head<3>().sum(), 0.0, 1e-15);
+      EXPECT_NEAR(stress(0), stress(1), 1e-6 * p0);
+      if (state.reversals != before) {
+        ++reversals_seen;
+        const bool at_top = state.direction < 0;    // it turned towards the lower bound
+        const double bound = at_top ? eps_amplitude : (one_way ? 0.0 : -eps_amplitude);
+        EXPECT_NEAR(cell.strain(2), bound, 2 * rate * dt) << one_way << " " << reversals_seen;
+      }
+    }
+    EXPECT_EQ(reversals_seen, state.reversals);
+    EXPECT_EQ(state.cycles(), 0.5 * reversals_seen);
+    // half cycle k ends after a travel of eps_amplitude (2k - 1) two-way, k eps_amplitude one-way
+    const double travel_at_liquefaction = 0.95 * p0 / beta;
+    const int half_cycle =
+        one_way ? static_cast<int>(std::ceil(travel_at_liquefaction / eps_amplitude))
+                : static_cast<int>(std::ceil((travel_at_liquefaction / eps_amplitude + 1) / 2));
+    EXPECT_DOUBLE_EQ(state.cycles_to_pore_pressure, 0.5 * half_cycle) << one_way;
+    EXPECT_DOUBLE_EQ(state.cycles_to_double_amplitude, one_way ? 0.0 : 1.0);
   }
 }
 

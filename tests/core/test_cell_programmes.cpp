@@ -1,8 +1,9 @@
 // The test programmes of fix cell/servo as objects (plugin/core/cell_programmes.hpp,
 // cell_command.hpp, cell_restart.hpp; docs/fix_cell_servo.md): the command parsed with errors
 // that name the argument, what each programme asks of the cell (the stiffness entries of
-// docs/theory.md §11.2), the cycle count of a cyclic test run to its end on an elastic cell
-// (N cycles are 2N half cycles), the checks of `until`, and restart records.
+// docs/theory.md §11.2), the cycle count of the cyclic tests run to their end on an elastic
+// cell (N cycles are 2N half cycles), the checks of `until`, the outputs of k0, restart records
+// and what a continued test takes over.
 #include "cell_command.hpp"
 #include "cell_restart.hpp"
 
@@ -245,4 +246,195 @@ TEST(CellProgrammes, SigmaN0CarriesOverOnTheSamePlane)
   EXPECT_DOUBLE_EQ(out[tycore::out::R_U], 1.0 - 1.5e5 / 2e5);
   other.programme->outputs(state, out);
   EXPECT_DOUBLE_EQ(out[tycore::out::R_U], 0.0);    // its own sigma_n0 = sigma_zz now
+}
+
+// k0 and cyclic_triaxial: errors naming the argument or keyword, the outputs `until` may use
+TEST(CellProgrammes, LaboratoryTestsAlongAnAxisRefuseBadInput)
+{
+  const std::pair<const char*, const char*> cases[] = {
+      {"k0 w 1e-5 4e5", "k0: axis 'w' is not x, y or z"},
+      {"k0 z -1e-5 4e5", "k0 axial strain rate = -1e-05 must be positive"},
+      {"k0 z 1e-5 0", "target k0 largest axial stress SIGMA_MAX = 0 must be positive"},
+      {"k0 z 1e-5", "expected 3 more argument(s): k0 AXIS RATE SIGMA_MAX"},
+      {"k0 z 1e-5 4e5 ocr 0.5", "ocr = 0.5 is outside the accepted range [1, 1e+06]"},
+      {"k0 z 1e-5 4e5 one_way yes", "keyword 'one_way' applies only to cyclic_triaxial"},
+      {"k0 z 1e-5 4e5 ru_limit 0.9", "keyword 'ru_limit' applies only to cyclic_shear and "
+                                     "cyclic_triaxial"},
+      {"iso 1e5 ocr 2", "keyword 'ocr' applies only to k0"},
+      {"k0 z 1e-5 4e5 until cycles 2", "until cycles: k0 does not report cycles (cycles: "
+                                       "cyclic_shear and cyclic_triaxial)"},
+      {"axisym x 1e-5 1e5 until K0 0.5", "until K0: axisym does not report K0 (K0: k0)"},
+      {"undrained x 1e-5 until q_a 5e4", "until q_a: undrained does not report q_a (q_a: k0 "
+                                         "and cyclic_triaxial)"},
+      {"cyclic_triaxial z 1e-4 0", "cyclic_triaxial CSR = 0 is outside the accepted range "
+                                   "[1e-06, 10]"},
+      {"cyclic_triaxial z -1e-4 0.2", "cyclic_triaxial axial strain rate = -0.0001 must be "
+                                      "positive"},
+      {"cyclic_triaxial z 1e-4 0.2 one_way maybe", "one_way must be yes or no, got 'maybe'"},
+      {"cyclic_triaxial z 1e-4 0.2 da_limit 0", "da_limit = 0 is outside the accepted range "
+                                                "(0, 1] (a double-amplitude axial strain)"},
+      {"cyclic_triaxial z 1e-4 0.2 until r_u 1.2", "until r_u 1.2: r_u = 1 - p/p0 cannot exceed "
+                                                   "1 (a granular cell carries no tension, p >= "
+                                                   "0)"},
+  };
+  for (const auto& c : cases)
+    EXPECT_NE(refusal(c.first, false).find(c.second), std::string::npos)
+        << c.first << ": " << refusal(c.first, false);
+  for (const char* fine : {"k0 x 1e-5 4e5 ocr 4 until ocr 3.9", "k0 y 1e-5 4e5 until K0 0.5",
+                           "cyclic_triaxial x 1e-4 0.2 one_way yes until cycles 10",
+                           "cyclic_triaxial z 1e-4 0.2 until r_u 0.9"})
+    EXPECT_EQ(refusal(fine, false), "") << fine;
+}
+
+// k0 strains every component at a prescribed rate (no stiffness entries); cyclic_triaxial's
+// servo holds sigma_b - sigma_c by the traceless actuator e_b - e_c and strains the three axes:
+// C_IJ of the rows I = b, c and the columns J = x, y, z
+TEST(CellProgrammes, LaboratoryTestsAskForTheEntriesTheirServoUses)
+{
+  using Sums = tycore::AffineStiffnessSums;
+  EXPECT_EQ(tycore::stiffness_entries_of(parse("k0 z 1e-5 4e5", false).programme->profile(),
+                                         false), 0u);
+  for (int a = 0; a < 3; ++a) {
+    const std::string axis = tycore::axis_name(a);
+    unsigned expected = 0;
+    for (int I : {(a + 1) % 3, (a + 2) % 3})
+      for (int J = 0; J < 3; ++J) expected |= Sums::entry(I, J);
+    EXPECT_EQ(tycore::stiffness_entries_of(
+                  parse("cyclic_triaxial " + axis + " 1e-4 0.2").programme->profile(), true),
+              expected) << axis;
+  }
+}
+
+// cyclic_triaxial on an undrained linear cell (q_a = 3 G eps_a, p constant): compression
+// first; `until cycles 3` ends the test after the sixth reversal, at -2 CSR p0 two-way; the
+// outputs are those of the axis (sigma_r the mean of the lateral stresses)
+TEST(CellProgrammes, CyclicTriaxialUntilCyclesNStopsAfterNCycles)
+{
+  for (bool one_way : {false, true}) {
+    tycore::CellCommand c = parse(std::string("cyclic_triaxial y 1.0 0.2 until cycles 3")
+                                  + (one_way ? " one_way yes" : ""), false);
+    tycore::CellProgramme& p = *c.programme;
+    const double G = 1e6, dt = 1e-5, p0 = 1e5;
+    Numbers values;
+    tycore::CellState state;
+    state.dt = dt;
+    state.stress.head<3>().setConstant(p0);
+    EXPECT_EQ(p.begin_run(state, values), "");
+    double eps = 0.0, out[tycore::out::COUNT];
+    int reversals = 0;
+    double last_direction = 1.0;
+    for (int steps = 0; steps < 100000; ++steps) {
+      p.outputs(state, out);
+      if (tycore::reached(0.0, out[tycore::out::CYCLES], c.until.value)) break;
+      p.after_step(state);
+      const Vector6d rate = p.control(state, values).prescribed_strain_rate;
+      EXPECT_EQ(rate.head<3>().sum(), 0.0);
+      if (steps == 0) {
+        EXPECT_GT(rate(1), 0.0);    // the first half cycle compresses y
+      }
+      if (rate(1) * last_direction < 0.0) ++reversals;
+      last_direction = rate(1);
+      eps += rate(1) * dt;
+      state.strain(1) = eps, state.strain(2) = state.strain(0) = -0.5 * eps;
+      state.stress(1) = p0 + 2.0 * G * eps;    // q_a = 3 G eps_a, p = p0
+      state.stress(2) = state.stress(0) = p0 - G * eps;
+    }
+    EXPECT_EQ(reversals, 6) << one_way;
+    EXPECT_EQ(out[tycore::out::CYCLES], 3.0);
+    EXPECT_NEAR(eps, one_way ? 0.0 : -2.0 * 0.2 * p0 / (3.0 * G), 2.0 * dt);
+    EXPECT_DOUBLE_EQ(out[tycore::out::EPS_A], eps);
+    EXPECT_DOUBLE_EQ(out[tycore::out::SIG_R], 0.5 * (state.stress(0) + state.stress(2)));
+    EXPECT_DOUBLE_EQ(out[tycore::out::Q_A], state.stress(1) - out[tycore::out::SIG_R]);
+    EXPECT_NEAR(out[tycore::out::R_U], 0.0, 1e-15);
+  }
+}
+
+// k0 outputs: K0 = sigma_r/sigma_a, K0_inc from the stresses at the start, OCR from the largest
+// sigma_a; a test that begins at or above SIGMA_MAX is refused; cyclic_triaxial needs p0 > 0
+// and warns when q_a is at the amplitude already
+TEST(CellProgrammes, LaboratoryTestsAtTheStartOfARunAndTheirOutputs)
+{
+  Numbers values;
+  tycore::CellState state;
+  state.dt = 0.01;
+  state.stress << 1e5, 1e5, 4e5, 0, 0, 0;
+  tycore::CellCommand high = parse("k0 z 1e-5 4e5", false);
+  try {
+    high.programme->begin_run(state, values);
+    ADD_FAILURE() << "a k0 test from sigma_a = SIGMA_MAX accepted";
+  } catch (std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("k0: the axial stress sigma_z is 4e+05 when the test "
+                                         "begins, not below SIGMA_MAX = 4e+05"),
+              std::string::npos) << e.what();
+  }
+  tycore::CellCommand k0 = parse("k0 z 1e-5 8e5 ocr 2", false);
+  EXPECT_EQ(k0.programme->begin_run(state, values), "");
+  state.stress << 3e5, 1e5, 8e5, 0, 0, 0;
+  k0.programme->after_step(state);    // the peak: unloading starts
+  state.stress << 2.4e5, 0.8e5, 5e5, 0, 0, 0;
+  double out[tycore::out::COUNT];
+  k0.programme->outputs(state, out);
+  EXPECT_DOUBLE_EQ(out[tycore::out::SIG_R], 1.6e5);
+  EXPECT_DOUBLE_EQ(out[tycore::out::K0], 1.6e5 / 5e5);
+  EXPECT_DOUBLE_EQ(out[tycore::out::K0_INC], (1.6e5 - 1e5) / (5e5 - 4e5));
+  EXPECT_DOUBLE_EQ(out[tycore::out::OCR], 8e5 / 5e5);
+  EXPECT_LT(k0.programme->control(state, values).prescribed_strain_rate(2), 0.0);
+  // the progress with this step's sigma_a: the loading 4e5 and 3e5 of the unloading, of 8e5
+  EXPECT_DOUBLE_EQ(k0.programme->progress(), (4e5 + 3e5) / (4e5 + 4e5));
+
+  tycore::CellCommand cyclic = parse("cyclic_triaxial z 1e-4 0.2", false);
+  state.stress.setZero();
+  EXPECT_THROW(cyclic.programme->begin_run(state, values), std::invalid_argument);
+  tycore::CellCommand at_amplitude = parse("cyclic_triaxial z 1e-4 0.2", false);
+  state.stress << 0.8e5, 0.8e5, 1.4e5, 0, 0, 0;    // p0 1e5, q_a 6e4 >= 2 CSR p0 = 4e4
+  EXPECT_NE(at_amplitude.programme->begin_run(state, values).find("is at the amplitude 2 CSR "
+                                                                  "p0 = 4e+04 already"),
+            std::string::npos);
+}
+
+// restart records of both; p0 of cyclic_triaxial taken over by a continued test along the same
+// axis only; a record resumed along another axis refused
+TEST(CellProgrammes, LaboratoryTestsRestartAndCarryOver)
+{
+  Numbers values;
+  tycore::CellState state;
+  state.stress << 1e5, 1e5, 1e5, 0, 0, 0;
+  for (const char* text : {"k0 z 1e-5 4e5 ocr 2", "cyclic_triaxial z 1e-4 0.2"}) {
+    tycore::CellCommand a = parse(text, false);
+    a.programme->begin_run(state, values);
+    Vector6d later = state.stress;
+    later(2) = 5e5;
+    a.programme->after_step({0.0, 0.01, later, Vector6d::Zero()});    // a reversal in both
+    tycore::CellTestState t;
+    const std::vector<double> record = tycore::restart_record(t, *a.programme);
+    tycore::CellCommand b = parse(text, false);
+    tycore::read_restart_record(record.data(), t, *b.programme, "c");
+    EXPECT_EQ(b.programme->state(), a.programme->state()) << text;
+    EXPECT_LT(b.programme->control(state, values).prescribed_strain_rate(2), 0.0) << text;
+    tycore::CellCommand other = parse(std::string(text).replace(std::string(text).find(" z "),
+                                                                3, " x "), false);
+    try {
+      tycore::read_restart_record(record.data(), t, *other.programme, "c");
+      ADD_FAILURE() << text << " resumed along x";
+    } catch (std::exception& e) {
+      EXPECT_NE(std::string(e.what()).find("written by a run along another axis; this one loads "
+                                           "x"), std::string::npos) << e.what();
+    }
+  }
+  tycore::CellCommand first = parse("cyclic_triaxial z 1e-4 0.2", false);
+  first.programme->begin_run(state, values);    // p0 = 1e5
+  state.stress << 0.5e5, 0.5e5, 0.5e5, 0, 0, 0;
+  tycore::CellCommand iso = parse("iso 1e5", false);
+  iso.programme->take_carried(first.programme->carried());    // passed on through a stage
+  tycore::CellCommand same = parse("cyclic_triaxial z 1e-4 0.1", false);
+  tycore::CellCommand other = parse("cyclic_triaxial x 1e-4 0.1", false);
+  same.programme->take_carried(iso.programme->carried());
+  other.programme->take_carried(first.programme->carried());
+  same.programme->begin_run(state, values);
+  other.programme->begin_run(state, values);
+  double out[tycore::out::COUNT];
+  same.programme->outputs(state, out);
+  EXPECT_DOUBLE_EQ(out[tycore::out::R_U], 0.5);
+  other.programme->outputs(state, out);
+  EXPECT_DOUBLE_EQ(out[tycore::out::R_U], 0.0);    // its own p0 = p now
 }

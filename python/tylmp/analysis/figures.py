@@ -548,3 +548,101 @@ def cyclic_shear(tables, labels, out, about=None, n_l=None, limits=None):
         legend(a, fontsize=8)
     _shear_caption(fig, tables, about)
     return save_figure(fig, out)
+
+
+def _axial_caption(fig, tables, about):
+    from . import axial_tests
+    caption(fig, tables, about, rate=axial_tests.axial_rate, rate_name="axial strain rate |ε̇_a|")
+
+
+def k0(tables, labels, out, sinphi=None, about=None):
+    """Oedometric loading and unloading (docs/theory.md §13): the stress path σr against σa,
+    K0 = σr/σa against σa, and K0 against OCR on unloading. With sinphi (sin φ′), Jaky's
+    1 − sin φ′ is drawn on the second panel and Mayne–Kulhawy's K0_nc·OCR^sin φ′ (K0_nc: the
+    record's K0 at the end of loading) on the third, both empirical rules."""
+    from . import axial_tests as ax
+    fig, (a1, a2, a3) = plt.subplots(1, 3, figsize=(15.5, 4.3))
+    for k, (t, lab) in enumerate(zip(tables, labels)):
+        ls = record_style(k)
+        peak = ax.peak_row(t)
+        a1.plot(t["sig_a"] * KPA, t["sig_r"] * KPA, lw=0.9, ls=ls, color="k", label=lab)
+        a2.plot(t["sig_a"][:peak + 1] * KPA, t["K0"][:peak + 1], lw=0.9, ls=ls, color="k",
+                label=f"{lab}: loading")
+        a2.plot(t["sig_a"][peak:] * KPA, t["K0"][peak:], lw=0.9, ls=ls, color="0.55",
+                label=f"{lab}: unloading")
+        a3.plot(t["ocr"][peak:], t["K0"][peak:], lw=0.9, ls=ls, color="k", label=lab)
+        if sinphi is not None:
+            ocr = np.linspace(1.0, max(float(np.max(t["ocr"])), 1.0), 50)
+            a3.plot(ocr, ax.mayne_kulhawy(t["K0"][peak], ocr, sinphi), lw=0.8, ls=ls,
+                    color="0.5", label=f"K0_nc·OCR^sinφ′ (sinφ′ = {sinphi:g})")
+    if sinphi is not None:
+        a2.axhline(ax.jaky(sinphi), color="0.5", lw=0.8, ls=":",
+                   label=f"Jaky: 1 − sinφ′ = {ax.jaky(sinphi):.3f}")
+    a1.set(xlabel="axial stress σa [kPa]", ylabel="radial stress σr [kPa]",
+           title="Oedometric stress path")
+    a2.set(xlabel="axial stress σa [kPa]", ylabel="K0 = σr/σa", title="K0 in loading and "
+           "unloading")
+    a3.set(xlabel="OCR = max σa/σa", ylabel="K0 = σr/σa", title="K0 on unloading")
+    for a in (a1, a2, a3):
+        a.grid(alpha=0.3)
+        legend(a, fontsize=8)
+    a1.set_xlim(left=0.0)
+    a1.set_ylim(bottom=0.0)
+    _axial_caption(fig, tables, about)
+    return save_figure(fig, out)
+
+
+def cyclic_triaxial(tables, labels, out, about=None, limits=None):
+    """Undrained cyclic triaxial test: the stress path q_a against p′, the q_a–ε_a loops before
+    liquefaction (the half cycles before the one in which a criterion first held) and over the
+    whole test, and r_u
+    against the cycle count N (continuous within a half cycle, shear.continuous_cycles), with
+    N_L by r_u (circle) and by double-amplitude ε_a (square) marked at the first row where each
+    criterion holds, labelled with the fix's N_L; limits = (r_u limit, double-amplitude
+    limit), default 0.95 and 0.05. The stress panels draw the amplitude q_a = ±2 CSR p0 as
+    dotted lines."""
+    from . import axial_tests as ax
+    from . import shear as sh
+    ru_limit, da_limit = limits or (ax.RU_LIMIT, ax.DA_LIMIT)
+    fig, ((a1, a2), (a3, a4)) = plt.subplots(2, 2, figsize=(12.5, 8.6))
+    for k, (t, lab) in enumerate(zip(tables, labels)):
+        ls = record_style(k)
+        n = sh.continuous_cycles(t)
+        rows = sh.liquefaction_rows(t, ru_limit, da_limit, strain="eps_a")
+        # the complete half cycles before the one in which a criterion first held
+        first = min([r for r in rows if r is not None] + [len(n) - 1])
+        starts = [int(j) for j in sh.half_cycle_starts(t) if j <= first]
+        first = starts[-1] if starts else first + 1
+        a1.plot(t["p"] * KPA, t["q_a"] * KPA, lw=0.7, ls=ls, color="k", label=lab)
+        a2.plot(t["eps_a"][:first] * PCT, t["q_a"][:first] * KPA, lw=0.7, ls=ls, color="k",
+                label=lab)
+        a3.plot(t["eps_a"] * PCT, t["q_a"] * KPA, lw=0.7, ls=ls, color="k", label=lab)
+        a4.plot(n, t["r_u"], lw=0.9, ls=ls, color="k", label=lab)
+        amplitude = 2.0 * ax.amplitude_ratio(t) * t["p"][0] * KPA
+        for a in ((a1, a2, a3) if np.isfinite(amplitude) else ()):
+            for sign in (1, -1):
+                a.axhline(sign * amplitude, color="0.5", lw=0.7, ls=":")
+        for value, r, marker, what in zip(ax.liquefaction_reported(t), rows, ("o", "s"),
+                                          (f"N_L (r_u ≥ {ru_limit:g})",
+                                           f"N_L (double amplitude ε_a ≥ {da_limit * PCT:g} %)")):
+            if not value > 0 or r is None:
+                continue
+            style = dict(marker=marker, mfc="white", mec="k", ms=8, mew=1.3, ls="none",
+                         label=f"{what} = {value:g}")
+            a1.plot(t["p"][r] * KPA, t["q_a"][r] * KPA, **style)
+            a3.plot(t["eps_a"][r] * PCT, t["q_a"][r] * KPA, **style)
+            a4.plot(n[r], t["r_u"][r], **style)
+    a4.axhline(ru_limit, color="0.5", lw=0.7, ls=":")
+    a1.set(xlabel="mean effective stress p′ [kPa]", ylabel="deviator q_a = σa − σr [kPa]",
+           title="Undrained cyclic triaxial: stress path")
+    a2.set(xlabel="axial strain ε_a [%]", ylabel="deviator q_a [kPa]",
+           title="Stress–strain loops before the half cycle of liquefaction")
+    a3.set(xlabel="axial strain ε_a [%]", ylabel="deviator q_a [kPa]",
+           title="Stress–strain, the whole test")
+    a4.set(xlabel="number of cycles N", ylabel="r_u = 1 − p′/p′0", title="Excess pore pressure")
+    a1.set_xlim(left=0.0)
+    for a in (a1, a2, a3, a4):
+        _zero_lines(a)
+        legend(a, fontsize=8)
+    _axial_caption(fig, tables, about)
+    return save_figure(fig, out)

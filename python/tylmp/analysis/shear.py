@@ -60,11 +60,12 @@ def continuous_cycles(table):
     return out
 
 
-def liquefaction_rows(table, ru_limit=RU_LIMIT, da_limit=DA_LIMIT):
+def liquefaction_rows(table, ru_limit=RU_LIMIT, da_limit=DA_LIMIT, strain="gamma"):
     """The first rows at which r_u >= ru_limit and |gamma - gamma at the last reversal| >=
     da_limit hold (None where never), gamma at a reversal being the record's gamma at the last
-    row of the half cycle before (exact when the record has a row every step)."""
-    gamma = np.asarray(table["gamma"], float)
+    row of the half cycle before (exact when the record has a row every step); `strain` names
+    the cycled strain's column (eps_a of a cyclic triaxial record)."""
+    gamma = np.asarray(table[strain], float)
     hit_ru = np.flatnonzero(np.asarray(table["r_u"], float) >= ru_limit)
     at_reversal = np.zeros_like(gamma)
     for k in half_cycle_starts(table):
@@ -73,13 +74,13 @@ def liquefaction_rows(table, ru_limit=RU_LIMIT, da_limit=DA_LIMIT):
     return (int(hit_ru[0]) if hit_ru.size else None, int(hit_da[0]) if hit_da.size else None)
 
 
-def liquefaction_from_record(table, ru_limit=RU_LIMIT, da_limit=DA_LIMIT):
+def liquefaction_from_record(table, ru_limit=RU_LIMIT, da_limit=DA_LIMIT, strain="gamma"):
     """N_L by both criteria recomputed from the record's rows: the count of the half cycle of
     the first row at which each criterion holds (liquefaction_rows), its cycles + 0.5; 0 where
     it never holds, as the fix reports it."""
     c = np.asarray(table["cycles"], float)
     return tuple(float(c[r]) + 0.5 if r is not None else 0.0
-                 for r in liquefaction_rows(table, ru_limit, da_limit))
+                 for r in liquefaction_rows(table, ru_limit, da_limit, strain))
 
 
 def liquefaction_reported(table):

@@ -26,6 +26,9 @@ CHOICES = {
     "shear_plane": ("xz", "xy", "yz"),
     "direction": ("compression", "extension"),
     "after_liquefaction": ("continue", "stop"),
+    # the loaded axis of the tests along an axis (k0.in, cyclic_triaxial.in)
+    "axis": ("z", "x", "y"),
+    "loading": ("two_way", "one_way"),
 }
 
 # -var distribution: a candidate of tylmp.specimen or a user's distribution string, checked by
@@ -59,7 +62,8 @@ NUMBERS = {
     # the mean stress of the axisymmetric and undrained tests (common/settle.in consolidates)
     "pressure": (False, 0.0, "the mean stress p of the test, Pa", True),
     "consolidate_steps": (True, 1, "the most steps of the consolidation to -var pressure"),
-    "csr": (False, 0.0, "the cyclic stress ratio tau_cyc/sigma_n0", True),
+    "csr": (False, 0.0, "the cyclic stress ratio (tau_cyc/sigma_n0 of simple shear, q_cyc/(2 p0) "
+                        "of the triaxial test)", True),
     # principal stress rotation (rotation.in)
     "rotation_p": (False, 0.0, "the mean stress p held during the rotation, Pa", True),
     "rotation_dev": (False, 0.0, "the deviator stress sigma1 - sigma3 held during the rotation, "
@@ -73,10 +77,15 @@ NUMBERS = {
     "rotation_turn": (False, 0.0, "the total rotation of the major principal stress, degrees",
                       True),
     "ramp": (False, 0.0, "the deviator strain rate of the ramp to (p, q, b), 1/s", True),
-    # cyclic simple shear (cyclic_simple_shear.in)
+    # cyclic simple shear and cyclic triaxial (cyclic_simple_shear.in, cyclic_triaxial.in)
     "ru_limit": (False, 0.0, "the liquefaction criterion on r_u (at most 1)", True, 1.0 + 1e-12),
-    "da_limit": (False, 0.0, "the liquefaction criterion on the double amplitude gamma", True),
+    "da_limit": (False, 0.0, "the liquefaction criterion on the double amplitude strain (gamma, "
+                             "or eps_a of the triaxial test)", True),
     "gamma_max": (False, 0.0, "the |gamma| at which a cyclic test ends", True),
+    # oedometric compression (k0.in)
+    "sigma_max": (False, 0.0, "the axial stress at which the loading of a k0 test ends, Pa", True),
+    "ocr": (False, 1.0, "the overconsolidation ratio at the end of unloading (1: none)"),
+    "eps_max": (False, 0.0, "the |axial strain| at which a k0 or cyclic triaxial test ends", True),
 }
 
 def fragments_dir(deck=None):

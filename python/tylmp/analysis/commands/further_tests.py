@@ -1,6 +1,7 @@
 """Subcommands of the tests beyond the paper: cyclic axisymmetric loading, simple shear (drained,
-constant volume, cyclic), the critical state in p-q, undrained triaxial compression and principal
-stress rotation."""
+constant volume, cyclic), the critical state in p-q, undrained triaxial compression, principal
+stress rotation, oedometric (K0) loading and unloading, and the undrained cyclic triaxial
+test."""
 import numpy as np
 
 from .. import figures, metrics, principal
@@ -117,8 +118,47 @@ def cmd_rotation(a):
     wrote(figures.rotation(t, label, a.out, alpha, psi, values, commanded, about=about(a)))
 
 
+def cmd_k0(a):
+    """Oedometric loading and unloading: K0 at the end of loading and after unloading, beside
+    Jaky's 1 - sin(phi') and Mayne-Kulhawy's K0_nc OCR^sin(phi') when --sinphi is given."""
+    from .. import axial_tests as ax
+    tables = read_records(a.files)
+    labels = legend_labels(a.files, a.labels)
+    for t, lab in zip(tables, labels):
+        s = ax.k0_summary(t)
+        pairs = [("sig_a_peak_kPa", s["sig_a_peak"] * 1e-3), ("eps_a_peak_pct", s["eps_a_peak"] * 100),
+                 ("void_ratio_peak", s["void_ratio_peak"]), ("K0_loading", s["K0_loading"]),
+                 ("K0_inc_loading", s["K0_inc_loading"])]
+        pairs += [(f"K0_ocr{o:g}", ax.k0_at_ocr(t, o)) for o in (2.0, 4.0)]
+        pairs += [("ocr_end", s["ocr_end"]), ("K0_end", s["K0_end"])]
+        if a.sinphi is not None:
+            pairs += [("jaky", ax.jaky(a.sinphi))]
+            if s["ocr_end"] > 1.0:
+                pairs += [("mayne_kulhawy_end", float(ax.mayne_kulhawy(s["K0_loading"],
+                                                                       s["ocr_end"], a.sinphi)))]
+        report(lab, pairs)
+    wrote(figures.k0(tables, labels, a.out, a.sinphi, about=about(a)))
+
+
+def cmd_cyclic_triaxial(a):
+    from .. import axial_tests as ax
+    tables = read_records(a.files)
+    labels = legend_labels(a.files, a.labels)
+    for t, lab in zip(tables, labels):
+        t.require(ax.CYCLIC_COLUMNS)
+        fix_ru, fix_da = ax.liquefaction_reported(t)
+        rec_ru, rec_da = ax.liquefaction_from_record(t, a.ru_limit, a.da_limit)
+        report(lab, [("CSR", ax.amplitude_ratio(t)), ("cycles", float(t["cycles"][-1])),
+                     ("r_u_max", float(np.max(t["r_u"]))), ("N_L_ru", fix_ru),
+                     ("N_L_eps", fix_da), ("N_L_ru_record", rec_ru),
+                     ("N_L_eps_record", rec_da)])
+    wrote(figures.cyclic_triaxial(tables, labels, a.out, about=about(a),
+                                  limits=(a.ru_limit, a.da_limit)))
+
+
 def register(sub):
-    """Adds the subcommands cyclic, shear, cyclic-shear, pq, undrained and rotation."""
+    """Adds the subcommands cyclic, shear, cyclic-shear, pq, undrained, rotation, k0 and
+    cyclic-triaxial."""
     files_command(sub, "cyclic", cmd_cyclic, "cyclic axisymmetric test: q and εv against ε1 − ε3")
     files_command(sub, "shear", cmd_shear, "simple shear: τ/σn and εv against γ (drained), or τ/σn "
                   "against γ, the stress path σn–τ and r_u against γ (constant volume)")
@@ -144,3 +184,16 @@ def register(sub):
     p.add_argument("--target", type=float, nargs=3, metavar=("P", "D", "B"),
                    help="the held p and deviator stress σ1 − σ3 [Pa] and b (fix cell/servo "
                         "rotation's P Q B), drawn as the principal-stress targets")
+    p = files_command(sub, "k0", cmd_k0, "oedometric (K0) loading and unloading: the stress path "
+                      "σr–σa, K0 against σa and against OCR; K0 at the end of loading, at OCR 2 "
+                      "and 4 and at the end")
+    p.add_argument("--sinphi", type=float, help="sin φ′ of the material: draws Jaky's 1 − sin φ′ "
+                   "and Mayne–Kulhawy's K0_nc·OCR^sin φ′ (empirical rules) and prints them")
+    p = files_command(sub, "cyclic-triaxial", cmd_cyclic_triaxial, "undrained cyclic triaxial "
+                      "test: the stress path q_a–p′, the q_a–ε_a loops and r_u against the number "
+                      "of cycles, N_L by r_u ≥ 0.95 and by double-amplitude ε_a ≥ 5 %% (the fix's, "
+                      "and recomputed from the record's rows: N_L_ru_record, N_L_eps_record)")
+    p.add_argument("--ru-limit", type=float, default=0.95,
+                   help="the r_u criterion of the test (the deck's -var ru_limit; 0.95)")
+    p.add_argument("--da-limit", type=float, default=0.05,
+                   help="the double-amplitude ε_a criterion (the deck's -var da_limit; 0.05)")
