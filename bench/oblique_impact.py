@@ -1,0 +1,315 @@
+#!/usr/bin/env python3
+"""Oblique impact of an elastic sphere on an elastic half-space at angles 1-85 degrees: the
+classical elastic-frictional theory (Maw, Barber & Fawcett 1976), computed in time with the
+oracle of tests/mdr_oracle.py (tests/oblique_reference.py), against pair thornton/yin and
+LAMMPS's `pair granular hertz/material ... tangential mindlin`, `mindlin_rescale`,
+`mindlin/force` and `mindlin_rescale/force` (docs/comparison.md, "Oblique impact";
+docs/theory.md §3.6). With --adhesion also thornton/yin with Gamma > 0: the normal restitution
+against the closed form of docs/theory.md §3.2 and the tangential outputs beside Gamma = 0.
+
+    /usr/bin/python3 bench/oblique_impact.py [--out docs/comparison_oblique_impact.png]
+        [--json bench/results/oblique_impact.json] [--steps 1000] [--keep DIR] [--plot]
+
+Configuration (Maw et al.'s): a glass sphere, R = 0.1 mm, E = 70 GPa, nu = 0.3,
+rho = 2650 kg/m^3, mu = 0.3, at V = 0.1 m/s with no spin against a fixed glass sphere of
+radius 0.1 m (a half-space to 1e-3: R* = R/1.001, E* = E/(2(1 - nu^2)), G* = G/(2(2 - nu))).
+The big sphere is not integrated; no damping, no gravity. The time step is the Hertz contact
+time of V_n over --steps.
+"""
+import argparse
+import functools
+import math
+import os
+import shutil
+import sys
+import tempfile
+
+import numpy as np
+
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+BUILD = os.environ.get("TYLMP_BUILD_DIR", os.path.join(REPO, "build"))
+sys.path.insert(0, os.path.join(REPO, "tests"))
+import jkr_reference as jkr  # noqa: E402
+import oblique_reference as ob  # noqa: E402
+from lmprun import LOAD_TYLMP, run_deck  # noqa: E402
+
+R, R_WALL = 1.0e-4, 0.1
+E, NU, RHO, MU = 70e9, 0.3, 2650.0, 0.3
+V = 0.1
+GAMMA = 0.3                       # J/m^2, the adhesive runs (docs/theory.md §1.8)
+ANGLES = [1, 2, 5, 10, 15, 20, 25, 30, 35, 40, 45, 50, 55, 60, 65, 70, 75, 80, 85]
+TABLE_ANGLES = [5, 20, 30, 45, 60, 75]
+ADHESIVE_ANGLES = [0, 20, 45, 60, 70, 75, 80]
+MODELS = ["thornton/yin", "mindlin", "mindlin_rescale", "mindlin/force", "mindlin_rescale/force"]
+MAT = ob.Material(R, E, NU, RHO, MU, R_other=R_WALL)
+
+
+def pair_lines(model, Gamma=0.0):
+    if model == "thornton/yin":
+        return f"{LOAD_TYLMP}pair_style thornton/yin\npair_coeff * * {E} {NU} {MU} {Gamma}\n"
+    # zero viscoelastic damping: eta_n = 0, and the tangential damping x_gamma,t eta_n = 0
+    return (f"pair_style granular\npair_coeff * * hertz/material {E} 0.0 {NU} "
+            f"damping viscoelastic tangential {model} NULL 0.0 {MU}\n")
+
+
+def deck(model, theta, V=V, Gamma=0.0, steps=1000):
+    """Sphere 1 (R) at the origin moving at V, theta from the normal +x, towards the fixed
+    sphere 2 (R_WALL); prints the rebound of sphere 1 after the impact."""
+    V_n, V_t = V * math.cos(theta), V * math.sin(theta)
+    dt = MAT.hertz(V_n)[1] / steps
+    gap = 3 * V_n * dt
+    x2 = R + R_WALL + gap
+    # Hertz contact time plus margin; an adhesive contact lasts longer (it breaks at delta_f)
+    nsteps = int((1.2 if Gamma == 0 else 4.0) * steps) + 10
+    dissipation = ("compute diss all pair thornton/yin\n"
+                   "variable Df equal c_diss[1]\nvariable Db equal c_diss[2]\n"
+                   if model == "thornton/yin" else "variable Df equal 0\nvariable Db equal 0\n")
+    return f"""units si
+atom_style sphere
+atom_modify map array
+boundary f f f
+comm_modify vel yes
+region box block -1e-3 {x2 + 0.01!r} -1e-3 1e-3 -1e-3 1e-3
+create_box 2 box
+create_atoms 1 single 0 0 0
+create_atoms 2 single {x2!r} 0 0
+set atom 1 diameter {2 * R!r} density {RHO!r}
+set atom 2 diameter {2 * R_WALL!r} density {RHO!r}
+group one id 1
+velocity one set {V_n!r} {V_t!r} 0
+{pair_lines(model, Gamma)}neighbor 1e-7 bin
+neigh_modify every 1 delay 0 check yes
+timestep {dt!r}
+fix nve one nve/sphere
+compute spin all property/atom omegaz
+{dissipation}variable d equal {R + R_WALL!r}-(x[2]-x[1])
+variable w equal C_spin[1]
+# thermo on the last step makes the computes current for the print after the run
+thermo_style custom step v_w v_Df v_Db
+thermo {nsteps}
+run {nsteps}
+print "RESULT $(vx[1]:%.17g) $(vy[1]:%.17g) $(v_w:%.17g) $(v_d:%.17g) $(v_Df:%.17g) $(v_Db:%.17g)"
+"""
+
+
+def run(model, theta, work, V=V, Gamma=0.0, steps=1000, program=("lmp", "-nocite")):
+    """One impact in LAMMPS: the outputs of tests/oblique_reference.py (omega in the rolling
+    sense: sphere 2 lies along +x, so friction turns sphere 1 about -z)."""
+    rc, out = run_deck(deck(model, theta, V, Gamma, steps), work, program=program,
+                       environment={"PYTHONPATH": os.path.join(BUILD, "python")})
+    lines = [line for line in out.splitlines() if line.startswith("RESULT")]
+    if rc != 0 or "ERROR" in out or not lines:
+        raise RuntimeError(f"{model} at {math.degrees(theta):g} deg failed:\n{out[-3000:]}")
+    vx, vy, wz, d, Df, Db = (float(x) for x in lines[-1].split()[1:])
+    V_n, V_t = V * math.cos(theta), V * math.sin(theta)
+    w = -wz
+    V_s_out = vy - R * w
+    return {"theta": theta, "V_n": V_n, "V_t": V_t, "e_n": -vx / V_n,
+            "e_t": V_s_out / V_t if V_t else None,
+            "psi1": MAT.psi(V_t, V_n), "psi2": MAT.psi(V_s_out, V_n),
+            "Omega": MAT.k * R * w / (MU * V_n), "delta_end": d,
+            "friction_dissipation": Df, "break_dissipation": Db,
+            "kinetic_in": 0.5 * MAT.m * V**2,
+            "kinetic_out": 0.5 * MAT.m * (vx**2 + vy**2) + 0.5 * MAT.I * w**2}
+
+
+def reference(theta, steps=4000, springs=5000, V=V):
+    """the classical solution at theta (tests/oblique_reference.py), the pair's lever arm"""
+    return ob.impact(MAT, V, theta, steps=steps, springs=springs, lever="pair")
+
+
+@functools.lru_cache(maxsize=None)
+def separation_work(Gamma):
+    """W of docs/theory.md §3.2, by quadrature of the JKR curve (tests/jkr_reference.py)"""
+    return jkr.separation_work(MAT.R_star, MAT.E_star, Gamma, n=4001)
+
+
+def sticking_velocity(Gamma):
+    """V_s = sqrt(2W/m*) of docs/theory.md §3.2 for the sphere on the fixed sphere: m* = m"""
+    return math.sqrt(2 * separation_work(Gamma) / MAT.m)
+
+
+def adhesive_restitution(V_n, Gamma):
+    """e = sqrt(1 - (V_s/V_n)^2) above V_s, 0 below (docs/theory.md §3.2)"""
+    Vs = sticking_velocity(Gamma)
+    return math.sqrt(1 - (Vs / V_n) ** 2) if V_n > Vs else 0.0
+
+
+def figure(results, out):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    sys.path.insert(0, os.path.join(REPO, "python"))
+    from tylmp.analysis.figures import save_figure
+
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.6))
+    style = {"reference": dict(color="k", lw=2.2, ls="-", marker=None, label="reference: MD oracle in time (Maw et al. 1976)"),
+             "thornton/yin": dict(color="C3", ls="none", marker="o", ms=6, mfc="none", label="pair thornton/yin"),
+             "mindlin": dict(color="C0", ls="--", marker="s", ms=4, label="granular … mindlin"),
+             "mindlin_rescale": dict(color="C2", ls="--", marker="^", ms=4, label="granular … mindlin_rescale"),
+             "mindlin/force": dict(color="C1", ls=":", marker="v", ms=4, label="granular … mindlin/force"),
+             "mindlin_rescale/force": dict(color="C4", ls=":", marker="D", ms=3.5, label="granular … mindlin_rescale/force")}
+    psi = np.geomspace(0.04, 35, 400)
+    slide = ob.sliding(MAT, psi)
+    threshold = ob.sliding_threshold(MAT)
+    for key in ["reference"] + MODELS:
+        rows = results[key]
+        x = np.array([r["psi1"] for r in rows])
+        kw = style[key]
+        for ax, q in zip(axes, ("e_t", "psi2", "Omega")):
+            ax.plot(x, [r[q] for r in rows], zorder=3 if key == "thornton/yin" else 2, **kw)
+    on = psi >= threshold
+    band = dict(color="0.6", lw=6, alpha=0.35, zorder=0)
+    axes[0].plot(psi[on], slide["psi2"][on] / psi[on], **band)
+    axes[1].plot(psi[on], slide["psi2"][on], label="gross sliding throughout (rigid-body impulse)",
+                 **band)
+    axes[2].plot(psi[on], np.full(on.sum(), slide["Omega"]), **band)
+    e0 = ob.no_slip_restitution(MAT, n=8000)
+    axes[0].plot([0.04, 0.1], [e0, e0], color="k", lw=1, ls=":")
+    axes[0].annotate(f"no slip: {e0:.3f}", (0.045, e0), xytext=(0, 6), textcoords="offset points",
+                     fontsize=8)
+    labels = ("tangential restitution e_t = V_s'/V_s", "Ψ2 = k V_s'/(μ V_n)  (rebound angle)",
+              "Ω = k R ω'/(μ V_n)  (rebound spin)")
+    for ax, lab in zip(axes, labels):
+        ax.set_xlabel("Ψ1 = k V_s/(μ V_n) = k tanθ/μ,  k = 4G*/E* = 2(1−ν)/(2−ν)")
+        ax.set_ylabel(lab)
+        ax.axvline(threshold, color="0.7", lw=0.8, ls="-.")
+        ax.axhline(0, color="0.85", lw=0.6)
+        ax.grid(alpha=0.3, which="both")
+    axes[0].set_xscale("log")
+    axes[2].set_xscale("log")
+    axes[1].set_xlim(0, 12)
+    axes[1].set_ylim(-2, 7)
+    axes[1].legend(fontsize=7.5, loc="upper left")
+    fig.suptitle(f"Oblique impact of a glass sphere (R = 0.1 mm) on a glass half-space, V = {V} m/s, "
+                 f"μ = {MU}, ν = {NU}, Γ = 0; dash-dot: Ψ1 = {threshold:.3f}, sliding throughout above",
+                 fontsize=10)
+    return save_figure(fig, out)
+
+
+def fmt(x, digits=3):
+    return f"{x:.{digits}f}"
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--out", default=os.path.join(REPO, "docs", "comparison_oblique_impact.png"))
+    ap.add_argument("--json", default=os.path.join(REPO, "bench", "results", "oblique_impact.json"))
+    ap.add_argument("--steps", type=int, default=1000, help="LAMMPS steps per Hertz contact time")
+    ap.add_argument("--keep", help="keep the decks in this directory")
+    ap.add_argument("--plot", action="store_true", help="only redraw the figure from --json")
+    args = ap.parse_args(argv)
+    if args.plot:
+        import json
+        with open(args.json) as fh:
+            figure(json.load(fh)["results"], args.out)
+        return
+    work = args.keep or tempfile.mkdtemp(prefix="oblique_")
+    os.makedirs(work, exist_ok=True)
+    results = {"reference": [reference(math.radians(a)) for a in ANGLES]}
+    for model in MODELS:
+        results[model] = [run(model, math.radians(a), work, steps=args.steps) for a in ANGLES]
+
+    # checks of the reference: the sliding branch, the energy balance, the no-slip limit,
+    # convergence in time step and spring count
+    checks = {"sliding_threshold_psi1": ob.sliding_threshold(MAT),
+              "no_slip_e_t": ob.no_slip_restitution(MAT)}
+    rigid = [ob.impact(MAT, V, math.radians(a), steps=4000, springs=5000, lever="rigid")
+             for a in ANGLES]
+    sliding = [(r["psi1"], r["psi2"] - ob.sliding(MAT, r["psi1"], r["e_n"])["psi2"],
+                r["Omega"] - ob.sliding(MAT, r["psi1"], r["e_n"])["Omega"])
+               for r in rigid if r["psi1"] >= checks["sliding_threshold_psi1"]]
+    checks["sliding_branch_max_error"] = max(max(abs(a), abs(b)) for _, a, b in sliding)
+    checks["energy_balance_max_error"] = max(
+        abs(r["kinetic_in"] - r["kinetic_out"] - r["dissipation"]) / r["kinetic_in"] for r in rigid)
+    small = [ob.impact(MAT, V, MAT.incidence_for_psi(p), steps=4000, springs=5000, lever="rigid")
+             for p in (0.005, 0.01)]
+    checks["e_t_psi1_0.005_0.01"] = [r["e_t"] for r in small]
+    checks["e_t_psi1_to_0_linear"] = 2 * small[0]["e_t"] - small[1]["e_t"]
+    convergence = {}
+    for a in (20, 45):
+        base = ob.impact(MAT, V, math.radians(a), steps=4000, springs=5000, lever="rigid")
+        for label, st, sp in (("steps 2000", 2000, 5000), ("steps 8000", 8000, 5000),
+                              ("springs 20000", 4000, 20000)):
+            r = ob.impact(MAT, V, math.radians(a), steps=st, springs=sp, lever="rigid")
+            convergence[f"{a} deg, {label}"] = {q: r[q] - base[q] for q in ("e_t", "Omega")}
+    checks["convergence"] = convergence
+    checks["lever_arm_R_minus_half_delta_vs_R"] = {
+        f"{a} deg": {q: p[q] - r[q] for q in ("e_t", "Omega")}
+        for a, p, r in zip(ANGLES, results["reference"], rigid) if a in TABLE_ANGLES}
+
+    # LAMMPS's time step: thornton/yin at half and double the steps
+    lammps_dt = {}
+    for a in (20, 45, 75):
+        for st in (args.steps // 2, 2 * args.steps):
+            r = run("thornton/yin", math.radians(a), work, steps=st)
+            ref = results["thornton/yin"][ANGLES.index(a)]
+            lammps_dt[f"{a} deg, steps {st}"] = {q: r[q] - ref[q] for q in ("e_t", "Omega")}
+
+    # adhesion: thornton/yin at Gamma, the normal restitution against docs/theory.md §3.2 and
+    # against the head-on impact at the same V_n; 4x the steps (the break at delta_f is
+    # resolved to one step: the error of e_n is first order in the time step)
+    adhesive = []
+    for a in ADHESIVE_ANGLES:
+        r = run("thornton/yin", math.radians(a), work, Gamma=GAMMA, steps=4 * args.steps)
+        head_on = r if a == 0 else run("thornton/yin", 0.0, work, V=r["V_n"], Gamma=GAMMA,
+                                       steps=4 * args.steps)
+        r["e_n_head_on"] = head_on["e_n"]
+        r["e_n_closed_form"] = adhesive_restitution(r["V_n"], GAMMA)
+        r["separation_work"] = separation_work(GAMMA)
+        adhesive.append(r)
+
+    # print the tables of docs/comparison.md
+    print(f"k = 4G*/E* = {MAT.k:.6f}; sliding throughout for Psi1 >= {checks['sliding_threshold_psi1']:.4f}")
+    print(f"no-slip limit e_t = {checks['no_slip_e_t']:.5f}; reference at Psi1 = 0.005, 0.01: "
+          f"{checks['e_t_psi1_0.005_0.01'][0]:.5f}, {checks['e_t_psi1_0.005_0.01'][1]:.5f}, "
+          f"linear to 0: {checks['e_t_psi1_to_0_linear']:.5f}")
+    print(f"sliding branch, max |error| in Psi2, Omega: {checks['sliding_branch_max_error']:.2e}")
+    print(f"energy balance, max |KE_in - KE_out - dissipation| / KE_in: {checks['energy_balance_max_error']:.2e}")
+    for k, v in convergence.items():
+        print(f"reference {k}: d e_t = {v['e_t']:.1e}, d Omega = {v['Omega']:.1e}")
+    for k, v in checks["lever_arm_R_minus_half_delta_vs_R"].items():
+        print(f"lever arm R - delta/2 against R, {k}: d e_t = {v['e_t']:.1e}, d Omega = {v['Omega']:.1e}")
+    for k, v in lammps_dt.items():
+        print(f"thornton/yin {k} against {args.steps}: d e_t = {v['e_t']:.1e}, d Omega = {v['Omega']:.1e}")
+    print("\n| θ | Ψ1 | " + " | ".join(["reference"] + MODELS) + " |")
+    print("|---|---|" + "---|" * (len(MODELS) + 1))
+    for a in TABLE_ANGLES:
+        i = ANGLES.index(a)
+        cells = [f"{fmt(results[k][i]['e_t'])} / {fmt(results[k][i]['Omega'])}"
+                 for k in ["reference"] + MODELS]
+        print(f"| {a}° | {results['reference'][i]['psi1']:.3f} | " + " | ".join(cells) + " |")
+    print("\nmax |thornton/yin - reference| over all angles: e_t "
+          f"{max(abs(t['e_t'] - r['e_t']) for t, r in zip(results['thornton/yin'], results['reference'])):.2e}, "
+          f"Psi2 {max(abs(t['psi2'] - r['psi2']) for t, r in zip(results['thornton/yin'], results['reference'])):.2e}, "
+          f"Omega {max(abs(t['Omega'] - r['Omega']) for t, r in zip(results['thornton/yin'], results['reference'])):.2e}")
+    for model in MODELS[1:]:
+        print(f"max |{model} - reference|: e_t "
+              f"{max(abs(t['e_t'] - r['e_t']) for t, r in zip(results[model], results['reference'])):.3f}, "
+              f"Omega {max(abs(t['Omega'] - r['Omega']) for t, r in zip(results[model], results['reference'])):.3f}")
+    print(f"\nadhesion, Gamma = {GAMMA} J/m^2, V_s = {sticking_velocity(GAMMA):.5f} m/s")
+    print("| θ | V_n/V_s | e_n | e_n head-on at V_n | closed form | break dissipation / W | e_t | Ω | e_t, Ω at Γ = 0 |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for r in adhesive:
+        a = round(math.degrees(r["theta"]))
+        dry = results["thornton/yin"][ANGLES.index(a)] if a in ANGLES else None
+        print(f"| {a}° | {r['V_n'] / sticking_velocity(GAMMA):.3f} | {r['e_n']:.5f} | {r['e_n_head_on']:.5f} | "
+              f"{r['e_n_closed_form']:.5f} | {r['break_dissipation'] / r['separation_work']:.4f} | "
+              + (f"{fmt(r['e_t'])} | {fmt(r['Omega'])} | {fmt(dry['e_t'])}, {fmt(dry['Omega'])} |"
+                 if dry else "— | — | — |"))
+
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from provenance import write_result
+    write_result(args.json, {"configuration": {"R": R, "R_wall": R_WALL, "E": E, "nu": NU, "rho": RHO,
+                                               "mu": MU, "V": V, "Gamma_adhesive": GAMMA,
+                                               "steps_per_contact": args.steps},
+                             "results": {k: [{q: v for q, v in r.items() if q != "trace"} for r in rows]
+                                         for k, rows in results.items()},
+                             "adhesive": adhesive, "checks": checks, "lammps_time_step": lammps_dt})
+    figure(results, args.out)
+    if not args.keep:
+        shutil.rmtree(work, ignore_errors=True)
+
+
+if __name__ == "__main__":
+    main()
