@@ -124,6 +124,18 @@ def separation_work(Gamma):
     return jkr.separation_work(MAT.R_star, MAT.E_star, Gamma, n=4001)
 
 
+def law_path(path):
+    """build/law_path (tests/law_path/law_path.cpp: one contact of the law) through the
+    overlaps path[:, 0] and tangential displacements path[:, 1]: its output columns"""
+    import subprocess
+    ds = np.diff(np.r_[0.0, path[:, 1]])
+    lines = "\n".join(f"{d!r} {x!r} 0.0" for d, x in zip(path[:, 0], ds))
+    out = subprocess.run([os.path.join(BUILD, "law_path"), repr(MAT.E_star), repr(MAT.G_star),
+                          repr(MU), "0.0", repr(MAT.R_star)], input=lines, capture_output=True,
+                         text=True, check=True).stdout
+    return np.array([[float(x) for x in line.split()] for line in out.splitlines()])
+
+
 def sticking_velocity(Gamma):
     """V_s = sqrt(2W/m*) of docs/theory.md §3.2 for the sphere on the fixed sphere: m* = m"""
     return math.sqrt(2 * separation_work(Gamma) / MAT.m)
@@ -135,7 +147,23 @@ def adhesive_restitution(V_n, Gamma):
     return math.sqrt(1 - (Vs / V_n) ** 2) if V_n > Vs else 0.0
 
 
+STYLE = {
+    "reference": dict(color="k", lw=2.2, ls="-", marker=None,
+                      label="reference: MD oracle in time (Maw et al. 1976)"),
+    "thornton/yin": dict(color="C3", ls="none", marker="o", ms=6, mfc="none",
+                         label="pair thornton/yin"),
+    "mindlin": dict(color="C0", ls="--", marker="s", ms=4, label="granular … mindlin"),
+    "mindlin_rescale": dict(color="C2", ls="--", marker="^", ms=4,
+                            label="granular … mindlin_rescale"),
+    "mindlin/force": dict(color="C1", ls=":", marker="v", ms=4, label="granular … mindlin/force"),
+    "mindlin_rescale/force": dict(color="C4", ls=":", marker="D", ms=3.5,
+                                  label="granular … mindlin_rescale/force"),
+}
+
+
 def figure(results, out):
+    """e_t, Psi2 and Omega against Psi1 for the reference and every model, with the sliding
+    branch and the no-slip limit of docs/theory.md §3.6"""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -143,36 +171,27 @@ def figure(results, out):
     from tylmp.analysis.figures import save_figure
 
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.6))
-    style = {"reference": dict(color="k", lw=2.2, ls="-", marker=None, label="reference: MD oracle in time (Maw et al. 1976)"),
-             "thornton/yin": dict(color="C3", ls="none", marker="o", ms=6, mfc="none", label="pair thornton/yin"),
-             "mindlin": dict(color="C0", ls="--", marker="s", ms=4, label="granular … mindlin"),
-             "mindlin_rescale": dict(color="C2", ls="--", marker="^", ms=4, label="granular … mindlin_rescale"),
-             "mindlin/force": dict(color="C1", ls=":", marker="v", ms=4, label="granular … mindlin/force"),
-             "mindlin_rescale/force": dict(color="C4", ls=":", marker="D", ms=3.5, label="granular … mindlin_rescale/force")}
-    psi = np.geomspace(0.04, 35, 400)
-    slide = ob.sliding(MAT, psi)
-    threshold = ob.sliding_threshold(MAT)
     for key in ["reference"] + MODELS:
         rows = results[key]
         x = np.array([r["psi1"] for r in rows])
-        kw = style[key]
         for ax, q in zip(axes, ("e_t", "psi2", "Omega")):
-            ax.plot(x, [r[q] for r in rows], zorder=3 if key == "thornton/yin" else 2, **kw)
-    on = psi >= threshold
+            ax.plot(x, [r[q] for r in rows], zorder=3 if key == "thornton/yin" else 2, **STYLE[key])
+    threshold = ob.sliding_threshold(MAT)
+    psi = np.geomspace(threshold, 35, 200)
+    slide = ob.sliding(MAT, psi)
     band = dict(color="0.6", lw=6, alpha=0.35, zorder=0)
-    axes[0].plot(psi[on], slide["psi2"][on] / psi[on], **band)
-    axes[1].plot(psi[on], slide["psi2"][on], label="gross sliding throughout (rigid-body impulse)",
-                 **band)
-    axes[2].plot(psi[on], np.full(on.sum(), slide["Omega"]), **band)
+    axes[0].plot(psi, slide["psi2"] / psi, **band)
+    axes[1].plot(psi, slide["psi2"], label="gross sliding throughout (rigid-body impulse)", **band)
+    axes[2].plot(psi, np.full_like(psi, slide["Omega"]), **band)
     e0 = ob.no_slip_restitution(MAT, n=8000)
     axes[0].plot([0.04, 0.1], [e0, e0], color="k", lw=1, ls=":")
     axes[0].annotate(f"no slip: {e0:.3f}", (0.045, e0), xytext=(0, 6), textcoords="offset points",
                      fontsize=8)
     labels = ("tangential restitution e_t = V_s'/V_s", "Ψ2 = k V_s'/(μ V_n)  (rebound angle)",
               "Ω = k R ω'/(μ V_n)  (rebound spin)")
-    for ax, lab in zip(axes, labels):
+    for ax, label in zip(axes, labels):
         ax.set_xlabel("Ψ1 = k V_s/(μ V_n) = k tanθ/μ,  k = 4G*/E* = 2(1−ν)/(2−ν)")
-        ax.set_ylabel(lab)
+        ax.set_ylabel(label)
         ax.axvline(threshold, color="0.7", lw=0.8, ls="-.")
         ax.axhline(0, color="0.85", lw=0.6)
         ax.grid(alpha=0.3, which="both")
@@ -181,14 +200,168 @@ def figure(results, out):
     axes[1].set_xlim(0, 12)
     axes[1].set_ylim(-2, 7)
     axes[1].legend(fontsize=7.5, loc="upper left")
-    fig.suptitle(f"Oblique impact of a glass sphere (R = 0.1 mm) on a glass half-space, V = {V} m/s, "
-                 f"μ = {MU}, ν = {NU}, Γ = 0; dash-dot: Ψ1 = {threshold:.3f}, sliding throughout above",
-                 fontsize=10)
+    fig.suptitle(f"Oblique impact of a glass sphere (R = 0.1 mm) on a glass half-space, "
+                 f"V = {V} m/s, μ = {MU}, ν = {NU}, Γ = 0; dash-dot: Ψ1 = {threshold:.3f}, "
+                 "sliding throughout above", fontsize=10)
     return save_figure(fig, out)
 
 
-def fmt(x, digits=3):
-    return f"{x:.{digits}f}"
+# ---------------------------------------------------------------- the runs
+def sweep(work, steps):
+    """the reference and every model at ANGLES"""
+    results = {"reference": [reference(math.radians(a)) for a in ANGLES]}
+    for model in MODELS:
+        results[model] = [run(model, math.radians(a), work, steps=steps) for a in ANGLES]
+    return results
+
+
+def rigid(theta, steps=4000, springs=5000):
+    """the reference with the classical lever arm R, for its closed forms"""
+    return ob.impact(MAT, V, theta, steps=steps, springs=springs, lever="rigid")
+
+
+def reference_checks(results):
+    """the reference against its closed forms (docs/theory.md §3.6), its convergence in time
+    step and spring count, and where e_t changes sign and Psi2 is least"""
+    from scipy.optimize import brentq, minimize_scalar
+    checks = {"sliding_threshold_psi1": ob.sliding_threshold(MAT),
+              "no_slip_e_t": ob.no_slip_restitution(MAT)}
+    rows = [rigid(math.radians(a)) for a in ANGLES]
+    errors = [abs(r[q] - ob.sliding(MAT, r["psi1"], r["e_n"])[q]) for r in rows
+              if r["psi1"] >= checks["sliding_threshold_psi1"] for q in ("psi2", "Omega")]
+    checks["sliding_branch_max_error"] = max(errors)
+    checks["energy_balance_max_error"] = max(
+        abs(r["kinetic_in"] - r["kinetic_out"] - r["dissipation"]) / r["kinetic_in"] for r in rows)
+    small = [rigid(MAT.incidence_for_psi(p))["e_t"] for p in (0.005, 0.01)]
+    checks["e_t_psi1_0.005_0.01"] = small
+    checks["e_t_psi1_to_0_linear"] = 2 * small[0] - small[1]
+    convergence = {}
+    for a in (20, 45):
+        base = rigid(math.radians(a))
+        for label, st, sp in (("steps 2000", 2000, 5000), ("steps 8000", 8000, 5000),
+                              ("springs 20000", 4000, 20000)):
+            r = rigid(math.radians(a), steps=st, springs=sp)
+            convergence[f"{a} deg, {label}"] = {q: r[q] - base[q] for q in ("e_t", "Omega")}
+    checks["convergence"] = convergence
+    checks["lever_arm_R_minus_half_delta_vs_R"] = {
+        f"{a} deg": {q: p[q] - r[q] for q in ("e_t", "Omega")}
+        for a, p, r in zip(ANGLES, results["reference"], rows) if a in TABLE_ANGLES}
+
+    def at(psi1, q):
+        return ob.impact(MAT, V, MAT.incidence_for_psi(psi1), steps=2000, springs=2000)[q]
+    checks["e_t_changes_sign_at_psi1"] = brentq(lambda p: at(p, "e_t"), 0.5, 1.0, xtol=1e-4)
+    for q, lo, hi in (("e_t", 2.0, 4.0), ("psi2", 2.5, 4.76)):
+        least = minimize_scalar(lambda p: at(p, q), bounds=(lo, hi), method="bounded",
+                                options={"xatol": 1e-3})
+        checks[f"least_{q}"] = {"psi1": least.x, q: least.fun}
+    return checks
+
+
+def law_checks():
+    """the law alone (build/law_path, one contact of plugin/core) along the reference's own
+    path of (delta, s): max |T_law - T_oracle| / (mu P_max), the law apart from the motion"""
+    errors = {}
+    for a in TABLE_ANGLES:
+        path = ob.impact(MAT, V, math.radians(a), steps=1000, springs=5000, record=True)["trace"]
+        T_law = law_path(path)[:, 1]
+        errors[f"{a} deg"] = float(np.max(np.abs(T_law - path[:, 3])) / (MU * path[:, 2].max()))
+    return errors
+
+
+def time_step_checks(results, work, steps):
+    """thornton/yin at half and twice the steps per contact time, against the sweep"""
+    out = {}
+    for a in (20, 45, 75):
+        ref = results["thornton/yin"][ANGLES.index(a)]
+        for st in (steps // 2, 2 * steps):
+            r = run("thornton/yin", math.radians(a), work, steps=st)
+            out[f"{a} deg, steps {st}"] = {q: r[q] - ref[q] for q in ("e_t", "Omega")}
+    return out
+
+
+def adhesion(work, steps):
+    """thornton/yin at GAMMA: e_n against docs/theory.md §3.2 and against the head-on impact at
+    the same V_n (the break at delta_f is found to the step: e_n's error is first order in it)"""
+    rows = []
+    for a in ADHESIVE_ANGLES:
+        r = run("thornton/yin", math.radians(a), work, Gamma=GAMMA, steps=steps)
+        head_on = r if a == 0 else run("thornton/yin", 0.0, work, V=r["V_n"], Gamma=GAMMA,
+                                       steps=steps)
+        r["e_n_head_on"] = head_on["e_n"]
+        r["e_n_closed_form"] = adhesive_restitution(r["V_n"], GAMMA)
+        r["separation_work"] = separation_work(GAMMA)
+        rows.append(r)
+    return rows
+
+
+# ---------------------------------------------------------------- the report
+def booked(r):
+    """(friction + break dissipation - kinetic energy lost) / kinetic energy lost"""
+    lost = r["kinetic_in"] - r["kinetic_out"]
+    return (r["friction_dissipation"] + r["break_dissipation"] - lost) / lost
+
+
+def largest(results, model, q):
+    return max(abs(t[q] - r[q]) for t, r in zip(results[model], results["reference"]))
+
+
+def report(results, checks, law_error, lammps_dt, adhesive, steps):
+    """print the numbers and tables of docs/comparison.md"""
+    c = checks
+    print(f"k = 4G*/E* = {MAT.k:.6f}; sliding throughout for Psi1 >= "
+          f"{c['sliding_threshold_psi1']:.4f}")
+    print(f"no-slip limit e_t = {c['no_slip_e_t']:.5f}; reference at Psi1 = 0.005, 0.01: "
+          f"{c['e_t_psi1_0.005_0.01'][0]:.5f}, {c['e_t_psi1_0.005_0.01'][1]:.5f}, "
+          f"linear to 0: {c['e_t_psi1_to_0_linear']:.5f}")
+    print(f"sliding branch, max |error| in Psi2, Omega: {c['sliding_branch_max_error']:.2e}")
+    print(f"e_t changes sign at Psi1 = {c['e_t_changes_sign_at_psi1']:.3f}; least e_t "
+          f"{c['least_e_t']['e_t']:.4f} at Psi1 = {c['least_e_t']['psi1']:.3f}; least Psi2 "
+          f"{c['least_psi2']['psi2']:.4f} at Psi1 = {c['least_psi2']['psi1']:.3f}")
+    print("energy balance, max |KE_in - KE_out - dissipation| / KE_in: "
+          f"{c['energy_balance_max_error']:.2e}")
+    for k, v in c["convergence"].items():
+        print(f"reference {k}: d e_t = {v['e_t']:.1e}, d Omega = {v['Omega']:.1e}")
+    for k, v in c["lever_arm_R_minus_half_delta_vs_R"].items():
+        print(f"lever arm R - delta/2 against R, {k}: d e_t = {v['e_t']:.1e}, "
+              f"d Omega = {v['Omega']:.1e}")
+    for k, v in law_error.items():
+        print(f"law_path along the reference's path, {k}: max |T - T_oracle| = {v:.2e} mu P_max")
+    for k, v in lammps_dt.items():
+        print(f"thornton/yin {k} against {steps}: d e_t = {v['e_t']:.1e}, "
+              f"d Omega = {v['Omega']:.1e}")
+
+    print("\n| θ | Ψ1 | " + " | ".join(["reference"] + MODELS) + " |")
+    print("|---|---|" + "---|" * (len(MODELS) + 1))
+    for a in TABLE_ANGLES:
+        i = ANGLES.index(a)
+        cells = [f"{results[k][i]['e_t']:.3f} / {results[k][i]['Omega']:.3f}"
+                 for k in ["reference"] + MODELS]
+        print(f"| {a}° | {results['reference'][i]['psi1']:.3f} | " + " | ".join(cells) + " |")
+    print("\nmax |thornton/yin - reference| over all angles: "
+          + ", ".join(f"{q} {largest(results, 'thornton/yin', q):.2e}"
+                      for q in ("e_t", "psi2", "Omega")))
+    for a, t in zip(ANGLES, results["thornton/yin"]):
+        if a in TABLE_ANGLES:
+            lost = t["kinetic_in"] - t["kinetic_out"]
+            print(f"thornton/yin {a} deg: (friction dissipation - kinetic energy lost) / lost = "
+                  f"{(t['friction_dissipation'] - lost) / lost:.2e}")
+    for model in MODELS[1:]:
+        print(f"max |{model} - reference|: e_t {largest(results, model, 'e_t'):.3f}, "
+              f"Omega {largest(results, model, 'Omega'):.3f}")
+
+    print(f"\nadhesion, Gamma = {GAMMA} J/m^2, V_s = {sticking_velocity(GAMMA):.5f} m/s")
+    print("| θ | V_n/V_s | e_n | e_n head-on at V_n | closed form | break dissipation / W | "
+          "booked − lost | e_t | Ω | e_t, Ω at Γ = 0 |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for r in adhesive:
+        a = round(math.degrees(r["theta"]))
+        dry = results["thornton/yin"][ANGLES.index(a)] if a in ANGLES else None
+        tangential = (f"{r['e_t']:.3f} | {r['Omega']:.3f} | {dry['e_t']:.3f}, {dry['Omega']:.3f}"
+                      if dry else "— | — | —")
+        print(f"| {a}° | {r['V_n'] / sticking_velocity(GAMMA):.3f} | {r['e_n']:.5f} | "
+              f"{r['e_n_head_on']:.5f} | {r['e_n_closed_form']:.5f} | "
+              f"{r['break_dissipation'] / r['separation_work']:.4f} | {booked(r):.1e} | "
+              f"{tangential} |")
 
 
 def main(argv=None):
@@ -206,106 +379,21 @@ def main(argv=None):
         return
     work = args.keep or tempfile.mkdtemp(prefix="oblique_")
     os.makedirs(work, exist_ok=True)
-    results = {"reference": [reference(math.radians(a)) for a in ANGLES]}
-    for model in MODELS:
-        results[model] = [run(model, math.radians(a), work, steps=args.steps) for a in ANGLES]
-
-    # checks of the reference: the sliding branch, the energy balance, the no-slip limit,
-    # convergence in time step and spring count
-    checks = {"sliding_threshold_psi1": ob.sliding_threshold(MAT),
-              "no_slip_e_t": ob.no_slip_restitution(MAT)}
-    rigid = [ob.impact(MAT, V, math.radians(a), steps=4000, springs=5000, lever="rigid")
-             for a in ANGLES]
-    sliding = [(r["psi1"], r["psi2"] - ob.sliding(MAT, r["psi1"], r["e_n"])["psi2"],
-                r["Omega"] - ob.sliding(MAT, r["psi1"], r["e_n"])["Omega"])
-               for r in rigid if r["psi1"] >= checks["sliding_threshold_psi1"]]
-    checks["sliding_branch_max_error"] = max(max(abs(a), abs(b)) for _, a, b in sliding)
-    checks["energy_balance_max_error"] = max(
-        abs(r["kinetic_in"] - r["kinetic_out"] - r["dissipation"]) / r["kinetic_in"] for r in rigid)
-    small = [ob.impact(MAT, V, MAT.incidence_for_psi(p), steps=4000, springs=5000, lever="rigid")
-             for p in (0.005, 0.01)]
-    checks["e_t_psi1_0.005_0.01"] = [r["e_t"] for r in small]
-    checks["e_t_psi1_to_0_linear"] = 2 * small[0]["e_t"] - small[1]["e_t"]
-    convergence = {}
-    for a in (20, 45):
-        base = ob.impact(MAT, V, math.radians(a), steps=4000, springs=5000, lever="rigid")
-        for label, st, sp in (("steps 2000", 2000, 5000), ("steps 8000", 8000, 5000),
-                              ("springs 20000", 4000, 20000)):
-            r = ob.impact(MAT, V, math.radians(a), steps=st, springs=sp, lever="rigid")
-            convergence[f"{a} deg, {label}"] = {q: r[q] - base[q] for q in ("e_t", "Omega")}
-    checks["convergence"] = convergence
-    checks["lever_arm_R_minus_half_delta_vs_R"] = {
-        f"{a} deg": {q: p[q] - r[q] for q in ("e_t", "Omega")}
-        for a, p, r in zip(ANGLES, results["reference"], rigid) if a in TABLE_ANGLES}
-
-    # LAMMPS's time step: thornton/yin at half and double the steps
-    lammps_dt = {}
-    for a in (20, 45, 75):
-        for st in (args.steps // 2, 2 * args.steps):
-            r = run("thornton/yin", math.radians(a), work, steps=st)
-            ref = results["thornton/yin"][ANGLES.index(a)]
-            lammps_dt[f"{a} deg, steps {st}"] = {q: r[q] - ref[q] for q in ("e_t", "Omega")}
-
-    # adhesion: thornton/yin at Gamma, the normal restitution against docs/theory.md §3.2 and
-    # against the head-on impact at the same V_n; 4x the steps (the break at delta_f is
-    # resolved to one step: the error of e_n is first order in the time step)
-    adhesive = []
-    for a in ADHESIVE_ANGLES:
-        r = run("thornton/yin", math.radians(a), work, Gamma=GAMMA, steps=4 * args.steps)
-        head_on = r if a == 0 else run("thornton/yin", 0.0, work, V=r["V_n"], Gamma=GAMMA,
-                                       steps=4 * args.steps)
-        r["e_n_head_on"] = head_on["e_n"]
-        r["e_n_closed_form"] = adhesive_restitution(r["V_n"], GAMMA)
-        r["separation_work"] = separation_work(GAMMA)
-        adhesive.append(r)
-
-    # print the tables of docs/comparison.md
-    print(f"k = 4G*/E* = {MAT.k:.6f}; sliding throughout for Psi1 >= {checks['sliding_threshold_psi1']:.4f}")
-    print(f"no-slip limit e_t = {checks['no_slip_e_t']:.5f}; reference at Psi1 = 0.005, 0.01: "
-          f"{checks['e_t_psi1_0.005_0.01'][0]:.5f}, {checks['e_t_psi1_0.005_0.01'][1]:.5f}, "
-          f"linear to 0: {checks['e_t_psi1_to_0_linear']:.5f}")
-    print(f"sliding branch, max |error| in Psi2, Omega: {checks['sliding_branch_max_error']:.2e}")
-    print(f"energy balance, max |KE_in - KE_out - dissipation| / KE_in: {checks['energy_balance_max_error']:.2e}")
-    for k, v in convergence.items():
-        print(f"reference {k}: d e_t = {v['e_t']:.1e}, d Omega = {v['Omega']:.1e}")
-    for k, v in checks["lever_arm_R_minus_half_delta_vs_R"].items():
-        print(f"lever arm R - delta/2 against R, {k}: d e_t = {v['e_t']:.1e}, d Omega = {v['Omega']:.1e}")
-    for k, v in lammps_dt.items():
-        print(f"thornton/yin {k} against {args.steps}: d e_t = {v['e_t']:.1e}, d Omega = {v['Omega']:.1e}")
-    print("\n| θ | Ψ1 | " + " | ".join(["reference"] + MODELS) + " |")
-    print("|---|---|" + "---|" * (len(MODELS) + 1))
-    for a in TABLE_ANGLES:
-        i = ANGLES.index(a)
-        cells = [f"{fmt(results[k][i]['e_t'])} / {fmt(results[k][i]['Omega'])}"
-                 for k in ["reference"] + MODELS]
-        print(f"| {a}° | {results['reference'][i]['psi1']:.3f} | " + " | ".join(cells) + " |")
-    print("\nmax |thornton/yin - reference| over all angles: e_t "
-          f"{max(abs(t['e_t'] - r['e_t']) for t, r in zip(results['thornton/yin'], results['reference'])):.2e}, "
-          f"Psi2 {max(abs(t['psi2'] - r['psi2']) for t, r in zip(results['thornton/yin'], results['reference'])):.2e}, "
-          f"Omega {max(abs(t['Omega'] - r['Omega']) for t, r in zip(results['thornton/yin'], results['reference'])):.2e}")
-    for model in MODELS[1:]:
-        print(f"max |{model} - reference|: e_t "
-              f"{max(abs(t['e_t'] - r['e_t']) for t, r in zip(results[model], results['reference'])):.3f}, "
-              f"Omega {max(abs(t['Omega'] - r['Omega']) for t, r in zip(results[model], results['reference'])):.3f}")
-    print(f"\nadhesion, Gamma = {GAMMA} J/m^2, V_s = {sticking_velocity(GAMMA):.5f} m/s")
-    print("| θ | V_n/V_s | e_n | e_n head-on at V_n | closed form | break dissipation / W | e_t | Ω | e_t, Ω at Γ = 0 |")
-    print("|---|---|---|---|---|---|---|---|---|")
-    for r in adhesive:
-        a = round(math.degrees(r["theta"]))
-        dry = results["thornton/yin"][ANGLES.index(a)] if a in ANGLES else None
-        print(f"| {a}° | {r['V_n'] / sticking_velocity(GAMMA):.3f} | {r['e_n']:.5f} | {r['e_n_head_on']:.5f} | "
-              f"{r['e_n_closed_form']:.5f} | {r['break_dissipation'] / r['separation_work']:.4f} | "
-              + (f"{fmt(r['e_t'])} | {fmt(r['Omega'])} | {fmt(dry['e_t'])}, {fmt(dry['Omega'])} |"
-                 if dry else "— | — | — |"))
+    results = sweep(work, args.steps)
+    checks = reference_checks(results)
+    law_error = law_checks()
+    lammps_dt = time_step_checks(results, work, args.steps)
+    adhesive = adhesion(work, 4 * args.steps)
+    report(results, checks, law_error, lammps_dt, adhesive, args.steps)
 
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     from provenance import write_result
-    write_result(args.json, {"configuration": {"R": R, "R_wall": R_WALL, "E": E, "nu": NU, "rho": RHO,
-                                               "mu": MU, "V": V, "Gamma_adhesive": GAMMA,
-                                               "steps_per_contact": args.steps},
-                             "results": {k: [{q: v for q, v in r.items() if q != "trace"} for r in rows]
-                                         for k, rows in results.items()},
-                             "adhesive": adhesive, "checks": checks, "lammps_time_step": lammps_dt})
+    checks["law_along_reference_path"] = law_error
+    write_result(args.json, {
+        "configuration": {"R": R, "R_wall": R_WALL, "E": E, "nu": NU, "rho": RHO, "mu": MU,
+                          "V": V, "Gamma_adhesive": GAMMA, "steps_per_contact": args.steps},
+        "results": results, "adhesive": adhesive, "checks": checks,
+        "lammps_time_step": lammps_dt})
     figure(results, args.out)
     if not args.keep:
         shutil.rmtree(work, ignore_errors=True)

@@ -47,7 +47,7 @@ class Material:
         self.K = 4 / 3 * self.E_star * math.sqrt(self.R_star)   # P = K delta^(3/2)
 
     def hertz(self, V_n):
-        """delta_max and contact time of the elastic head-on impact at V_n (docs/theory.md §3.1)."""
+        """delta_max and contact time of the elastic head-on impact at V_n (docs/theory.md §3.1)"""
         delta_max = (15 * self.m * V_n**2 / (16 * self.E_star * math.sqrt(self.R_star))) ** 0.4
         return delta_max, 2.9432 * delta_max / V_n
 
@@ -73,17 +73,20 @@ def impact(mat, V, theta, steps=2000, springs=20000, lever="pair", record=False)
     def arm(delta):
         return R - 0.5 * max(delta, 0.0) if lever == "pair" else R
 
+    def kick(vn, vt, w, P, T, delta):
+        """half a step of the forces: velocities and spin"""
+        return (vn - 0.5 * dt * P / m, vt - 0.5 * dt * T / m, w + 0.5 * dt * arm(delta) * T / I)
+
     delta, s = 0.0, 0.0
     vn, vt, w = V_n, V_t, 0.0
     P, T = 0.0, 0.0
     trace = []
     for _ in range(50 * steps):
-        # velocity Verlet: half kick, drift, force, half kick
-        vn_h, vt_h, w_h = vn - 0.5 * dt * P / m, vt - 0.5 * dt * T / m, w + 0.5 * dt * arm(delta) * T / I
-        delta = delta + dt * vn_h
-        s = s + dt * (vt_h - arm(delta) * w_h)
-        P, T = contact.step(delta, s)
-        vn, vt, w = vn_h - 0.5 * dt * P / m, vt_h - 0.5 * dt * T / m, w_h + 0.5 * dt * arm(delta) * T / I
+        vn, vt, w = kick(vn, vt, w, P, T, delta)          # velocity Verlet: half kick,
+        delta = delta + dt * vn                            # drift,
+        s = s + dt * (vt - arm(delta) * w)
+        P, T = contact.step(delta, s)                      # force,
+        vn, vt, w = kick(vn, vt, w, P, T, delta)          # half kick
         if record:
             trace.append((delta, s, P, T, vn, vt, w))
         if delta < 0.0:
@@ -136,30 +139,30 @@ def no_slip_restitution(mat, n=20000):
     sol = solve_ivp(lambda t, y: [y[1], -mat.K * max(y[0], 0.0)**1.5 / mat.m], (0, 1.2 * t_c),
                     [0.0, V_n], rtol=1e-12, atol=1e-12 * delta_max, dense_output=True,
                     events=lambda t, y: y[1], max_step=t_c / 200)
-    t_m = sol.t_events[0][0]                                  # deepest point, t_c / 2
-    t = np.linspace(0.0, 2 * t_m, n + 1)
-    a = np.sqrt(mat.R_star * np.maximum(sol.sol(np.minimum(t, t_m))[0], 0.0))
-    a_of = lambda time: np.interp(time, t, a)                 # noqa: E731 (loading branch)
-    m_c = mat.m / (1 + mat.m * mat.R**2 / mat.I)
-    dt = t[1] - t[0]
-    s = np.zeros(n + 1)
-    # cumulative int s da along the loading branch (trapezoid in time)
-    sda = np.zeros(n + 1)
-    v, force = 1.0, 0.0
+    t_m = sol.t_events[0][0]                          # the deepest point, half the impact
     half = n // 2
+    dt = t_m / half
+    t_in = np.linspace(0.0, t_m, half + 1)            # the way in, where the annuli enter
+    a = np.sqrt(mat.R_star * np.maximum(sol.sol(t_in)[0], 0.0))
+    m_c = mat.m / (1 + mat.m * mat.R**2 / mat.I)
+    s = np.zeros(n + 1)
+    sda = np.zeros(half + 1)                          # int_0^t s da on the way in (trapezoid)
+    v, force = 1.0, 0.0
     for k in range(n):
         v_h = v - 0.5 * dt * force / m_c
         s[k + 1] = s[k] + dt * v_h
-        if k + 1 <= half:                                     # loading: all annuli since 0
+        if k + 1 <= half:
+            # on the way in every annulus entered since t = 0
             sda[k + 1] = sda[k] + 0.5 * (s[k] + s[k + 1]) * (a[k + 1] - a[k])
             force = 8 * mat.G_star * (s[k + 1] * a[k + 1] - sda[k + 1])
-        else:                                                 # unloading: annuli entered before 2t_m - t
-            tau = 2 * t_m - t[k + 1]
+        else:
+            # on the way out the annuli in contact entered before tau = 2 t_m - t
+            tau = (n - (k + 1)) * dt
             j = min(int(tau / dt), half - 1)
             frac = tau / dt - j
-            a_tau = a_of(tau)
+            a_tau = a[j] + frac * (a[j + 1] - a[j])
             s_tau = s[j] + frac * (s[j + 1] - s[j])
-            partial = sda[j] + 0.5 * (s[j] + s_tau) * (a_tau - a[j])
-            force = 8 * mat.G_star * (s[k + 1] * a_tau - partial)
+            inside = sda[j] + 0.5 * (s[j] + s_tau) * (a_tau - a[j])
+            force = 8 * mat.G_star * (s[k + 1] * a_tau - inside)
         v = v_h - 0.5 * dt * force / m_c
-    return v / 1.0
+    return v

@@ -8,9 +8,11 @@ sphere, R = 0.1 mm, at 0.1 m/s against a fixed glass sphere of radius 0.1 m, mu 
 
 Tolerances:
   * the reference against its closed forms: the sliding branch to 1e-6 in Psi2 and Omega (the
-    spring row slides exactly at mu P; measured 2e-8), the no-slip limit to 1e-4 (measured
-    1e-6), the energy balance to 1e-3 of the kinetic energy (the oracle books each step's slip
-    at the step's end: first order in the step, measured 2e-4 at 1000 steps);
+    spring row slides exactly at mu P; measured 3e-14), the no-slip limit to 1e-4 (measured
+    5e-6), the energy balance to 1e-3 of the kinetic energy (the oracle books each step's slip
+    at the step's end: first order in the step, measured 1e-4 at 1000 steps);
+  * the law alone along the reference's path of overlap and displacement, 1e-5 of mu P_max as
+    in tests/test_tangential_oracle.py (measured 3e-6 at 45 degrees);
   * thornton/yin against the reference, 1e-4 in e_t and Psi2, 2e-4 in Omega (Omega = Psi2
     scaled by V/V_n is the most sensitive): what remains of an exact law is LAMMPS's time step
     (1000 steps per contact time, measured 1e-6), the half-space being a sphere of 0.1 m (its
@@ -27,12 +29,10 @@ Tolerances:
     order error: measured 2.5e-4 at 75 degrees, 1.2e-3 at 1000 steps).
 """
 import math
-import subprocess
 
 import numpy as np
 import pytest
 
-from conftest import BUILD
 import oblique_reference as ob
 
 
@@ -90,35 +90,29 @@ def test_reference_conserves_energy(rigid_arm, psi1):
 
 
 # ---------------------------------------------------------------- the law and the pair
-def law_along(mat, path):
-    """build/law_path (one contact of plugin/core's law) through the reference's (delta, s)"""
-    ds = np.diff(np.r_[0.0, path[:, 1]])
-    lines = "\n".join(f"{d!r} {x!r} 0.0" for d, x in zip(path[:, 0], ds))
-    out = subprocess.run([f"{BUILD}/law_path", repr(mat.E_star), repr(mat.G_star), repr(mat.mu),
-                          "0.0", repr(mat.R_star)], input=lines, capture_output=True, text=True,
-                         check=True).stdout
-    return np.array([[float(x) for x in line.split()] for line in out.splitlines()])
+def bands_too_few(measured):
+    """the contact sticks while both loads change: the memory's six slip bands merge
+    (docs/theory.md §2.3), off the oracle by `measured`; strict, to be taken off when the law
+    does better"""
+    return pytest.mark.xfail(strict=True, reason=f"six slip bands merge: {measured}")
 
 
-BANDS_TOO_FEW = pytest.mark.xfail(
-    strict=True, reason="the contact sticks while both loads change: the memory's six slip bands "
-    "merge (docs/theory.md §2.3): 4e-3 and 9e-3 of mu P_max; with 48 bands 3e-5 and 5e-5")
-
-
-@pytest.mark.parametrize("angle", [45, pytest.param(10, marks=BANDS_TOO_FEW),
-                                   pytest.param(20, marks=BANDS_TOO_FEW)])
+@pytest.mark.parametrize("angle", [
+    45, pytest.param(10, marks=bands_too_few("4.5e-3 mu P_max")),
+    pytest.param(20, marks=bands_too_few("8.6e-3 mu P_max"))])
 def test_law_along_the_impact_path_carries_the_oracle_force(oblique, angle):
     mat = oblique.MAT
     r = ob.impact(mat, oblique.V, math.radians(angle), steps=1000, springs=2000, record=True)
     path = r["trace"]
-    v = law_along(mat, path)
+    v = oblique.law_path(path)                    # build/law_path: one contact of the law
     scale = mat.mu * path[:, 2].max()
     assert np.max(np.abs(v[:, 0] - path[:, 2])) < 1e-6 * path[:, 2].max()      # Hertz in both
-    assert np.max(np.abs(v[:, 1] - path[:, 3])) < 1e-4 * scale                  # measured 3e-6
+    assert np.max(np.abs(v[:, 1] - path[:, 3])) < 1e-5 * scale                  # measured 3e-6
 
 
-@pytest.mark.parametrize("angle", [45, 60, 75, pytest.param(10, marks=BANDS_TOO_FEW),
-                                   pytest.param(20, marks=BANDS_TOO_FEW)])
+@pytest.mark.parametrize("angle", [
+    45, 60, 75, pytest.param(10, marks=bands_too_few("e_t 0.015 above the reference")),
+    pytest.param(20, marks=bands_too_few("e_t 0.010 above the reference"))])
 def test_pair_rebounds_as_the_reference(tmp_path, oblique, angle):
     theta = math.radians(angle)
     ref = oblique.reference(theta, steps=1000, springs=2000)
