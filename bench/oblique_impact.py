@@ -92,11 +92,20 @@ print "RESULT $(vx[1]:%.17g) $(vy[1]:%.17g) $(v_w:%.17g) $(v_d:%.17g) $(v_Df:%.1
 """
 
 
+def package_path():
+    """PYTHONPATH with the build's package first, for the decks' loader lines (the tests'
+    conftest has set it already)"""
+    here, current = os.path.join(BUILD, "python"), os.environ.get("PYTHONPATH", "")
+    if here in current.split(os.pathsep):
+        return None
+    return {"PYTHONPATH": os.pathsep.join([here] + ([current] if current else []))}
+
+
 def run(model, theta, work, V=V, Gamma=0.0, steps=1000, program=("lmp", "-nocite")):
     """One impact in LAMMPS: the outputs of tests/oblique_reference.py (omega in the rolling
     sense: sphere 2 lies along +x, so friction turns sphere 1 about -z)."""
     rc, out = run_deck(deck(model, theta, V, Gamma, steps), work, program=program,
-                       environment={"PYTHONPATH": os.path.join(BUILD, "python")})
+                       environment=package_path())
     lines = [line for line in out.splitlines() if line.startswith("RESULT")]
     if rc != 0 or "ERROR" in out or not lines:
         raise RuntimeError(f"{model} at {math.degrees(theta):g} deg failed:\n{out[-3000:]}")

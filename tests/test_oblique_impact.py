@@ -75,7 +75,7 @@ def test_reference_sticks_part_of_the_impact_below_the_threshold(oblique, rigid_
 def test_reference_tends_to_the_no_slip_solution_as_psi1_vanishes(oblique, rigid_arm):
     # e_t(Psi1) -> e_t of the impact without slip (the annuli each keep the displacement taken
     # since they entered: computed without the spring row), linearly in Psi1 (the slip band
-    # at the receding edge is as wide as Psi1)
+    # at the receding edge has a width proportional to Psi1)
     e0 = ob.no_slip_restitution(oblique.MAT, n=8000)
     assert 0.2 < e0 < 0.26
     small = [rigid_arm(p)["e_t"] for p in (0.005, 0.01)]
@@ -142,7 +142,7 @@ def test_adhesive_normal_restitution_is_the_head_on_closed_form(tmp_path, obliqu
     r = oblique.run("thornton/yin", math.radians(angle), tmp_path, Gamma=Gamma, steps=4000)
     head_on = oblique.run("thornton/yin", 0.0, tmp_path, V=r["V_n"], Gamma=Gamma, steps=4000)
     V_s = math.sqrt(2 * W / mat.m)
-    assert 1.5 < r["V_n"] / V_s < 5                          # e_n well below 1, above sticking
+    assert 1.5 < r["V_n"] / V_s < 5                          # above sticking, e_n 0.82-0.98
     assert r["delta_end"] < jkr.break_overlap(mat.R_star, mat.E_star, Gamma)   # separated
     assert r["e_n"] == pytest.approx(head_on["e_n"], abs=1e-4)
     assert r["e_n"] == pytest.approx(math.sqrt(1 - (V_s / r["V_n"]) ** 2), abs=6e-4)
