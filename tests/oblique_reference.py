@@ -21,9 +21,9 @@ Outputs (docs/theory.md §3.6), with k = 4G*/E* (= 2(1 - nu)/(2 - nu) for like m
 V_s = v_t - R omega the tangential velocity of the contact point:
     e_n = -V_n'/V_n, e_t = V_s'/V_s, Psi1 = k V_s/(mu V_n), Psi2 = k V_s'/(mu V_n),
     Omega = k R omega'/(mu V_n).
-A two-sphere impact maps onto this one with the relative velocities, the pair's E*, G*, R*
-and the effective mass; the bench and the tests use the sphere on a half-space, which is
-Maw et al.'s configuration.
+An impact of two equal spheres maps onto this one with the relative velocities, the pair's
+E*, G*, R*, the effective mass and R(omega1 + omega2) for R omega; the bench and the tests use
+the sphere on a half-space, Maw et al.'s configuration.
 """
 import math
 
