@@ -9,6 +9,7 @@ against the closed form of docs/theory.md §3.2 and the tangential outputs besid
 
     /usr/bin/python3 bench/oblique_impact.py [--out docs/comparison_oblique_impact.png]
         [--json bench/results/oblique_impact.json] [--steps 1000] [--keep DIR] [--plot]
+        [--other-lmp LMP]
 
 Configuration (Maw et al.'s): a glass sphere, R = 0.1 mm, E = 70 GPa, nu = 0.3,
 rho = 2650 kg/m^3, mu = 0.3, at V = 0.1 m/s with no spin against a fixed glass sphere of
@@ -303,6 +304,20 @@ def adhesion(work, steps):
     return rows
 
 
+def other_lammps(results, work, steps, program):
+    """every model at TABLE_ANGLES with another lmp (e.g. 4 Feb 2025's wrapper from
+    scripts/lammps2025.sh): the largest difference from the sweep, per model"""
+    out = {}
+    for model in MODELS:
+        diffs = []
+        for a in TABLE_ANGLES:
+            r = run(model, math.radians(a), work, steps=steps, program=(program, "-nocite"))
+            ref = results[model][ANGLES.index(a)]
+            diffs += [abs(r[q] - ref[q]) for q in ("e_n", "e_t", "psi2", "Omega")]
+        out[model] = max(diffs)
+    return out
+
+
 # ---------------------------------------------------------------- the report
 def booked(r):
     """(friction + break dissipation - kinetic energy lost) / kinetic energy lost"""
@@ -380,11 +395,24 @@ def main(argv=None):
     ap.add_argument("--steps", type=int, default=1000, help="LAMMPS steps per Hertz contact time")
     ap.add_argument("--keep", help="keep the decks in this directory")
     ap.add_argument("--plot", action="store_true", help="only redraw the figure from --json")
+    ap.add_argument("--other-lmp", metavar="LMP",
+                    help="only rerun the table's angles with this lmp (e.g. the 4 Feb 2025 "
+                    "wrapper of scripts/lammps2025.sh) and print the largest difference from "
+                    "the results in --json")
     args = ap.parse_args(argv)
-    if args.plot:
+    if args.plot or args.other_lmp:
         import json
         with open(args.json) as fh:
-            figure(json.load(fh)["results"], args.out)
+            saved = json.load(fh)
+        if args.plot:
+            figure(saved["results"], args.out)
+        else:
+            work = tempfile.mkdtemp(prefix="oblique_")
+            steps = saved["configuration"]["steps_per_contact"]
+            for model, d in other_lammps(saved["results"], work, steps, args.other_lmp).items():
+                print(f"{model}: largest |difference| in e_n, e_t, Psi2, Omega over "
+                      f"{TABLE_ANGLES} degrees: {d:.1e}")
+            shutil.rmtree(work, ignore_errors=True)
         return
     work = args.keep or tempfile.mkdtemp(prefix="oblique_")
     os.makedirs(work, exist_ok=True)
