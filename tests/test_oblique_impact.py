@@ -18,11 +18,12 @@ Tolerances:
     (1000 steps per contact time, measured 1e-6), the half-space being a sphere of 0.1 m (its
     surface turns and curves under the sliding sphere, measured 4e-5 in Omega at 85 degrees)
     and the reference's resolution (4e-6); measured 5e-7 to 1e-5 from 45 to 75 degrees;
-  * below about 30 degrees (Psi1 < 1.6) the contact sticks while both loads change, the
-    memory's six slip bands cannot hold the curved stick profile and merge (the law's one
-    approximation, docs/theory.md §2.3): e_t is off by 0.015 at 10 degrees, 0.010 at 20 and
-    1.4e-4 at 30 degrees, and it moves with the time step; the xfails below (strict: to be
-    taken off when the law does better) hold the tolerance of an exact law;
+  * below about 30 degrees (Psi1 < 1.6) the contact sticks while both loads change and lays a
+    curved stick profile, which the memory's six slip bands hold by lines of least squares
+    (the law's one approximation, docs/theory.md §2.3): along the path 5e-4 of mu P_max
+    (measured 1.8e-4 at 10 degrees, 2.6e-4 at 20), and 1e-3 in e_t, Psi2 and Omega (measured
+    3.7e-4 and 2.2e-4 in e_t; 3.6e-4 at 10 degrees with 4000 steps per contact time, so not
+    the time step);
   * the adhesive normal restitution: the same as the head-on impact at the same V_n to 1e-4
     (the tangential law does not enter the normal force; measured 4e-6), and the closed form to
     6e-4 at 4000 steps per contact time (the break at delta_f is found to the step, a first
@@ -90,37 +91,27 @@ def test_reference_conserves_energy(rigid_arm, psi1):
 
 
 # ---------------------------------------------------------------- the law and the pair
-def bands_too_few(measured):
-    """the contact sticks while both loads change: the memory's six slip bands merge
-    (docs/theory.md §2.3), off the oracle by `measured`; strict, to be taken off when the law
-    does better"""
-    return pytest.mark.xfail(strict=True, reason=f"six slip bands merge: {measured}")
-
-
-@pytest.mark.parametrize("angle", [
-    45, pytest.param(10, marks=bands_too_few("4.5e-3 mu P_max")),
-    pytest.param(20, marks=bands_too_few("8.6e-3 mu P_max"))])
-def test_law_along_the_impact_path_carries_the_oracle_force(oblique, angle):
+@pytest.mark.parametrize("angle, tolerance", [(45, 1e-5), (10, 5e-4), (20, 5e-4)])
+def test_law_along_the_impact_path_carries_the_oracle_force(oblique, angle, tolerance):
     mat = oblique.MAT
     r = ob.impact(mat, oblique.V, math.radians(angle), steps=1000, springs=2000, record=True)
     path = r["trace"]
     v = oblique.law_path(path)                    # build/law_path: one contact of the law
     scale = mat.mu * path[:, 2].max()
     assert np.max(np.abs(v[:, 0] - path[:, 2])) < 1e-6 * path[:, 2].max()      # Hertz in both
-    assert np.max(np.abs(v[:, 1] - path[:, 3])) < 1e-5 * scale                  # measured 3e-6
+    assert np.max(np.abs(v[:, 1] - path[:, 3])) < tolerance * scale     # 3e-6 at 45 degrees
 
 
-@pytest.mark.parametrize("angle", [
-    45, 60, 75, pytest.param(10, marks=bands_too_few("e_t 0.015 above the reference")),
-    pytest.param(20, marks=bands_too_few("e_t 0.010 above the reference"))])
-def test_pair_rebounds_as_the_reference(tmp_path, oblique, angle):
+@pytest.mark.parametrize("angle, tolerance", [(45, 1e-4), (60, 1e-4), (75, 1e-4), (10, 1e-3),
+                                              (20, 1e-3)])
+def test_pair_rebounds_as_the_reference(tmp_path, oblique, angle, tolerance):
     theta = math.radians(angle)
     ref = oblique.reference(theta, steps=1000, springs=2000)
     r = oblique.run("thornton/yin", theta, tmp_path)
     assert r["e_n"] == pytest.approx(1.0, abs=1e-4)
-    assert r["e_t"] == pytest.approx(ref["e_t"], abs=1e-4)
-    assert r["psi2"] == pytest.approx(ref["psi2"], abs=1e-4)
-    assert r["Omega"] == pytest.approx(ref["Omega"], abs=2e-4)
+    assert r["e_t"] == pytest.approx(ref["e_t"], abs=tolerance)
+    assert r["psi2"] == pytest.approx(ref["psi2"], abs=tolerance)
+    assert r["Omega"] == pytest.approx(ref["Omega"], abs=2 * tolerance)
 
 
 def test_granular_built_ins_miss_the_reference_where_the_contact_sticks(tmp_path, oblique):
