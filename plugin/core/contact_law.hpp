@@ -10,8 +10,7 @@
 //   micro_slip_radius      a_T, the Hertz radius of P + 2Pc, of the memory's contact (§2.2)
 //   tangential_stiffness   k_T = 8 G* a_T, the peeling or the micro-slip radius (§2.2)
 //   memory_axis            the axis t of the memory of a contact without one (§2.3 step 3)
-//   band_load_fractions,   the force the memory's slip bands carry along t (§2.3)
-//   memory_ratio
+//   memory_of, store_memory  the memory of the history as slip bands and back (§2.3)
 //   micro_slip             stage B: the memory advanced along t, the force across t, the
 //                          memory turned with the force (§2.3 steps 3-4, slip_bands.hpp)
 //   coulomb_limit          stage C, gross sliding at mu (P + 2Pc) (§2.3 step 5)
@@ -426,30 +425,23 @@ template <class V>
   return axis;
 }
 
-// The memory's share of each band in the force along the axis (§2.3): f_j = x_j^(3/2) -
-// x_j+1^(3/2), x_j = (overlap - W_j)/overlap the Hertz load fraction below band j's outer
-// edge; T along the axis = mu (P + 2Pc) sum_j m_j f_j, exactly the limit when every band slips
-template <class V>
-[[gnu::always_inline]] inline void band_load_fractions(const bands::Profile<V>& p, V overlap,
-                                                       V f[memory_bands])
+// The memory of the history h as a profile of bands, and back (the history's band fields,
+// TYCORE_HISTORY_FIELDS)
+template <class V> [[gnu::always_inline]] inline bands::Profile<V> memory_of(const History<V>& h)
 {
-  const V inv = 1.0 / overlap;
-  V begins = V(0.0), outer = V(1.0);
-  for (int j = 0; j < memory_bands; ++j) {
-    begins = begins + p.depth[j];
-    const V x = lane_max(1.0 - begins * inv, V(0.0));
-    const V inner = x * std::sqrt(x);
-    f[j] = outer - inner;
-    outer = inner;
-  }
+  bands::Profile<V> p;
+  TYCORE_UNROLLED
+  for (int j = 0; j < memory_bands; ++j)
+    p.outer[j] = h.band_outer[j], p.inner[j] = h.band_inner[j], p.depth[j] = h.band_depth[j];
+  return p;
 }
 
 template <class V>
-[[gnu::always_inline]] inline V memory_ratio(const bands::Profile<V>& p, const V f[memory_bands])
+[[gnu::always_inline]] inline void store_memory(History<V>& h, const bands::Profile<V>& p)
 {
-  V sum = p.slope[0] * f[0];
-  for (int j = 1; j < memory_bands; ++j) sum = sum + p.slope[j] * f[j];
-  return sum;
+  TYCORE_UNROLLED
+  for (int j = 0; j < memory_bands; ++j)
+    h.band_outer[j] = p.outer[j], h.band_inner[j] = p.inner[j], h.band_depth[j] = p.depth[j];
 }
 
 // Stage B, micro-slip (§2.3 steps 3-4): the memory along the axis t takes the step to the
@@ -466,18 +458,19 @@ template <class V>
   for (int d = 0; d < 3; ++d) t[d] = lane_select(has_axis, t[d] * inv_t, t[d]);
   const V s = dot3(ds, t);
   bands::advance(p, overlap, s, kappa);
-  V f[memory_bands];
-  band_load_fractions(p, overlap, f);
-  const V along = limit * memory_ratio(p, f);
+  const V along = limit * bands::force_ratio(p, overlap);
   V across[3], Tv[3];
   for (int d = 0; d < 3; ++d) across[d] = k_T * (ds[d] - s * t[d]);
   for (int d = 0; d < 3; ++d) Tv[d] = along * t[d] + across[d];
   const V magnitude = std::sqrt(along * along + dot3(across, across));
   const V sense = lane_select(along < 0.0, V(-1.0), V(1.0));
   const V raised = sense * (magnitude - std::abs(along)) / limit;
-  for (int j = 0; j < memory_bands; ++j)
-    p.slope[j] = lane_clamp(p.slope[j] + raised, V(-1.0), V(1.0));
-  const V turned = limit * memory_ratio(p, f);
+  TYCORE_UNROLLED
+  for (int j = 0; j < memory_bands; ++j) {
+    p.outer[j] = lane_clamp(p.outer[j] + raised, V(-1.0), V(1.0));
+    p.inner[j] = lane_clamp(p.inner[j] + raised, V(-1.0), V(1.0));
+  }
+  const V turned = limit * bands::force_ratio(p, overlap);
   const V inv = sense / magnitude;
   const auto turns = magnitude > 0.0;
   for (int d = 0; d < 3; ++d) {
@@ -503,10 +496,7 @@ template <class V>
     t[d] = lane_select(at_limit, T[d] * inv, t[d]);
     T[d] = lane_select(over, T[d] * scale, T[d]);
   }
-  for (int j = 0; j < memory_bands; ++j) {
-    p.slope[j] = lane_select(at_limit, slides.slope[j], p.slope[j]);
-    p.depth[j] = lane_select(at_limit, slides.depth[j], p.depth[j]);
-  }
+  p = bands::select(at_limit, slides, p);
   return at_limit;
 }
 
@@ -534,7 +524,8 @@ template <class V>
 {
   const V zero = V(0.0);
   for (int d = 0; d < 3; ++d) h.T[d] = h.load_dir[d] = zero;
-  for (int j = 0; j < memory_bands; ++j) h.slope[j] = h.depth[j] = zero;
+  TYCORE_UNROLLED
+  for (int j = 0; j < memory_bands; ++j) h.band_outer[j] = h.band_inner[j] = h.band_depth[j] = zero;
   h.peeling = h.stored_energy = zero;
   h.sliding = V(1.0);
   return lane_max(released, zero);
@@ -556,11 +547,7 @@ template <bool Adhesive, class V>
   const V k_T = tangential_stiffness<Adhesive>(k, R, a_T, load, peel);
   const V overlap = a_T * a_T / R;    // of the effective Hertz contact (§2.3)
   MemoryAxis<V> axis = memory_axis(old.load_dir, old.T, ds, peel.peeled);
-  bands::Profile<V> memory;
-  for (int j = 0; j < memory_bands; ++j) {
-    memory.slope[j] = old.slope[j];
-    memory.depth[j] = old.depth[j];
-  }
+  bands::Profile<V> memory = memory_of(old);
   // stage A: the peeling contact is elastic; stage B: the memory where it holds the force
   V T_micro[3];
   bands::Profile<V> slipped = memory;
@@ -568,10 +555,7 @@ template <bool Adhesive, class V>
   V T[3];
   for (int d = 0; d < 3; ++d)
     T[d] = lane_select(peel.peeled, old.T[d] + k_T * ds[d], T_micro[d]);
-  for (int j = 0; j < memory_bands; ++j) {
-    memory.slope[j] = lane_select(peel.peeled, memory.slope[j], slipped.slope[j]);
-    memory.depth[j] = lane_select(peel.peeled, memory.depth[j], slipped.depth[j]);
-  }
+  memory = bands::select(peel.peeled, memory, slipped);
   // peeling ends where the discriminant vanishes: the memory of Mindlin & Deresiewicz's first
   // loading to the force reached (§2.2), along T
   V peeling_flag = peel.flag;
@@ -583,10 +567,7 @@ template <bool Adhesive, class V>
     peeling_flag = lane_select(ends, zero, peeling_flag);
     bands::Profile<V> first;
     bands::first_loading(first, overlap, lane_clamp(T_size / limit, zero, V(1.0)));
-    for (int j = 0; j < memory_bands; ++j) {
-      memory.slope[j] = lane_select(ends, first.slope[j], memory.slope[j]);
-      memory.depth[j] = lane_select(ends, first.depth[j], memory.depth[j]);
-    }
+    memory = bands::select(ends, first, memory);
     const V inv = 1.0 / T_size;
     const auto along_T = ends & (T_size > 0.0);
     for (int d = 0; d < 3; ++d) axis.t[d] = lane_select(along_T, T[d] * inv, axis.t[d]);
@@ -604,7 +585,7 @@ template <bool Adhesive, class V>
   // the new history; a contact without an axis keeps none
   for (int d = 0; d < 3; ++d)
     h.T[d] = T[d], h.load_dir[d] = lane_select(axis.active | slides, axis.t[d], zero);
-  for (int j = 0; j < memory_bands; ++j) h.slope[j] = memory.slope[j], h.depth[j] = memory.depth[j];
+  store_memory(h, memory);
   h.peeling = lane_select(slides, zero, peeling_flag);
   h.sliding = lane_select(slides, V(1.0), zero);
   h.stored_energy = stored;

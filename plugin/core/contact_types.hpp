@@ -31,6 +31,10 @@ inline double effective_radius(double R1, double R2) { return R1 * R2 / (R1 + R2
 // how many slip bands a contact's Mindlin-Deresiewicz memory holds (slip_bands.hpp, §2.3)
 inline constexpr int memory_bands = 6;
 
+// a loop over the bands (or other short fixed counts) taken apart into straight code: the lane
+// loops of the vector builds (contact_batch_loops.hpp) vectorise only bodies with no inner loop
+#define TYCORE_UNROLLED _Pragma("GCC unroll 8")
+
 // ---- the history of a contact: ONE table, every listing generated from it ----
 //
 // TYCORE_HISTORY_FIELDS(X) calls X(name, values, carried, from_j, meaning) for each field of a
@@ -57,12 +61,13 @@ inline constexpr int memory_bands = 6;
   X(load_dir, 3, direction, -1,                                                                  \
     "unit axis of the Mindlin-Deresiewicz memory, along which the slip bands' slopes are "        \
     "counted (zero before any tangential displacement; §2.3)")                                   \
-  X(slope, 6, kept, +1,                                                                          \
+  X(band_outer, 6, kept, +1,                                                                     \
     "the memory's slip bands from the contact's edge inwards: the traction ratio m in [-1, 1] "   \
-    "of each (slip_bands.hpp, §2.3)")                                                            \
-  X(depth, 6, kept, +1,                                                                          \
-    "the depth of each slip band, in units of the effective overlap; they add up to the "         \
-    "effective overlap of the last step (§2.3)")                                                 \
+    "at the outer edge of each (slip_bands.hpp, §2.3)")                                          \
+  X(band_inner, 6, kept, +1, "the traction ratio m at the inner edge of each band (§2.3)")       \
+  X(band_depth, 6, kept, +1,                                                                     \
+    "the depth of each band, in units of the effective overlap; they add up to the effective "    \
+    "overlap of the last step (§2.3)")                                                           \
   X(peeling, 1, kept, +1, "1 while Savkoor-Briggs peeling lasts (§2.2)")                          \
   X(sliding, 1, kept, +1, "1 if the contact is at the sliding limit this step")                   \
   X(stored_energy, 1, kept, +1,                                                                  \
@@ -72,7 +77,7 @@ inline constexpr int memory_bands = 6;
     "JKR contact radius of the last evaluated step: the warm start of the delta -> a "            \
     "inversion (law::halley_start, §1.4); 0 = none yet")
 
-static_assert(memory_bands == 6, "the table's slope and depth rows hold memory_bands values");
+static_assert(memory_bands == 6, "the table's band rows hold memory_bands values");
 
 namespace history {
 

@@ -5,10 +5,11 @@
 //
 // The traction field along the memory's axis is held as the slope m(w) = (du/dw)/kappa of the
 // equivalent springs' tangential displacement u against their depth w = delta - x^2/R*
-// (kappa = mu E*/(4 G*), the slope of the local Coulomb limit |u| <= kappa w). The slope is
-// piecewise constant: `bands` slope/depth pairs from the contact's edge inwards, their depths
-// adding up to the (effective) overlap. |m| <= 1 everywhere; a band at m = +1 or -1 slips,
-// one in between sticks. Three operations change it, each exact:
+// (kappa = mu E*/(4 G*), the slope of the local Coulomb limit |u| <= kappa w). The slope is held
+// piecewise linear in `memory_bands` bands from the contact's edge inwards, each with its slope
+// at its outer and at its inner edge and its depth; the depths add up to the (effective)
+// overlap. |m| <= 1 everywhere; where m = +1 or -1 the springs slip, in between they stick.
+// Three operations change the memory, each exact:
 //  * the overlap grows by d and the contact takes the tangential displacement s in the same
 //    step: a band of slope s/(kappa d) enters at the edge (if that is above 1 in magnitude, a
 //    band at the limit enters and the rest of s slips);
@@ -17,14 +18,11 @@
 //  * a displacement D at the edge slips (forward for D > 0): the outer bands turn to the
 //    limit's slope sign(D) to the depth where the displacement they absorb, kappa int
 //    (1 - sign(D) m) dw, reaches |D|; beyond all bands the contact slides as a whole.
-// The force they carry is T = mu sum_j m_j [P_H(delta - W_j) - P_H(delta - W_j - h_j)], W_j the
-// depth where band j begins, P_H(x) = (4/3) E* sqrt(R*) x^(3/2) the Hertz load of overlap x
-// (law::band_load_fractions, contact_law.hpp).
-//
-// At constant P these operations are Mindlin & Deresiewicz's loading, unloading and reloading
-// curves (Thornton's theta forms of §2.1); when P changes they remain exact, which the forms
-// with shifted reversal points are not. A history with more distinct bands than `bands` merges
-// the two neighbours whose merge changes the force least (the only approximation).
+// A history with more bands than the memory holds has two neighbours merged into one band,
+// the straight line that keeps their int m and int m w (the pair whose merge changes the slope
+// least in the mean square; a line that would leave [-1, 1] becomes their mean): the memory's
+// only approximation. A smoothly varying slope, which a contact that sticks while both loads
+// change lays down, is held by a few lines to round-off.
 //
 // Written once over a lane type V (as contact_law.hpp): each operation computes every branch
 // and selects; loops run over the fixed band count, so that the SIMD builds vectorise them.
@@ -44,92 +42,153 @@ namespace bands {
 inline constexpr double ulp_fraction = 2.220446049250313e-16;
 
 template <class V> struct Profile {
-  V slope[memory_bands];    // m_j in [-1, 1], from the contact's edge inwards
-  V depth[memory_bands];    // h_j >= 0, overlap units; sum = the overlap of the last step
+  V outer[memory_bands];    // slope m at the band's outer edge, in [-1, 1]
+  V inner[memory_bands];    // slope m at its inner edge
+  V depth[memory_bands];    // its depth h >= 0, overlap units; sum = the overlap of the last step
 };
+
+// a in the lanes where `take` holds, else b, band for band
+template <class V, class M>
+[[gnu::always_inline]] inline Profile<V> select(M take, const Profile<V>& a, const Profile<V>& b)
+{
+  Profile<V> p;
+  TYCORE_UNROLLED
+  for (int j = 0; j < memory_bands; ++j) {
+    p.outer[j] = lane_select(take, a.outer[j], b.outer[j]);
+    p.inner[j] = lane_select(take, a.inner[j], b.inner[j]);
+    p.depth[j] = lane_select(take, a.depth[j], b.depth[j]);
+  }
+  return p;
+}
 
 // the overlap the profile covers (the effective overlap of the last step)
 template <class V> [[gnu::always_inline]] inline V covered_depth(const Profile<V>& p)
 {
   V total = p.depth[0];
+  TYCORE_UNROLLED
   for (int j = 1; j < memory_bands; ++j) total = total + p.depth[j];
   return total;
 }
 
-// how much the force would change if bands j and j + 1 became one band of their mean slope:
-// |m_j - m_j+1| h_j h_j+1 / (h_j + h_j+1), zero where either is empty (so empty bands go first)
-template <class V> [[gnu::always_inline]] inline V merge_cost(const Profile<V>& p, int j)
+// The one band that replaces the neighbours (a1, b1, h1) outside and (a2, b2, h2) inside: the
+// line of least squares over both, which keeps int m (the displacement their springs carry) and
+// int m w; where that line leaves [-1, 1] their mean slope, which keeps int m. `cost`: the mean
+// square of the slope change times the depth, int (m - line)^2 dw, zero where a band is empty.
+template <class V> struct Merged {
+  V outer, inner, cost;
+};
+
+template <class V>
+[[gnu::always_inline]] inline Merged<V> merge(V a1, V b1, V h1, V a2, V b2, V h2)
 {
-  const V hj = p.depth[j], hk = p.depth[j + 1], sum = hj + hk;
-  const V cost = std::abs(p.slope[j] - p.slope[j + 1]) * hj * hk / sum;
-  return lane_select(sum > 0.0, cost, V(0.0));
+  const V H = h1 + h2;
+  const auto some = H > 0.0;
+  const V inv = 1.0 / lane_select(some, H, V(1.0));
+  // int m and int m w over [0, H]
+  const V M0 = 0.5 * (a1 + b1) * h1 + 0.5 * (a2 + b2) * h2;
+  const V M1 = h1 * h1 * (a1 * (1.0 / 6.0) + b1 * (1.0 / 3.0)) + 0.5 * h1 * h2 * (a2 + b2) +
+               h2 * h2 * (a2 * (1.0 / 6.0) + b2 * (1.0 / 3.0));
+  const V mean = M0 * inv;
+  const V half_rise = 6.0 * (M1 - 0.5 * M0 * H) * inv * inv;    // (inner - outer)/2
+  const V line_outer = mean - half_rise, line_inner = mean + half_rise;
+  const auto outer_bounded = std::abs(line_outer) <= 1.0;
+  const auto bounded = outer_bounded & (std::abs(line_inner) <= 1.0);
+  Merged<V> m;
+  m.outer = lane_select(some, lane_select(bounded, line_outer, mean), a1);
+  m.inner = lane_select(some, lane_select(bounded, line_inner, mean), b1);
+  // the residual is linear on each band: int over a band of depth L of a line from e0 to e1,
+  // squared, is L (e0^2 + e0 e1 + e1^2)/3
+  const V at_seam = m.outer + (m.inner - m.outer) * h1 * inv;
+  const V e0 = a1 - m.outer, e1 = b1 - at_seam, f0 = a2 - at_seam, f1 = b2 - m.inner;
+  m.cost = (h1 * (e0 * e0 + e0 * e1 + e1 * e1) + h2 * (f0 * f0 + f0 * f1 + f1 * f1)) * (1.0 / 3.0);
+  return m;
 }
 
-// a band of slope m and depth h enters at the edge: into an empty edge band, or merged with an
-// edge band of the same slope, or in front of the others, the cheapest pair of neighbours
-// merged to make room; a band of no depth changes nothing
+// a band of uniform slope m and depth h enters at the edge: into an empty edge band, or in front
+// of the others, the neighbours whose merge costs least (the new band among them) becoming one
+// band to make room; a band of no depth changes nothing
 template <class V> [[gnu::always_inline]] inline void enter_at_edge(Profile<V>& p, V m, V h)
 {
-  const auto empty_edge = p.depth[0] == 0.0, same_slope = p.slope[0] == m;
-  // the pair (j*, j* + 1) to merge: the first of least cost
-  V best = merge_cost(p, 0), chosen = V(0.0);
-  for (int j = 1; j < memory_bands - 1; ++j) {
-    const V cost = merge_cost(p, j);
-    const auto cheaper = cost < best;
-    best = lane_select(cheaper, cost, best);
+  constexpr int K = memory_bands;
+  // the memory with the new band in front: K + 1 bands, e = extended index
+  V ea[K + 1], eb[K + 1], eh[K + 1];
+  ea[0] = m, eb[0] = m, eh[0] = h;
+  TYCORE_UNROLLED
+  for (int j = 0; j < K; ++j) ea[j + 1] = p.outer[j], eb[j + 1] = p.inner[j], eh[j + 1] = p.depth[j];
+  // the pair (j*, j* + 1) of least cost, and its merge
+  Merged<V> best = merge(ea[0], eb[0], eh[0], ea[1], eb[1], eh[1]);
+  V chosen = V(0.0);
+  TYCORE_UNROLLED
+  for (int j = 1; j < K; ++j) {
+    const Merged<V> here = merge(ea[j], eb[j], eh[j], ea[j + 1], eb[j + 1], eh[j + 1]);
+    const auto cheaper = here.cost < best.cost;
+    best.outer = lane_select(cheaper, here.outer, best.outer);
+    best.inner = lane_select(cheaper, here.inner, best.inner);
+    best.cost = lane_select(cheaper, here.cost, best.cost);
     chosen = lane_select(cheaper, V(double(j)), chosen);
   }
-  Profile<V> shifted;
-  shifted.slope[0] = m, shifted.depth[0] = h;
-  for (int i = 1; i < memory_bands; ++i) {
-    // i <= j*: band i - 1 moves in by one; i = j* + 1: bands j* and j* + 1 merged; beyond: kept
-    const V ha = p.depth[i - 1], hb = p.depth[i], sum = ha + hb;
-    const V mean = lane_select(sum > 0.0, (p.slope[i - 1] * ha + p.slope[i] * hb) / sum,
-                               p.slope[i - 1]);
-    const auto moved = V(double(i)) <= chosen, merged = V(double(i)) == chosen + 1.0;
-    shifted.slope[i] = lane_select(moved, p.slope[i - 1], lane_select(merged, mean, p.slope[i]));
-    shifted.depth[i] = lane_select(moved, p.depth[i - 1], lane_select(merged, sum, p.depth[i]));
-  }
-  const auto nothing = !(h > 0.0);    // a band of no depth changes nothing
-  const auto in_place = empty_edge | same_slope | nothing;
-  for (int i = 0; i < memory_bands; ++i) {
-    const V slope0 = lane_select(empty_edge & !nothing, m, p.slope[0]);
-    const V depth0 = p.depth[0] + h;
-    p.slope[i] = lane_select(in_place, i == 0 ? slope0 : p.slope[i], shifted.slope[i]);
-    p.depth[i] = lane_select(in_place, i == 0 ? depth0 : p.depth[i], shifted.depth[i]);
+  const auto empty_edge = p.depth[0] == 0.0, nothing = !(h > 0.0);
+  TYCORE_UNROLLED
+  for (int i = 0; i < K; ++i) {
+    // i < j*: extended band i; i = j*: the merged pair; i > j*: extended band i + 1
+    const V at = V(double(i));
+    const auto before = at < chosen, merged = at == chosen;
+    const V outer = lane_select(before, ea[i], lane_select(merged, best.outer, ea[i + 1]));
+    const V inner = lane_select(before, eb[i], lane_select(merged, best.inner, eb[i + 1]));
+    const V depth = lane_select(before, eh[i], lane_select(merged, eh[i] + eh[i + 1], eh[i + 1]));
+    // an empty edge band takes the new band in place
+    const V placed_outer = i == 0 ? m : p.outer[i], placed_inner = i == 0 ? m : p.inner[i];
+    const V placed_depth = i == 0 ? h : p.depth[i];
+    p.outer[i] = lane_select(nothing, p.outer[i], lane_select(empty_edge, placed_outer, outer));
+    p.inner[i] = lane_select(nothing, p.inner[i], lane_select(empty_edge, placed_inner, inner));
+    p.depth[i] = lane_select(nothing, p.depth[i], lane_select(empty_edge, placed_depth, depth));
   }
 }
 
-// the outer depth d leaves (it empties the outer bands): returns int m dw over it, the
-// displacement (over kappa) the leaving springs carried
+// the outer depth d leaves (it empties the outer bands, the band it ends in starts at the slope
+// found there): returns int m dw over it, the displacement (over kappa) the leaving springs
+// carried
 template <class V> [[gnu::always_inline]] inline V leave_at_edge(Profile<V>& p, V d)
 {
   V begins = V(0.0), carried = V(0.0);
+  TYCORE_UNROLLED
   for (int j = 0; j < memory_bands; ++j) {
-    const V take = lane_clamp(d - begins, V(0.0), p.depth[j]);
-    begins = begins + p.depth[j];
-    carried = carried + p.slope[j] * take;
-    p.depth[j] = p.depth[j] - take;
+    const V h = p.depth[j];
+    const V take = lane_clamp(d - begins, V(0.0), h);
+    const V fraction = take / lane_select(h > 0.0, h, V(1.0));
+    const V cut = p.outer[j] + (p.inner[j] - p.outer[j]) * fraction;    // slope where it ends
+    carried = carried + 0.5 * (p.outer[j] + cut) * take;
+    begins = begins + h;
+    p.outer[j] = cut;
+    p.depth[j] = h - take;
   }
   return carried;
 }
 
 // the displacement D (over kappa: D_k = D/kappa, overlap units) slips at the edge: the outer
-// bands turn to slope sign(D) over the depth where they absorb |D_k|. Returns the part of
-// |D_k| that no band absorbs (gross sliding; 0 while the contact sticks somewhere).
+// bands turn to slope sign(D) over the depth where they absorb |D_k|, int (1 - sign(D) m) dw.
+// Returns the part of |D_k| that no band absorbs (gross sliding; 0 while the contact sticks).
 template <class V> [[gnu::always_inline]] inline V slip_at_edge(Profile<V>& p, V D_k)
 {
   const V sense = lane_select(D_k < 0.0, V(-1.0), V(1.0));
   const V wanted = std::abs(D_k);
   V absorbed = V(0.0), reach = V(0.0);
   auto open = wanted == wanted;    // the slip zone has not stopped in an earlier band
+  TYCORE_UNROLLED
   for (int j = 0; j < memory_bands; ++j) {
-    const V room = 1.0 - sense * p.slope[j];          // what one unit of depth absorbs
-    const V band_absorbs = room * p.depth[j];
+    const V h = p.depth[j];
+    // what a depth x of the band absorbs: room_o x - (room_o - room_i) x^2/(2h), increasing
+    const V room_o = 1.0 - sense * p.outer[j], room_i = 1.0 - sense * p.inner[j];
+    const V band_absorbs = 0.5 * (room_o + room_i) * h;
     const V still = wanted - absorbed;
     const auto whole = open & (band_absorbs <= still);
     const auto ends_here = open & !whole;
-    const V part = lane_select(whole, p.depth[j], lane_select(ends_here, still / room, V(0.0)));
+    // the depth x where it has absorbed `still`: the smaller root, in a form without cancellation
+    const V q = (room_o - room_i) / lane_select(h > 0.0, h, V(1.0));
+    const V root = std::sqrt(lane_max(room_o * room_o - 2.0 * q * still, V(0.0)));
+    const V denominator = room_o + root;
+    const V x = lane_select(denominator > 0.0, 2.0 * still / denominator, h);
+    const V part = lane_select(whole, h, lane_select(ends_here, lane_clamp(x, V(0.0), h), V(0.0)));
     reach = reach + part;
     absorbed = absorbed + lane_select(whole, band_absorbs, lane_select(ends_here, still, V(0.0)));
     open = whole;
@@ -161,37 +220,75 @@ template <class V>
   Profile<V> down = p;
   const V carried = leave_at_edge(down, lane_max(-grown, V(0.0)));
   const V to_slip = lane_select(grows, rest, s_k + carried);
-  for (int j = 0; j < memory_bands; ++j) {
-    p.slope[j] = lane_select(grows, up.slope[j], down.slope[j]);
-    p.depth[j] = lane_select(grows, up.depth[j], down.depth[j]);
-  }
+  p = select(grows, up, down);
   const V slid = slip_at_edge(p, to_slip);
   return lane_select(to_slip < 0.0, -slid, slid) * kappa;
 }
 
-// the elastic energy of the springs, 4 G* int u^2 dx over the half-row (u = kappa phi(w),
-// phi = int_0^w m, w = overlap - x^2/R*): per band, phi = A - m x^2/R* with A = phi_j +
-// m (overlap - W_j), and int (A - m x^2/R*)^2 dx = A^2 x - 2 A m x^3/(3R*) + m^2 x^5/(5R*^2).
-// Returns int phi^2 dx; times 4 G* kappa^2 it is the energy (docs/theory.md §2.4).
+// Each band's share of the force along the axis as a fraction of the sliding limit (§2.3):
+// with x = (overlap - w)/overlap the Hertz load fraction below depth w, band j from x0 (outer)
+// to x1 (inner) carries int m 1.5 sqrt(x) dx = b D + (a - b) Q/(sqrt(x0) + sqrt(x1)), a and b
+// its outer and inner slopes, D = x0^(3/2) - x1^(3/2) = e (x0 + s0 s1 + x1)/(s0 + s1) with
+// e = x0 - x1, s = sqrt(x), Q = 0.6 x0^2 + 0.6 x0 s0 s1 - 0.4 x0 x1 - 0.4 x1 s0 s1 - 0.4 x1^2
+// (derived here: the differences of powers factored, so that a thin band loses no digits).
+// A profile at m = 1 everywhere carries exactly 1.
+template <class V>
+[[gnu::always_inline]] inline V force_ratio(const Profile<V>& p, V overlap)
+{
+  const V inv = 1.0 / overlap;
+  V begins = V(0.0), x0 = V(1.0), s0 = V(1.0), sum = V(0.0);
+  TYCORE_UNROLLED
+  for (int j = 0; j < memory_bands; ++j) {
+    const V e = p.depth[j] * inv;
+    begins = begins + p.depth[j];
+    const V x1 = lane_max(1.0 - begins * inv, V(0.0));
+    const V s1 = std::sqrt(x1);
+    const V roots = s0 + s1, ss = s0 * s1;
+    const V safe = lane_select(roots > 0.0, roots, V(1.0));
+    const V D = e * (x0 + ss + x1) / safe;
+    const V Q = 0.6 * x0 * x0 + 0.6 * x0 * ss - 0.4 * x0 * x1 - 0.4 * x1 * ss - 0.4 * x1 * x1;
+    const V band = p.inner[j] * D + (p.outer[j] - p.inner[j]) * Q / safe;
+    sum = sum + lane_select(roots > 0.0, band, V(0.0));
+    x0 = x1, s0 = s1;
+  }
+  return sum;
+}
+
+// the elastic energy of the springs, 4 G* int u^2 dxi over the half-row of springs at xi
+// (u = kappa phi(w), phi = int_0^w m, w = overlap - xi^2/R*): phi^2 is a polynomial of degree
+// 8 in xi on each band, integrated exactly by 5-point Gauss-Legendre in xi, phi evaluated from
+// the band's own depth t = w - W in [0, h] (no digits lost on a thin band). Returns
+// int phi^2 dxi; times 4 G* kappa^2 it is the energy (docs/theory.md §2.4).
 template <class V>
 [[gnu::always_inline]] inline V energy_factor(const Profile<V>& p, V overlap, V R)
 {
+  constexpr double node[5] = {0.0, 0.5384693101056831, -0.5384693101056831, 0.9061798459386640,
+                              -0.9061798459386640};
+  constexpr double weight[5] = {0.5688888888888889, 0.4786286704993665, 0.4786286704993665,
+                                0.2369268850561891, 0.2369268850561891};
   const V Rinv = 1.0 / R;
   V begins = V(0.0), phi = V(0.0), sum = V(0.0);
-  V x = std::sqrt(R * lane_max(overlap, V(0.0)));
+  V xi0 = std::sqrt(R * lane_max(overlap, V(0.0)));
+  TYCORE_UNROLLED
   for (int j = 0; j < memory_bands; ++j) {
-    const V m = p.slope[j];
-    const V A = phi + m * (overlap - begins);
-    begins = begins + p.depth[j];
+    const V a = p.outer[j], b = p.inner[j], h = p.depth[j];
+    begins = begins + h;
     // (a depth left within round-off of the overlap is none: its square root would not be)
     const V left = overlap - begins;
-    const V x_next = std::sqrt(R * lane_select(left > 16.0 * ulp_fraction * overlap, left, V(0.0)));
-    const V x2 = x * x, x2n = x_next * x_next;
-    const V upper = x * (A * A - x2 * Rinv * m * (2.0 / 3.0 * A - 0.2 * m * x2 * Rinv));
-    const V lower = x_next * (A * A - x2n * Rinv * m * (2.0 / 3.0 * A - 0.2 * m * x2n * Rinv));
-    sum = sum + (upper - lower);
-    phi = phi + m * p.depth[j];
-    x = x_next;
+    const V xi1 = std::sqrt(R * lane_select(left > 16.0 * ulp_fraction * overlap, left, V(0.0)));
+    const V mid = 0.5 * (xi0 + xi1), half = 0.5 * (xi0 - xi1);
+    const V rise = 0.5 * (b - a) / lane_select(h > 0.0, h, V(1.0));
+    V band = V(0.0);
+    TYCORE_UNROLLED
+    for (int q = 0; q < 5; ++q) {
+      const V xi = mid + half * node[q];
+      const V t = lane_clamp((xi0 - xi) * (xi0 + xi) * Rinv, V(0.0), h);    // w - W
+      const V f = phi + t * (a + rise * t);
+      band = band + weight[q] * f * f;
+    }
+    sum = sum + half * band;
+    phi = phi + 0.5 * (a + b) * h;
+    xi0 = xi1;
   }
   return sum;
 }
@@ -203,8 +300,9 @@ template <class V> [[gnu::always_inline]] inline void first_loading(Profile<V>& 
 {
   const V inner = lane_max(1.0 - q, V(0.0));
   const V stuck = overlap * simd_cbrt(inner * inner);    // (1 - q)^(2/3) of the overlap
-  for (int j = 0; j < memory_bands; ++j) p.slope[j] = p.depth[j] = V(0.0);
-  p.slope[0] = V(1.0);
+  TYCORE_UNROLLED
+  for (int j = 0; j < memory_bands; ++j) p.outer[j] = p.inner[j] = p.depth[j] = V(0.0);
+  p.outer[0] = p.inner[0] = V(1.0);
   p.depth[0] = overlap - stuck;
   p.depth[1] = stuck;
 }
@@ -212,8 +310,9 @@ template <class V> [[gnu::always_inline]] inline void first_loading(Profile<V>& 
 // the contact slides as a whole in the sense of `sense`: one band at the limit over the overlap
 template <class V> [[gnu::always_inline]] inline void sliding(Profile<V>& p, V overlap, V sense)
 {
-  for (int j = 0; j < memory_bands; ++j) p.slope[j] = p.depth[j] = V(0.0);
-  p.slope[0] = sense;
+  TYCORE_UNROLLED
+  for (int j = 0; j < memory_bands; ++j) p.outer[j] = p.inner[j] = p.depth[j] = V(0.0);
+  p.outer[0] = p.inner[0] = sense;
   p.depth[0] = overlap;
 }
 

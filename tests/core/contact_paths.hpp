@@ -156,8 +156,9 @@ inline void expect_law_holds(const RandomPath& path, const Step& s, double P,
   ASSERT_GE(lost, 0.0);
   ASSERT_GE(after.stored_energy, 0.0);
   for (int j = 0; j < tycore::memory_bands; ++j) {    // the memory: |m| <= 1, depths >= 0
-    ASSERT_LE(std::abs(after.slope[j]), 1.0) << j;
-    ASSERT_GE(after.depth[j], 0.0) << j;
+    ASSERT_LE(std::abs(after.band_outer[j]), 1.0) << j;
+    ASSERT_LE(std::abs(after.band_inner[j]), 1.0) << j;
+    ASSERT_GE(after.band_depth[j], 0.0) << j;
   }
   // the work of T over the step, T_old carried with the contact: onto the new tangent plane
   // (magnitude kept), then turned about n by the twist (Rodrigues)
@@ -174,10 +175,11 @@ inline void expect_law_holds(const RandomPath& path, const Step& s, double P,
   // axis, or sticking, while the contact as a whole does not slide
   // (a turn of the force in the tangent plane raises the slopes by the second order of the
   // turn: an edge within 1e-6 of the limit slips)
-  const bool micro = after.peeling == 0.0 && after.sliding == 0.0 && after.depth[0] > 0.0;
-  seen.forward += micro && after.slope[0] >= 1.0 - 1e-6;
-  seen.backward += micro && after.slope[0] <= -1.0 + 1e-6;
-  seen.sticking += micro && std::abs(after.slope[0]) < 1.0 - 1e-6;
+  const bool micro = after.peeling == 0.0 && after.sliding == 0.0 && after.band_depth[0] > 0.0;
+  const double edge = after.band_outer[0];
+  seen.forward += micro && edge >= 1.0 - 1e-6;
+  seen.backward += micro && edge <= -1.0 + 1e-6;
+  seen.sticking += micro && std::abs(edge) < 1.0 - 1e-6;
 }
 
 // every branch of the law visited on one 20000-step path (adhesive: peeling and tension too)

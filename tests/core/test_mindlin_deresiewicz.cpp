@@ -54,9 +54,10 @@ template <bool Adhesive> struct Driver {
     const double a = std::cbrt(3.0 * kRstar * P / (4.0 * kEstar));
     Eigen::Map<Vector3d>(h.T) = T;
     Eigen::Map<Vector3d>(h.load_dir) = T.normalized();
-    for (int j = 0; j < tycore::memory_bands; ++j) h.slope[j] = h.depth[j] = 0.0;
-    h.slope[0] = T.norm() / (c.mu * P);
-    h.depth[0] = a * a / kRstar;
+    for (int j = 0; j < tycore::memory_bands; ++j)
+      h.band_outer[j] = h.band_inner[j] = h.band_depth[j] = 0.0;
+    h.band_outer[0] = h.band_inner[0] = T.norm() / (c.mu * P);
+    h.band_depth[0] = a * a / kRstar;
   }
 };
 
@@ -91,7 +92,7 @@ TEST(MindlinLoading, InitialStiffnessIs8Ga)
   EXPECT_EQ(drv.h.T[1], 0.0);
   EXPECT_EQ(drv.h.T[2], 0.0);
   EXPECT_EQ(drv.h.sliding, 0.0);
-  EXPECT_EQ(drv.h.slope[0], 1.0);    // the slip annulus opens at the edge (§2.3)
+  EXPECT_EQ(drv.h.band_outer[0], 1.0);    // the slip annulus opens at the edge (§2.3)
 }
 
 // §2.1: monotonic loading at constant P follows T = mu P[1 - (1 - 16G*a x/(3 mu P))^(3/2)]
@@ -177,7 +178,7 @@ TEST(MindlinReloading, MasingReloadAndReturnPointMemory)
     drv.move_to(A - u * md.d, n / 10, P);
     EXPECT_NEAR(drv.Tx(), T_star - 2.0 * md.f(0.5 * u * md.d), 2e-6 * md.muP) << u;
   }
-  EXPECT_EQ(drv.h.slope[0], -1.0);    // the edge slips backward
+  EXPECT_EQ(drv.h.band_outer[0], -1.0);    // the edge slips backward
   const double x_2star = A - B, T_2star = T_star - 2.0 * md.f(0.5 * B);
   for (double r = 0.1; r <= 0.5 + 1e-9; r += 0.1) {    // reloading back to A
     drv.move_to(x_2star + r * md.d, n / 10, P);
@@ -187,7 +188,7 @@ TEST(MindlinReloading, MasingReloadAndReturnPointMemory)
   for (double x = 0.7; x < 0.99; x += 0.05) {       // virgin curve resumed
     drv.move_to(x * md.d, n / 20, P);
     EXPECT_NEAR(drv.Tx(), md.f(x * md.d), 3e-6 * md.muP) << x;
-    EXPECT_EQ(drv.h.slope[0], 1.0) << x;
+    EXPECT_EQ(drv.h.band_outer[0], 1.0) << x;
   }
 }
 
@@ -335,10 +336,11 @@ TEST(MindlinRotation, ObjectivityUnderRigidRotation)
   EXPECT_NEAR(Tb.norm(), Ta.norm(), 1e-10 * Ta.norm());
   EXPECT_NEAR((Tb - Q * Ta).norm(), 0.0, 1e-10 * Ta.norm());
   double depth = 0.0;
-  for (int j = 0; j < tycore::memory_bands; ++j) depth += a.h.depth[j];
+  for (int j = 0; j < tycore::memory_bands; ++j) depth += a.h.band_depth[j];
   for (int j = 0; j < tycore::memory_bands; ++j) {    // the same memory
-    EXPECT_NEAR(b.h.slope[j], a.h.slope[j], 1e-9) << j;
-    EXPECT_NEAR(b.h.depth[j], a.h.depth[j], 1e-9 * depth) << j;
+    EXPECT_NEAR(b.h.band_outer[j], a.h.band_outer[j], 1e-9) << j;
+    EXPECT_NEAR(b.h.band_inner[j], a.h.band_inner[j], 1e-9) << j;
+    EXPECT_NEAR(b.h.band_depth[j], a.h.band_depth[j], 1e-9 * depth) << j;
   }
   EXPECT_EQ(a.h.sliding, 0.0);
   // (the dissipation is the step's work less the change of the memory's energy: a difference
@@ -573,5 +575,6 @@ TEST(MindlinTurn, SidewaysIncrementIsElasticAndTurnsTheMemory)
   const Vector3d axis = Eigen::Map<const Vector3d>(drv.h.load_dir);
   EXPECT_NEAR((axis - expect.normalized()).norm(), 0.0, 1e-12);
   // the memory carries |T|: a uniform ratio |T|/(mu P)
-  EXPECT_NEAR(drv.h.slope[0], expect.norm() / (0.3 * P), 1e-12);
+  EXPECT_NEAR(drv.h.band_outer[0], expect.norm() / (0.3 * P), 1e-12);
+  EXPECT_NEAR(drv.h.band_inner[0], expect.norm() / (0.3 * P), 1e-12);
 }

@@ -55,8 +55,10 @@ void expect_same_history(const tycore::ContactHistory& a, const tycore::ContactH
     EXPECT_NEAR(a.load_dir[k], b.load_dir[k], 1e-13) << what << " dir" << k;
   }
   for (int j = 0; j < tycore::memory_bands; ++j) {
-    EXPECT_NEAR(a.slope[j], b.slope[j], 1e-13) << what << " slope" << j;
-    EXPECT_NEAR(a.depth[j], b.depth[j], 1e-13 * (a.depth[0] + b.depth[0])) << what << " depth" << j;
+    const double scale = 1e-13 * (a.band_depth[0] + b.band_depth[0]);
+    EXPECT_NEAR(a.band_outer[j], b.band_outer[j], 1e-13) << what << " outer slope" << j;
+    EXPECT_NEAR(a.band_inner[j], b.band_inner[j], 1e-13) << what << " inner slope" << j;
+    EXPECT_NEAR(a.band_depth[j], b.band_depth[j], scale) << what << " depth" << j;
   }
   EXPECT_EQ(a.peeling, b.peeling) << what;
   EXPECT_EQ(a.sliding, b.sliding) << what;
