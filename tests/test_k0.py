@@ -26,6 +26,8 @@ About 5 s of CPU beside the specimens' preparation (tests/test_decks.py's fixtur
 """
 import math
 
+import re
+
 import numpy as np
 import pytest
 
@@ -160,6 +162,13 @@ def test_k0_deck_holds_the_lateral_strains_and_follows_its_course(k0_runs, kind)
     end = int(np.argmax((np.arange(len(t["ocr"])) > top) & (t["ocr"] >= OCR)))
     assert end == len(t["ocr"]) - 1 and t["progress"][end] == 1.0
     assert np.all(t["progress"][:end] < 1.0)
+    # the deck's thermo lines: the wall time left, known once the course has progressed
+    # (step, ..., progress, eta_seconds), none at its end
+    rows = [line.split() for line in text.splitlines()
+            if re.fullmatch(r"\s*\d+(\s+\S+){9}\s*", line)]
+    progress, eta = (np.array([float(r[k]) for r in rows]) for k in (8, 9))
+    assert len(rows) >= 2 and np.all(np.isfinite(eta[progress > 0])), eta
+    assert np.all(eta[progress > 0] >= 0.0) and eta[-1] == 0.0
     # eps_a at +rate, turned after the row that ended loading (the rate chosen at the end of a
     # step moves the cell in the next; the first step, from rest, has none); to the record's
     # 12 digits of eps_a and time

@@ -577,15 +577,23 @@ void FixCellServo::compute_outputs()
   output[out::BOUNDARY_WORK] = test.boundary_work;
   tycore::cell_outputs(s, output);
   programme().outputs(cell_state(), output);
+  // the wall time left at the pace of the progress made in this run (NaN until there is some)
+  const auto eta_from_progress = [&](double progress) {
+    const double gained = progress - progress_at_setup;
+    return gained > 0.0 ? wall / gained * (1.0 - progress) : NaN;
+  };
   const int k = command.until.output;
   if (k >= 0) {
     if (std::isnan(test.until_start)) test.until_start = output[k];
     output[out::PROGRESS] = tycore::progress_towards(test.until_start, output[k], command.until.value);
-    const double gained = output[out::PROGRESS] - progress_at_setup;
-    output[out::ETA_SECONDS] = gained > 0.0 ? wall / gained * (1.0 - output[out::PROGRESS]) : NaN;
+    output[out::ETA_SECONDS] = eta_from_progress(output[out::PROGRESS]);
   } else if (!std::isnan(programme().progress())) {
+    // a programme that knows its course's time left (a strain path) is timed by it, one that
+    // knows only its progress (k0: towards a stress) by the pace of that progress
     output[out::PROGRESS] = programme().progress();
-    output[out::ETA_SECONDS] = programme().remaining_time() / update->dt * wall_per_step;
+    const double left = programme().remaining_time();
+    output[out::ETA_SECONDS] = std::isnan(left) ? eta_from_progress(output[out::PROGRESS])
+                                                : left / update->dt * wall_per_step;
   } else {
     const bigint span = update->endstep - update->beginstep;
     output[out::PROGRESS] = span > 0 ? double(update->ntimestep - update->beginstep) / span : 1.0;
