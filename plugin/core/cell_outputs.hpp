@@ -23,6 +23,7 @@ namespace tycore {
 
 // indices of the outputs (0-based here, 1-based for users)
 namespace out {
+// clang-format off
 enum Output {
   EPS1, EPS2, EPS3, EPS_V, EPS_Q, EPS_D13, SIG1, SIG2, SIG3, P, Q, B, LODE_DEG, ETA_LD,
   SINPHI, VOID_RATIO, SOLID_FRACTION, Z, ZM, SLIDING_FRACTION, UNBALANCED, INERTIAL_NUMBER,
@@ -41,9 +42,11 @@ enum Output {
   EPS_A, SIG_A, SIG_R, Q_A, K0, K0_INC, OCR, N_L_EPS,
   COUNT
 };
+// clang-format on
 
 inline const char* name(int i)
 {
+  // clang-format off
   static const char* const names[COUNT] = {
       "eps1", "eps2", "eps3", "eps_v", "eps_q", "eps_d13", "sig1", "sig2", "sig3", "p", "q", "b",
       "lode_deg", "eta_LD", "sinphi", "void_ratio", "solid_fraction", "Z", "Zm",
@@ -56,6 +59,7 @@ inline const char* name(int i)
       "gamma", "tau", "sig_n", "tau_ratio", "stress_angle", "rate_angle", "noncoaxiality",
       "r_u", "cycles", "N_L_ru", "N_L_gamma",
       "eps_a", "sig_a", "sig_r", "q_a", "K0", "K0_inc", "ocr", "N_L_eps"};
+  // clang-format on
   return names[i];
 }
 

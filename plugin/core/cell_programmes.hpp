@@ -1082,6 +1082,7 @@ inline const std::vector<ProgrammeKind>& programme_kinds()
   using Path = PiPlanePath::Kind;
   static const std::vector<std::string> path_keywords{"speed", "rotation", "measure",
                                                       "prestrain_leg", "plane_strain"};
+  // clang-format off
   static const std::vector<ProgrammeKind> kinds{
       {"iso", 0, "iso P", [](ArgList& a) -> P { return std::make_unique<IsotropicCompression>(a); },
        {"equilibrium", "eq_stress", "eq_unbalanced", "eq_kinetic", "eq_coordination",
@@ -1120,6 +1121,7 @@ inline const std::vector<ProgrammeKind>& programme_kinds()
        [](ArgList& a) -> P { return std::make_unique<CyclicTriaxial>(a); },
        {"ru_limit", "da_limit", "one_way"}},
   };
+  // clang-format on
   return kinds;
 }
 

@@ -17,10 +17,12 @@ class PairThorntonYin;
 class ComputeThorntonYinContacts : public Compute {
  public:
   // columns of the local array, in order (docs/compute_thornton_yin_contacts.md)
+  // clang-format off
   enum {
     ID_I, ID_J, FN_X, FN_Y, FN_Z, FT_X, FT_Y, FT_Z, L_X, L_Y, L_Z, NORMAL_FORCE, OVERLAP,
     CONTACT_RADIUS, SLIDING, PEELING, N_COLUMNS
   };
+  // clang-format on
 
   ComputeThorntonYinContacts(class LAMMPS *, int, char **);
   ~ComputeThorntonYinContacts() override;
