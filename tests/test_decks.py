@@ -16,7 +16,8 @@ preparation settings, never left torn, and found from any directory (issues 14, 
 
 Each deck runs in its own temporary directory with `inputs/` symlinked to the repository's, as
 `lmp -in inputs/NAME.in` from a repository root; the dense and loose specimens are prepared
-once per session (both at once, one process each) and copied into every directory.
+once per session (both at once, one process each: tests/conftest.py) and copied into every
+directory.
 Uses the build of TYLMP_BUILD_DIR (default build/) through PYTHONPATH as set by conftest.py,
 and TYLMP_LIBRARY if set (tylmp.library_path). About 3-4 minutes on a quiet 2-core machine.
 """
@@ -95,29 +96,8 @@ def assert_png(path):
 
 
 # ---------------------------------------------------------------------------------------------
-# fixtures: the specimens once per session, then one run of each deck
-
-
-@pytest.fixture(scope="session")
-def specimens(tmp_path_factory):
-    """tylmp_specimens/ with dense_quick and loose_quick, prepared as the decks do."""
-    work = _workdir(tmp_path_factory, "specimens")
-    procs = {}
-    start = time.time()
-    for kind in ("dense", "loose"):
-        deck = f"in.prepare_{kind}"
-        (work / deck).write_text(f"variable specimen index {kind}\nvariable scale index quick\n"
-                                 f"variable tylmp_common string {REPO}/inputs/common\n"
-                                 "include ${tylmp_common}/specimen.in\n")
-        procs[kind] = subprocess.Popen(_lmp_cmd(deck, None), cwd=str(work), text=True,
-                                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                                       env=_env())
-    for kind, proc in procs.items():
-        out, _ = proc.communicate(timeout=TIMEOUT)
-        _check(proc.returncode, out, f"preparation of the {kind} specimen")
-        assert (work / "tylmp_specimens" / f"{kind}_quick.restart").is_file()
-    RUNTIMES["prepare dense + loose (parallel)"] = time.time() - start
-    return work / "tylmp_specimens"
+# fixtures: the specimens once per session (tests/conftest.py: specimens, shared with every
+# module that runs the decks), then one run of each deck
 
 
 def run_deck(tmp_path_factory, specimens, name, variables=None, tag=None):

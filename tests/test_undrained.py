@@ -1,7 +1,7 @@
 """inputs/undrained.in, the undrained (constant-volume) triaxial test (docs/theory.md §11.2,
 §13), run as a user runs it (`lmp -in inputs/undrained.in` from a directory that is not the
-repository's), on the 500-sphere quick specimens of inputs/axisym.in (prepared once, as
-tests/test_decks.py does), and `tyanalysis undrained` on its records:
+repository's), on the 500-sphere quick specimens of inputs/axisym.in (prepared once per session:
+tests/conftest.py), and `tyanalysis undrained` on its records:
 
   * the volume is constant: |eps_v| and |V/V0 - 1| stay below 1e-9 over the whole test (the
     lateral rates are -R/2 each plus a traceless correction: eps_v = 0 up to round-off);
@@ -30,7 +30,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from test_decks import REPO, cli, read_csv, run_deck, specimens  # noqa: F401
+from test_decks import REPO, cli, read_csv, run_deck
 
 STRAIN = 0.04           # |eps1| at the end of the CI runs
 # sigma2 = sigma3: the servo removes the fraction g = 0.25 of an error per step and the
@@ -44,7 +44,7 @@ LATERAL_TOL = 0.01
 P0 = 1e5
 
 
-def run(tmp_path_factory, specimens, specimen, direction, strain=STRAIN):  # noqa: F811
+def run(tmp_path_factory, specimens, specimen, direction, strain=STRAIN):
     tag = f"undrained_{specimen}_{direction}"
     work, out = run_deck(tmp_path_factory, specimens, "undrained",
                          {"specimen": specimen, "direction": direction, "strain": strain,
@@ -54,7 +54,7 @@ def run(tmp_path_factory, specimens, specimen, direction, strain=STRAIN):  # noq
 
 
 @pytest.fixture(scope="module")
-def records(tmp_path_factory, specimens):  # noqa: F811
+def records(tmp_path_factory, specimens):
     return {(s, d): run(tmp_path_factory, specimens, s, d)
             for s, d in (("dense", "compression"), ("loose", "compression"),
                          ("dense", "extension"))}
@@ -147,7 +147,7 @@ def test_critical_state_line_fit():
 
 @pytest.mark.skipif(not os.environ.get("TYLMP_SLOW"), reason="slow (about 5 minutes): set "
                     "TYLMP_SLOW=1")
-def test_loose_undrained_ends_on_drained_critical_state_line(tmp_path_factory, specimens):  # noqa: F811
+def test_loose_undrained_ends_on_drained_critical_state_line(tmp_path_factory, specimens):
     """Undrained compression of the loose specimen to eps1 = 0.25 (eps1 - eps3 = 0.375) against
     the drained axisymmetric tests of inputs/axisym.in on the dense and the loose specimen to
     eps1 - eps3 = 0.30: the critical state is one state whatever the drainage, so the undrained
