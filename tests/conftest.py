@@ -7,10 +7,7 @@ import sys
 
 import pytest
 
-# which half of scripts/test.sh runs each test, and the check of that choice
-from lammps_halves import (pytest_collection_modifyitems, pytest_configure,  # noqa: F401
-                           pytest_fixture_setup, pytest_runtest_makereport, pytest_runtest_setup,
-                           pytest_terminal_summary, pytest_unconfigure)
+import lammps_halves
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BUILD = os.environ.get("TYLMP_BUILD_DIR", os.path.join(REPO, "build"))
@@ -22,6 +19,11 @@ for d in reversed(PYTHON_DIRS):
 # subprocesses (lmp decks, mpirun) must import the same packages
 os.environ["PYTHONPATH"] = os.pathsep.join(
     PYTHON_DIRS + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p])
+
+
+def pytest_configure(config):
+    # which half of scripts/test.sh runs each test, and the check of that choice
+    lammps_halves.configure(config)
 
 
 def cpu_flags():

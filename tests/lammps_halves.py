@@ -1,5 +1,5 @@
 """Which tests run in which half of scripts/test.sh (docs/testing.md), and the check that keeps
-that choice honest. The hooks are imported by tests/conftest.py.
+that choice honest: a pytest plugin that tests/conftest.py registers.
 
 scripts/test.sh runs the suite against LAMMPS 29 Sep 2021 and then against 4 Feb 2025, and names
 the half in TYLMP_TEST_HALF (2021 or 2025). Each test is in one of four classes:
@@ -148,7 +148,10 @@ _launches = None
 _idle = []            # classified as starting LAMMPS, started none (reported at the end)
 
 
-def pytest_configure(config):
+def configure(config):
+    """Called by tests/conftest.py's pytest_configure: the markers, the shim, and this module's
+    hooks registered as a plugin (a conftest's own hooks do not see the set-up of a session
+    fixture, whose node is above tests/)."""
     global _launches
     for line in MARKERS:
         config.addinivalue_line("markers", line)
@@ -157,6 +160,8 @@ def pytest_configure(config):
         raise pytest.UsageError(f"TYLMP_TEST_HALF={half!r}: expected 2021 or 2025 (or unset)")
     if _launches is None:
         _launches = _Launches()
+    if not config.pluginmanager.is_registered(sys.modules[__name__]):
+        config.pluginmanager.register(sys.modules[__name__], "tylmp-lammps-halves")
 
 
 def pytest_unconfigure(config):
@@ -198,8 +203,10 @@ def pytest_runtest_makereport(item, call):
     report = outcome.get_result()
     if call.when != "call" or report.skipped:
         return
+    # the fixtures it uses: those it names and those it asked for (request.getfixturevalue)
     fixtures = [defs[-1] for name, defs in item._fixtureinfo.name2fixturedefs.items()
                 if name in item.fixturenames and defs]
+    fixtures += list(getattr(getattr(item, "_request", None), "_fixture_defs", {}).values())
     started = (_launches.count() > getattr(item, "tylmp_launches_before", _launches.count())
                or any(getattr(d, "tylmp_started_lammps", False) for d in fixtures))
     kind = item.stash.get(CLASS, None)

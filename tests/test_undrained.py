@@ -30,7 +30,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from test_decks import REPO, cli, read_csv, run_deck
+from test_decks import MODE_DECKS_ONCE, REPO, cli, read_csv, run_deck
 
 STRAIN = 0.04           # |eps1| at the end of the CI runs
 # sigma2 = sigma3: the servo removes the fraction g = 0.25 of an error per step and the
@@ -67,6 +67,9 @@ def check_constant_volume_and_lateral(t):
     assert np.max(lateral[1:]) < LATERAL_TOL, np.max(lateral)
 
 
+# the runs of `records` go through the 29 Sep 2021 half only; under 4 Feb 2025 the deck runs
+# to 0.2 % (tests/test_decks.py: MODE_DECKS_ONCE, test_deck_runs_a_short_stretch)
+@MODE_DECKS_ONCE
 @pytest.mark.parametrize("key", [("dense", "compression"), ("loose", "compression"),
                                  ("dense", "extension")])
 def test_constant_volume_equal_lateral_stresses(records, key):
@@ -88,6 +91,7 @@ def test_constant_volume_equal_lateral_stresses(records, key):
         assert np.all(t["sig1"][loaded] < np.minimum(t["sig2"], t["sig3"])[loaded])
 
 
+@MODE_DECKS_ONCE
 def test_loose_p_falls_dense_p_rises(records):
     dense, _ = read_csv(records[("dense", "compression")][1])
     loose, _ = read_csv(records[("loose", "compression")][1])
@@ -105,6 +109,7 @@ def test_loose_p_falls_dense_p_rises(records):
     assert loose["p"][-1] < 0.5 * P0
 
 
+@MODE_DECKS_ONCE
 def test_analysis_figure(records, tmp_path):
     paths = [str(records[k][1]) for k in (("dense", "compression"), ("loose", "compression"))]
     out = tmp_path / "undrained.png"
