@@ -20,7 +20,7 @@ docs/theory.md §10-13) on the decks' quick 500-sphere specimens:
   analysis       tyanalysis.shear on a hand-made record
 
 The decks run as a user runs them (lmp -in inputs/NAME.in from a directory holding inputs/),
-with the specimens prepared once per session (tests/test_decks.py's fixture); the flip tests
+with the specimens prepared once per session (tests/conftest.py's fixture); the flip tests
 run decks of their own from the dense specimen (the objectivity tests, the same way:
 tests/test_shear_objectivity.py). About 1.5-3 minutes (2 cores); every test passes on LAMMPS
 29 Sep 2021 and on 4 Feb 2025 (scripts/lammps2025.sh).
@@ -32,7 +32,7 @@ import numpy as np
 import pytest
 
 import test_decks
-from test_decks import cli, read_csv, run_deck, specimens  # noqa: F401 (fixture)
+from test_decks import cli, read_csv, run_deck
 from lmprun import LOAD_TYLMP, run_ok
 
 REPO = test_decks.REPO
