@@ -14,7 +14,7 @@ step.
             the volume constant, no liquefaction
   options   the decks' bad -var options are errors naming them
 
-About 6 s of CPU beside the specimens' preparation (tests/test_decks.py's fixture).
+About 6 s of CPU beside the specimens' preparation (once per session: tests/conftest.py).
 """
 import os
 
@@ -23,7 +23,7 @@ import pytest
 
 import test_decks
 from cellspec import read_csv
-from test_decks import cli, run_deck, specimens  # noqa: F401 (fixture)
+from test_decks import cli, run_deck
 
 REPO = test_decks.REPO
 CSR, RATE = 0.15, 1e-4
