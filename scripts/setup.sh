@@ -65,7 +65,7 @@ if [ -n "$missing" ]; then
   echo "setup: installing$missing"
   # without the recommended packages: on a fresh Debian 12 they are 331 more (ParaView, Qt,
   # LLVM's development files, LAMMPS's examples and manual, ...; 320 MB of the 680 MB to
-  # download), none of which the product or its tests use (docs/testing.md)
+  # download), none of which the product or its tests use (docs/developer.md)
   $SUDO apt-get install -y -qq --no-install-recommends $missing >/dev/null
 fi
 # YADE, the independent engine of the cross-checks (tests/test_yade_crosscheck.py,

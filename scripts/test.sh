@@ -5,7 +5,7 @@
 #   bash scripts/test.sh [pytest arguments]
 #   TYLMP_TEST_LAMMPS=2021 bash scripts/test.sh     (one version only: 2021 or 2025)
 # With both versions, each test runs where its outcome can depend on the version
-# (tests/lammps_halves.py, docs/testing.md): a test that starts no LAMMPS only in the 29 Sep 2021
+# (tests/lammps_halves.py, docs/developer.md): a test that starts no LAMMPS only in the 29 Sep 2021
 # half, one that runs both versions itself only in the 4 Feb 2025 half, every other one in both.
 # With one version, every test runs against it.
 set -euo pipefail

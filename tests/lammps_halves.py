@@ -1,4 +1,4 @@
-"""Which tests run in which half of scripts/test.sh (docs/testing.md), and the check that keeps
+"""Which tests run in which half of scripts/test.sh (docs/developer.md), and the check that keeps
 that choice honest: a pytest plugin that tests/conftest.py registers.
 
 scripts/test.sh runs the suite against LAMMPS 29 Sep 2021 and then against 4 Feb 2025, and names

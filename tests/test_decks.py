@@ -165,7 +165,7 @@ def report_runtimes():
 
 
 # friction.in, radial.in (and undrained.in, tests/test_undrained.py) at full length run once,
-# in the 29 Sep 2021 half of scripts/test.sh (tests/lammps_halves.py, docs/testing.md): their
+# in the 29 Sep 2021 half of scripts/test.sh (tests/lammps_halves.py, docs/developer.md): their
 # stress paths differ from axisym.in's only in the strain rates fix cell/servo computes
 # (plugin/core), and their calls into LAMMPS (box change and remap, neighbour rebuilds, the
 # pair's contact history, the fix's outputs read by thermo and the CSV) are axisym.in's, whose
