@@ -6,6 +6,9 @@
 #   bash scripts/lammps2025.sh [pytest arguments]     (the whole suite, tests/, unless the
 #                                                     arguments name test files)
 #   TYLMP_LAMMPS2025_NO_TESTS=1 bash scripts/lammps2025.sh   (build only, no pytest)
+#   TYLMP_TEST_HALF=2025 bash scripts/lammps2025.sh           (what scripts/test.sh runs: only the
+#                                                     tests whose outcome can depend on the
+#                                                     LAMMPS version, tests/lammps_halves.py)
 #
 # The LAMMPS build is installed under $TYLMP_CACHE (default ~/.cache/tylmp), in a directory
 # named by the LAMMPS version and a hash of its configuration, and reused by later runs: a
@@ -156,9 +159,14 @@ build_tylmp() {
   # our library against that LAMMPS, in its own build tree, and the Python package with it
   # (build/python) installed with pip into a virtual environment beside that LAMMPS (not into
   # the system's Python, nor into the .venv of scripts/setup.sh, which has the 29 Sep 2021 build)
+  # The 4 Feb 2025 half of scripts/test.sh (TYLMP_TEST_HALF=2025) skips the core tests (they
+  # start no LAMMPS: the 29 Sep 2021 half runs them, tests/lammps_halves.py), so its build
+  # leaves them out: half of the build's compile time
+  local core_tests=ON
+  [ "${TYLMP_TEST_HALF:-}" = 2025 ] && core_tests=OFF
   cmake -S "$repo" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release \
     -DLAMMPS_SOURCE_DIR="$PREFIX/share/lammps-src" -DLAMMPS_DIR="$PREFIX/lib/cmake/LAMMPS" \
-    -DCMAKE_INSTALL_PREFIX="$PREFIX/tylmp" >/dev/null
+    -DCMAKE_INSTALL_PREFIX="$PREFIX/tylmp" -DTYLMP_BUILD_TESTS="$core_tests" >/dev/null
   nice cmake --build "$BUILD" -j "$JOBS" >/dev/null
   if ! "$VENV/bin/python" -c "import numpy" >/dev/null 2>&1; then
     /usr/bin/python3 -m venv --clear --system-site-packages "$VENV"

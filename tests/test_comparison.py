@@ -11,7 +11,6 @@ bench/compare_assembly.py, at a coarser resolution / shorter strain than the doc
     (remap v), while thornton/yin gives the same stiffness both ways.
 """
 import os
-import subprocess
 
 import numpy as np
 import pytest
@@ -55,15 +54,9 @@ def test_tangential_loop_against_closed_forms(tmp_path, tangential, key):
 
 
 @pytest.fixture(scope="module")
-def dense_specimen(tmp_path_factory):
-    work = tmp_path_factory.mktemp("comparison_specimen")
-    os.symlink(os.path.join(REPO, "inputs"), work / "inputs")
-    (work / "in.prepare").write_text("variable specimen index dense\nvariable scale index quick\n"
-                                     "include inputs/common/specimen.in\n")
-    proc = subprocess.run(["lmp", "-in", "in.prepare", "-log", "none", "-nocite"], cwd=str(work),
-                          capture_output=True, text=True, timeout=900)
-    assert proc.returncode == 0 and "ERROR" not in proc.stdout, proc.stdout[-3000:]
-    return str(work / "tylmp_specimens" / "dense_quick.restart")
+def dense_specimen(specimens):
+    """The decks' dense quick specimen (prepared once per session: tests/conftest.py)."""
+    return str(specimens / "dense_quick.restart")
 
 
 def test_affine_term_sets_the_initial_stiffness_of_the_assembly(tmp_path, dense_specimen, bench):

@@ -16,7 +16,8 @@ preparation settings, never left torn, and found from any directory (issues 14, 
 
 Each deck runs in its own temporary directory with `inputs/` symlinked to the repository's, as
 `lmp -in inputs/NAME.in` from a repository root; the dense and loose specimens are prepared
-once per session (both at once, one process each) and copied into every directory.
+once per session (both at once, one process each: tests/conftest.py) and copied into every
+directory.
 Uses the build of TYLMP_BUILD_DIR (default build/) through PYTHONPATH as set by conftest.py,
 and TYLMP_LIBRARY if set (tylmp.library_path). About 3-4 minutes on a quiet 2-core machine.
 """
@@ -95,29 +96,8 @@ def assert_png(path):
 
 
 # ---------------------------------------------------------------------------------------------
-# fixtures: the specimens once per session, then one run of each deck
-
-
-@pytest.fixture(scope="session")
-def specimens(tmp_path_factory):
-    """tylmp_specimens/ with dense_quick and loose_quick, prepared as the decks do."""
-    work = _workdir(tmp_path_factory, "specimens")
-    procs = {}
-    start = time.time()
-    for kind in ("dense", "loose"):
-        deck = f"in.prepare_{kind}"
-        (work / deck).write_text(f"variable specimen index {kind}\nvariable scale index quick\n"
-                                 f"variable tylmp_common string {REPO}/inputs/common\n"
-                                 "include ${tylmp_common}/specimen.in\n")
-        procs[kind] = subprocess.Popen(_lmp_cmd(deck, None), cwd=str(work), text=True,
-                                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                                       env=_env())
-    for kind, proc in procs.items():
-        out, _ = proc.communicate(timeout=TIMEOUT)
-        _check(proc.returncode, out, f"preparation of the {kind} specimen")
-        assert (work / "tylmp_specimens" / f"{kind}_quick.restart").is_file()
-    RUNTIMES["prepare dense + loose (parallel)"] = time.time() - start
-    return work / "tylmp_specimens"
+# fixtures: the specimens once per session (tests/conftest.py: specimens, shared with every
+# module that runs the decks), then one run of each deck
 
 
 def run_deck(tmp_path_factory, specimens, name, variables=None, tag=None):
@@ -182,6 +162,18 @@ def report_runtimes():
     print("\nwall-clock seconds per deck run:")
     for key, seconds in RUNTIMES.items():
         print(f"  {key:34s} {seconds:7.1f}")
+
+
+# friction.in, radial.in (and undrained.in, tests/test_undrained.py) at full length run once,
+# in the 29 Sep 2021 half of scripts/test.sh (tests/lammps_halves.py, docs/developer.md): their
+# stress paths differ from axisym.in's only in the strain rates fix cell/servo computes
+# (plugin/core), and their calls into LAMMPS (box change and remap, neighbour rebuilds, the
+# pair's contact history, the fix's outputs read by thermo and the CSV) are axisym.in's, whose
+# runs go through both halves. What does differ per deck, its own input text, runs under both
+# LAMMPS in test_deck_runs_a_short_stretch.
+MODE_DECKS_ONCE = pytest.mark.lammps_once(
+    reason="a stress path of fix cell/servo on the orthogonal cell: the LAMMPS calls of "
+           "axisym.in (both halves); the deck's text runs in test_deck_runs_a_short_stretch")
 
 
 def p_held(t, after, tol=0.01):
@@ -329,6 +321,7 @@ def test_axisym_figure(axisym_dense, axisym_loose, tmp_path):
 # effect of interparticle friction (Fig 3)
 
 
+@MODE_DECKS_ONCE
 def test_friction_sinphi_grows_with_mu(friction):
     mus = [0.0, 0.3, 1.0]
     files = {mu: friction / f"friction_mu{label}.csv" for mu, label in zip(mus, ["0", "0.3", "1.0"])}
@@ -349,6 +342,7 @@ def test_friction_sinphi_grows_with_mu(friction):
     assert sinphi_max[2] - sinphi_max[0] > 0.1
 
 
+@MODE_DECKS_ONCE
 def test_friction_figure(friction):
     out = friction / "fig3.png"
     text = cli("friction", *sorted(str(p) for p in friction.glob("friction_mu*.csv")),
@@ -357,12 +351,36 @@ def test_friction_figure(friction):
     assert_png(out)
 
 
+@pytest.mark.parametrize("name, variables, record", [
+    ("friction", {"mu": 0.3, "csv_every": 10}, "friction_mu0.3.csv"),
+    ("radial", {"b": 0.5, "csv_every": 10}, "radial_b0.5.csv"),
+    ("undrained", {}, "undrained.csv"),
+])
+def test_deck_runs_a_short_stretch(tmp_path_factory, specimens, name, variables, record):
+    """The decks whose full runs go through one half only (MODE_DECKS_ONCE), to 0.2 % strain
+    under the LAMMPS under test: the deck's text runs, stops at its strain, and the servo holds
+    what the deck asks (p within 1 % of 100 kPa past the first row, where the shear stage's
+    adhesion has just taken a few per cent off p: tests/test_undrained.py; for undrained.in the
+    volume to 1e-9, as there)."""
+    work, _ = run_deck(tmp_path_factory, specimens, name, dict(variables, strain=0.002),
+                       tag=f"{name}_short")
+    t, names = read_csv(work / record)
+    assert names == CSV_COLUMNS
+    if name == "undrained":
+        assert t["eps1"][-1] == pytest.approx(0.002, abs=1e-4)
+        assert np.max(np.abs(t["volume"] / t["volume"][0] - 1.0)) < 1e-9
+    else:
+        assert 0.002 <= t["eps_d13"][-1] < 0.0021
+        assert p_held(t, t["eps_d13"] > 0) < 0.01
+
+
 # ---------------------------------------------------------------------------------------------
 # radial deviatoric paths at constant b (Figs 4-6)
 
 B_VALUES = {"0": 0.0, "0.5": 0.5, "1": 1.0}
 
 
+@MODE_DECKS_ONCE
 def test_radial_b_and_p_held(radial):
     for label, b in B_VALUES.items():
         t, _ = read_csv(radial / f"radial_b{label}.csv")
@@ -375,6 +393,7 @@ def test_radial_b_and_p_held(radial):
         assert p_held(t, t["eps_d13"] > 0.01) < 0.01, label
 
 
+@MODE_DECKS_ONCE
 def test_radial_strength_depends_on_b(radial):
     """Paper section 4: extension (b = 1) is stronger than compression (Lade-Duncan, not
     Matsuoka-Nakai), and the strength is largest near b = 0.5."""
@@ -384,6 +403,7 @@ def test_radial_strength_depends_on_b(radial):
     assert smax["0.5"] > smax["0"] + 0.02, smax
 
 
+@MODE_DECKS_ONCE
 def test_radial_figure(radial):
     out = radial / "radial.png"
     text = cli("radial", *[str(radial / f"radial_b{label}.csv") for label in B_VALUES],

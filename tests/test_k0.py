@@ -22,7 +22,7 @@ docs/theory.md §12-13) and inputs/k0.in.
             loading (lower in the dense specimen) and rises on unloading; `tyanalysis k0`
             prints the same numbers, beside Jaky's 1 - sin φ′ (printed, not a check).
 
-About 5 s of CPU beside the specimens' preparation (tests/test_decks.py's fixture).
+About 5 s of CPU beside the specimens' preparation (once per session: tests/conftest.py).
 """
 import math
 
@@ -36,7 +36,7 @@ from cellspec import E, HEADER, NU, RHO, effective_modulus, read_csv
 from lmprun import LOAD_TYLMP, run_ok
 from test_cell_stiffness_lattice import (N_CELLS, R, closed_form, cubic_voigt, relative_overlap,
                                          turned_45_about_z)
-from test_decks import cli, run_deck, specimens  # noqa: F401 (fixture)
+from test_decks import cli, run_deck
 
 P_LATTICE = 1e6
 MU_NO_SLIP = 1000.0

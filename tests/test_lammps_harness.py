@@ -147,6 +147,7 @@ def yaml_block(text, key):
     return [[float(v) for v in row.split()[1:]] for row in block.splitlines()]
 
 
+@pytest.mark.no_lammps       # reads the YAML files only: the 29 Sep 2021 half (tests/lammps_halves.py)
 @pytest.mark.parametrize("yaml", YAMLS, ids=[y.stem for y in YAMLS])
 def test_reference_system_has_contacts_that_change_during_the_run(yaml):
     # the comparisons above are only as good as the system: most spheres must touch, and the

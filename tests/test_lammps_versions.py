@@ -4,8 +4,9 @@ for another LAMMPS, and the same numbers from 29 Sep 2021 and 4 Feb 2025.
 The suite runs once per LAMMPS (scripts/test.sh): `lmp` on PATH is the one under test. The
 cross-version tests need both LAMMPS on this machine, each with a build of tylmp for it:
 Debian's /usr/bin/lmp (29 Sep 2021) and the wrapper of scripts/lammps2025.sh (4 Feb 2025,
-$TYLMP_LAMMPS2025_WRAPPER or found in its cache). They always run in the 4 Feb 2025 half of
-scripts/test.sh and skip with the reason otherwise.
+$TYLMP_LAMMPS2025_WRAPPER or found in its cache). They run once, in the 4 Feb 2025 half of
+scripts/test.sh (marked both_lammps: tests/lammps_halves.py), and skip with the reason where
+either LAMMPS is missing.
 """
 import glob
 import os
@@ -166,6 +167,9 @@ def lammps2025_wrapper():
 def both_lammps():
     """{version: (lmp command, PYTHONPATH)} for 29 Sep 2021 and 4 Feb 2025, or skip. Each side's
     PYTHONPATH has its own build of tylmp when the repository has one (else the installed one)."""
+    if os.environ.get("TYLMP_TEST_HALF") == "2021":
+        pytest.fail("a test that runs both LAMMPS versions must be marked both_lammps, so that it "
+                    "runs once, in the 4 Feb 2025 half (tests/lammps_halves.py)")
     sides = {}
     build21 = BUILD if library_for(V2021) else os.path.join(REPO, "build")
     build25 = BUILD if library_for(V2025) else os.environ.get(
@@ -215,6 +219,7 @@ run 5000
 """
 
 
+@pytest.mark.both_lammps
 def test_two_spheres_agree_across_versions(tmp_path):
     sides = both_lammps()
     records = {}
@@ -260,6 +265,7 @@ def last_thermo(out, step):
 # The runs of both versions were bitwise identical (records and 17-digit thermo) over these
 # 30000 steps: same compiler for our library, same neighbor-list order in both LAMMPS. The
 # tolerance allows round-off, should a LAMMPS change its summation order.
+@pytest.mark.both_lammps
 def test_assembly_agrees_across_versions(tmp_path):
     sides = both_lammps()
     steps = 30000
@@ -289,6 +295,7 @@ run 1000
 """
 
 
+@pytest.mark.both_lammps
 def test_restart_files_across_versions(tmp_path):
     """29 Sep 2021 -> 4 Feb 2025: continues as 29 Sep 2021 itself does (contact histories
     included, plugin/lammps/fix_neigh_history_thornton_yin.cpp); 4 Feb 2025 -> 29 Sep 2021:

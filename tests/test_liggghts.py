@@ -23,6 +23,7 @@ pytestmark = pytest.mark.skipif(not LIGGGHTS_INSTALLED and not os.access(LAUNCHE
                                        "libliggghts-dev, then rebuild)")
 
 
+@pytest.mark.no_lammps          # LIGGGHTS only
 def test_the_launcher_was_built():
     assert os.access(LAUNCHER, os.X_OK), (
         f"LIGGGHTS is installed but {LAUNCHER} was not built: reconfigure (cmake -S . -B build)")
@@ -257,6 +258,7 @@ def final_state(workdir):
     return np.array([[float(v) for v in l.split()] for l in lines[start:]])
 
 
+@pytest.mark.no_lammps          # LIGGGHTS only
 def test_lattice_one_and_two_ranks_and_restart_agree(tmp_path):
     runs = {}
     for name, ranks in [("serial", 1), ("mpi", 2)]:
@@ -303,6 +305,7 @@ GOOD = {"youngsModulus": "peratomtype 70e9", "poissonsRatio": "peratomtype 0.3",
         "coefficientFriction": "peratomtypepair 1 0.3", "interfaceEnergy": "peratomtypepair 1 0.3"}
 
 
+@pytest.mark.no_lammps          # LIGGGHTS only
 @pytest.mark.parametrize("change, pair, message", [
     ({"interfaceEnergy": None}, "thornton_yin tangential thornton_yin",
      "needs 'fix ID all property/global interfaceEnergy peratomtypepair"),
@@ -333,6 +336,7 @@ def test_bad_input_stops_with_a_named_error(tmp_path, change, pair, message):
     assert "ERROR" in out and message in out, out[-2000:]
 
 
+@pytest.mark.no_lammps          # LIGGGHTS only
 def test_axisymmetric_deck_holds_the_lateral_stress_and_reads_as_a_cell_record(tmp_path):
     # inputs/liggghts/axisym.in on the committed 3620-sphere dense specimen to 0.2 % axial
     # strain: LIGGGHTS's fix deform shortens x at the true rate 5e-5 1/s while its lateral edges

@@ -54,7 +54,13 @@ def sticking_velocity():
     return Vs
 
 
-@pytest.mark.parametrize("ratio", [1.2, 2.0, 5.0])
+# 1.2 Vs, three times the steps of the others (the slow rebound), in the 29 Sep 2021 half only
+# (tests/lammps_halves.py): the law's path at that speed is plugin/core's under either LAMMPS, and
+# the LAMMPS side of the same impact (two spheres, the pair's history) runs at 2 and 5 Vs in both
+@pytest.mark.parametrize("ratio", [
+    pytest.param(1.2, marks=pytest.mark.lammps_once(
+        reason="the law's path is the same code under either LAMMPS; 2 and 5 Vs run in both")),
+    2.0, 5.0])
 def test_head_on_adhesive_impact_rebounds_with_jkr_restitution(tmp_path, sticking_velocity, ratio):
     # e = sqrt(1 - (Vs/V)^2) above the sticking velocity (docs/theory.md §3.2)
     V = ratio * sticking_velocity

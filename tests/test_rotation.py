@@ -1,6 +1,6 @@
 """inputs/rotation.in, principal stress rotation at constant p, sigma1 - sigma3 and b (the
 hollow-cylinder path, docs/theory.md §13), run as a user runs it on the 500-sphere dense quick
-specimen (prepared once, as tests/test_decks.py does), and `tyanalysis rotation` on its record.
+specimen (prepared once per session: tests/conftest.py), and `tyanalysis rotation` on its record.
 The rotation turns sigma1 by 90 degrees in the xz plane at 0.5 degree/s after the ramp and hold.
 
   * the record starts at the start of the rotation (`continue no`): time and strains from zero;
@@ -11,9 +11,8 @@ The rotation turns sigma1 by 90 degrees in the xz plane at 0.5 degree/s after th
     of p on each stress component, the tolerance tests/test_decks.py holds p and b to);
   * sigma1 - sigma3, b and the in-plane shear held, the major principal direction following
     alpha(t) = rate t within the lag that tolerance allows, and the out-of-plane shears at zero:
-    held with the shear servo's gain 0.02 (at gain 0.03 and above the shear components rang at
-    the rate cap, 2-4 % of p in sig_xz, sig_xy and sig_yz with a period of about 40 steps:
-    docs/decks/rotation.md, "The servo's gain").
+    held with the deck's servo gain 0.01 (from gain 0.02 on the shear components ring, sig_xy
+    reaching 2.3 % of p: docs/decks/rotation.md, "The servo's gain").
 About 2 minutes with the specimens' preparation.
 """
 import math
@@ -22,7 +21,7 @@ import os
 import numpy as np
 import pytest
 
-from test_decks import cli, read_csv, run_deck, specimens  # noqa: F401
+from test_decks import cli, read_csv, run_deck
 
 P, DEV, B = 1e5, 4e4, 0.5          # the deck's defaults
 RATE, TURN = 0.5, 90.0             # degree/s, degrees
@@ -30,7 +29,7 @@ SERVO_TOL = 0.01                   # of p, on each held stress component
 
 
 @pytest.fixture(scope="module")
-def record(tmp_path_factory, specimens):  # noqa: F811
+def record(tmp_path_factory, specimens):
     work, out = run_deck(tmp_path_factory, specimens, "rotation",
                          {"rotation_turn": TURN, "rotation_rate": RATE}, tag="rotation")
     assert "plot: tyanalysis rotation rotation.csv --target" in out

@@ -29,7 +29,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 import pytest
 
-from test_decks import read_csv, specimens  # noqa: F401 (fixture)
+from test_decks import read_csv
 from test_simple_shear import SIGMA_N, from_restart, shear_deck, specimen_settings
 from lmprun import LOAD_TYLMP, run_ok
 

@@ -216,6 +216,11 @@ SHEAR_TOLERANCE = {"tau_ratio_max": 0.0078, "gamma_at_98pct_of_peak_pct": 0.59,
                    "tau_ratio_mean_from_2pct": 0.0232, "eps_v_at_gamma_end_pct": 0.333}
 
 
+# In the 29 Sep 2021 half only (tests/lammps_halves.py): the YADE run is the same in both
+# halves, and the LAMMPS run (fix cell/servo shear xz on the triclinic cell, pair thornton/yin)
+# takes the paths of inputs/simple_shear.in, which tests/test_simple_shear.py runs under both.
+@pytest.mark.lammps_once(reason="the YADE run is the same in both halves; the LAMMPS run takes "
+                                "the paths of tests/test_simple_shear.py's drained decks")
 @needs_yade
 def test_simple_shear_agrees_with_yade(tmp_path, bench):
     prefix = tmp_path / "lammps"

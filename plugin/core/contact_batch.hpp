@@ -405,21 +405,33 @@ inline void advance_batch(ContactBatch& b, int n, const PairConstants& k, const 
 
 // The forces of contacts 0 .. n-1 without a step of their history: the setup pass of a run,
 // which recomputes the forces at unchanged positions. First touch and separation as in
-// advance_batch (touch_or_break); otherwise the history is kept: P and a at the overlap by the
+// advance_batch (touch_or_break); a contact touched here for the first time is there at its
+// overlap before the run's first step, pressed without tangential displacement
+// (docs/theory.md §1.3): the law's step onto that overlap with ds = 0 lays its memory over the
+// overlap at slope 0 (§2.3), so that the first step finds the springs in contact (stiffness
+// 8G*a) rather than taking the whole overlap as entering with that step's displacement. It adds
+// no force and dissipates nothing. Otherwise the history is kept: P and a at the overlap by the
 // law (normal_contact: its iteration warm-started from the kept radius), the kept T, damping and tallies as after a step, sliding judged
 // under the mu in force now (slides_without_step, docs/theory.md §2). Nothing is dissipated
-// (dissipation, damping_dissipation and break_energy are 0): no step is taken. Scalar only,
-// once per run.
+// (dissipation, damping_dissipation and break_energy are 0). Scalar only, once per run.
 template <bool Adhesive, bool Damped>
 inline void forces_without_step(ContactBatch& b, int n, const PairConstants& k,
                                 const BatchParameters& p)
 {
   detail::touch_or_break<Adhesive>(b, n, k);
   for (int i = 0; i < n; ++i) {
-    const ContactHistory h = stored_history(b, i);
+    ContactHistory h = stored_history(b, i);
     const double R = b.R[i], delta = b.delta[i];
     double a = 0.0, P = 0.0;
-    if (b.broken[i] == 0.0) {
+    if (b.broken[i] == 0.0 && b.first_touch[i]) {
+      const double normal_dir[3] = {b.n[0][i], b.n[1][i], b.n[2][i]}, none[3] = {0.0, 0.0, 0.0};
+      double dissipation = 0.0;    // stays 0: no tangential displacement, no stored energy
+      const KernelResult normal =
+          advance_contact<Adhesive>(k, R, delta, normal_dir, 0.0, none, h, dissipation);
+      load_history(b, i, h);
+      a = normal.contact_radius;
+      P = normal.P;
+    } else if (b.broken[i] == 0.0) {
       const KernelResult normal = normal_contact<Adhesive>(k, R, delta, h.radius);
       a = normal.contact_radius;
       P = normal.P;

@@ -656,6 +656,48 @@ TEST(BatchForcesWithoutStep, ForcesAtTheOverlapHistoryKept)
   for (int d = 0; d < 3; ++d) EXPECT_EQ(b->force[d][2], 0.0);
 }
 
+// A contact found in the setup pass (first touch, no step: spheres that overlap when a run
+// begins) is pressed to its overlap without tangential displacement (docs/theory.md §1.3): the
+// run's first step is Mindlin-Deresiewicz's first loading at constant P from there (§2.1),
+// T = mu P [1 - (1 - s/s_c)^(3/2)] with s_c = 3 mu P/(16 G* a), of initial stiffness 8 G* a.
+// A contact that touches within the step takes its whole overlap as entering with the step's
+// displacement (§2.3, operation 1): a band of slope s/(kappa delta), T = (2/3) 8 G* a s.
+TEST_P(BatchLaw, ContactFoundInSetupIsPressedWithoutTangentialDisplacement)
+{
+  using namespace glass_pair;
+  const Isa isa = GetParam();
+  const double R = kRstar, mu = 0.3, delta = 1e-4 * R;
+  const tycore::PairConstants k = tycore::pair_constants(coefficients(mu, 0.0));
+  tycore::BatchParameters p;
+  p.dt = kDt;
+  auto b = std::make_unique<ContactBatch>();
+  contact_paths::Step s{};
+  s.n = Eigen::Vector3d(0.0, 0.0, 1.0);
+  s.ds = Eigen::Vector3d::Zero();
+  s.twist = 0.0;
+  s.delta = delta;
+  set_lane(*b, 0, s, R, tycore::ContactHistory{});
+  b->first_touch[0] = true;
+  tycore::forces_without_step<false, false>(*b, 1, k, p);
+  const double a = std::sqrt(R * delta), P = 4.0 / 3.0 * kEstar * a * delta;    // Hertz
+  EXPECT_NEAR(b->P[0], P, 1e-12 * P);
+  for (int d = 0; d < 3; ++d) EXPECT_EQ(b->force[d][0], d == 2 ? b->P[0] : 0.0);
+  EXPECT_EQ(b->dissipation[0], 0.0);
+  EXPECT_EQ(b->energy[0], 0.0);
+
+  const double s_c = 3.0 * mu * P / (16.0 * kGstar * a), step = 1e-3 * s_c;
+  s.ds = Eigen::Vector3d(step, 0.0, 0.0);
+  set_lane(*b, 0, s, R, tycore::stored_history(*b, 0));
+  set_lane(*b, 1, s, R, tycore::ContactHistory{});
+  b->first_touch[1] = true;
+  tycore::advance_batch<false, false>(*b, 2, k, p, isa);
+  const double first_loading = -mu * P * std::expm1(1.5 * std::log1p(-step / s_c));
+  EXPECT_NEAR(b->T[0][0], first_loading, 1e-9 * first_loading);
+  EXPECT_NEAR(b->T[0][0], 8.0 * kGstar * a * step, 1e-3 * first_loading);    // bend: 2.5e-4
+  const double entering = 2.0 / 3.0 * 8.0 * kGstar * a * step;
+  EXPECT_NEAR(b->T[0][1], entering, 1e-9 * entering);
+}
+
 INSTANTIATE_TEST_SUITE_P(EveryIsaOfThisProcessor, BatchLaw, ::testing::ValuesIn(supported_isas()),
                          [](const ::testing::TestParamInfo<Isa>& info) {
                            return std::string(tycore::isa_name(info.param));
