@@ -15,18 +15,17 @@ namespace tycore {
 // l^2 [k_N n_a^2 n_b^2 + k_T (delta_ab n_a^2 - n_a^2 n_b^2)]; n the unit branch direction
 // (either sign), l2 = |branch|^2
 template <class Store>
-[[gnu::always_inline]] inline void affine_principal_entries(double nx, double ny, double nz,
-                                                            double l2, double normal_stiffness,
-                                                            double tangential_stiffness,
-                                                            Store&& store)
+[[gnu::always_inline]] inline void
+affine_principal_entries(double nx, double ny, double nz, double l2, double normal_stiffness,
+                         double tangential_stiffness, Store &&store)
 {
   const double n2[3] = {nx * nx, ny * ny, nz * nz};
   constexpr int a_of[6] = {0, 1, 2, 0, 0, 1}, b_of[6] = {0, 1, 2, 1, 2, 2};
 #pragma GCC unroll 6
   for (int m = 0; m < 6; ++m) {
     const double nn = n2[a_of[m]] * n2[b_of[m]];
-    store(m, l2 * (normal_stiffness * nn
-                   + tangential_stiffness * ((m < 3 ? n2[a_of[m]] : 0.0) - nn)));
+    store(m,
+          l2 * (normal_stiffness * nn + tangential_stiffness * ((m < 3 ? n2[a_of[m]] : 0.0) - nn)));
   }
 }
 
@@ -40,9 +39,9 @@ inline constexpr int affine_shear_size = 15;
 // (where no delta survives the fourth moment stands alone). Plain arithmetic, so that it
 // vectorises in the contact batch's lane loop (pair_thornton_yin.cpp).
 template <class Store>
-[[gnu::always_inline]] inline void affine_shear_entries(double nx, double ny, double nz,
-                                                        double l2, double normal_stiffness,
-                                                        double tangential_stiffness, Store&& store)
+[[gnu::always_inline]] inline void affine_shear_entries(double nx, double ny, double nz, double l2,
+                                                        double normal_stiffness,
+                                                        double tangential_stiffness, Store &&store)
 {
   const double w = (normal_stiffness - tangential_stiffness) * l2;
   const double h = 0.5 * tangential_stiffness * l2, q = 0.25 * tangential_stiffness * l2;

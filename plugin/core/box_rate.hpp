@@ -4,11 +4,12 @@
 // barostat) silently removes part of that velocity. The check compares the change of the box
 // over a step with what h_rate predicts. Plain C++, no LAMMPS (tests/core/test_box_rate.cpp).
 //
-// Boxes and rates are in LAMMPS's layout h[6] = lx ly lz yz xz xy, compared as matrices. A tilt flip (fix deform
-// 'flip yes', fix cell/servo) replaces the box h by h M, M unit upper-triangular with integer flip
-// counts (docs/theory.md §10.3): the same lattice of images. Its jumps are no change of the box:
-// the box and the rate are compared in the basis of the box before the flip, h M^-1 and h_rate
-// M^-1 (a flip leaves L = h_rate h^-1 unchanged, so h_rate goes to h_rate M with the box).
+// Boxes and rates are in LAMMPS's layout h[6] = lx ly lz yz xz xy, compared as matrices. A tilt
+// flip (fix deform 'flip yes', fix cell/servo) replaces the box h by h M, M unit upper-triangular
+// with integer flip counts (docs/theory.md §10.3): the same lattice of images. Its jumps are no
+// change of the box: the box and the rate are compared in the basis of the box before the flip,
+// h M^-1 and h_rate M^-1 (a flip leaves L = h_rate h^-1 unchanged, so h_rate goes to h_rate M
+// with the box).
 #ifndef TYCORE_BOX_RATE_HPP
 #define TYCORE_BOX_RATE_HPP
 
@@ -57,8 +58,8 @@ inline BoxChange unexplained_box_change(const double h0[6], const double h1[6],
     const double change = box(i, j) - H0(i, j), from_rate = rate(i, j) * dt;
     const double tolerance = 1e-3 * (std::fabs(change) + std::fabs(from_rate));
     const bool explained = std::fabs(box(i, j) - held(i, j)) <= tolerance ||
-                           std::fabs(H0(i, j) - end_before(i, j)) <= tolerance ||
-                           std::fabs(box(i, j) - start_after(i, j)) <= tolerance;
+        std::fabs(H0(i, j) - end_before(i, j)) <= tolerance ||
+        std::fabs(box(i, j) - start_after(i, j)) <= tolerance;
     // (a tilt is measured against the edge it shears, not against its own size, which may be 0)
     if (!explained && 1e3 * tolerance > 1e-12 * std::fabs(box(edge[k], edge[k])))
       return {k, change, from_rate};

@@ -27,9 +27,9 @@ struct UntilTarget {
 
 struct CellCommand {
   std::unique_ptr<CellProgramme> programme;
-  ServoSettings settings;            // max_strain_rate 0: chosen at each run's setup
+  ServoSettings settings;    // max_strain_rate 0: chosen at each run's setup
   bool gains_given = false, max_rate_given = false;
-  double inertial_cap = 1e-3;        // the default cap: the rate at this inertial number
+  double inertial_cap = 1e-3;    // the default cap: the rate at this inertial number
   bool cap_warning = true, named_variables = false, continue_previous = true;
   std::string csv_path;
   int csv_every = 0;
@@ -47,118 +47,122 @@ struct RecordError : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
-inline void check_extra_column(const std::string& name, const std::string& ref,
-                               const std::vector<std::pair<std::string, std::string>>& taken);
+inline void check_extra_column(const std::string &name, const std::string &ref,
+                               const std::vector<std::pair<std::string, std::string>> &taken);
 
 namespace command_detail {
 
-// gain, integral_gain, integral_band, max_rate, max_inertial, cap_warning
-inline bool servo_keyword(const std::string& key, ArgList& a, CellCommand& c)
-{
-  if (key == "gain") {
-    c.settings.gain = a.number("gain");
-    c.gains_given = true;
-  } else if (key == "integral_gain") {
-    c.settings.integral_gain = a.number("integral_gain");
-    c.gains_given = true;
-  } else if (key == "integral_band") {
-    c.settings.integral_band = a.number_in("integral_band", 0.0, 1.0, false,
-                                           " (a fraction of the stress level)");
-  } else if (key == "max_rate") {
-    c.settings.max_strain_rate = a.number("max_rate");
-    if (!(c.settings.max_strain_rate > 0.0))
-      throw std::invalid_argument("max_rate must be positive, got "
-                                  + number_text(c.settings.max_strain_rate));
-    c.max_rate_given = true;    // its range needs the timestep: checked at setup
-  } else if (key == "max_inertial") {
-    c.inertial_cap = a.number_in("max_inertial", 0.0, 1.0, true,
-                                 " (above 1 a packing flows like a gas)");
-  } else if (key == "cap_warning") {
-    c.cap_warning = a.yes_no("cap_warning");
-  } else {
-    return false;
-  }
-  return true;
-}
-
-// csv, extra, until, variables, continue
-inline bool record_keyword(const std::string& key, ArgList& a, CellCommand& c)
-{
-  if (key == "csv") {
-    c.csv_path = a.next("csv FILE");
-    if (c.csv_path.empty())
-      throw std::invalid_argument("csv needs a file name, got ''");
-    c.csv_every = a.positive_integer("csv interval N");
-  } else if (key == "extra") {
-    const int n = a.positive_integer("extra column count N");
-    if (a.remaining() < std::size_t(2 * n))
-      throw std::invalid_argument("extra " + std::to_string(n) + " needs " + std::to_string(n)
-                                  + " name-value pairs");
-    for (int j = 0; j < n; ++j) {
-      const std::string name = a.next("extra name"), ref = a.next("extra reference");
-      check_extra_column(name, ref, c.extra);
-      c.extra.emplace_back(name, ref);
+  // gain, integral_gain, integral_band, max_rate, max_inertial, cap_warning
+  inline bool servo_keyword(const std::string &key, ArgList &a, CellCommand &c)
+  {
+    if (key == "gain") {
+      c.settings.gain = a.number("gain");
+      c.gains_given = true;
+    } else if (key == "integral_gain") {
+      c.settings.integral_gain = a.number("integral_gain");
+      c.gains_given = true;
+    } else if (key == "integral_band") {
+      c.settings.integral_band =
+          a.number_in("integral_band", 0.0, 1.0, false, " (a fraction of the stress level)");
+    } else if (key == "max_rate") {
+      c.settings.max_strain_rate = a.number("max_rate");
+      if (!(c.settings.max_strain_rate > 0.0))
+        throw std::invalid_argument("max_rate must be positive, got " +
+                                    number_text(c.settings.max_strain_rate));
+      c.max_rate_given = true;    // its range needs the timestep: checked at setup
+    } else if (key == "max_inertial") {
+      c.inertial_cap =
+          a.number_in("max_inertial", 0.0, 1.0, true, " (above 1 a packing flows like a gas)");
+    } else if (key == "cap_warning") {
+      c.cap_warning = a.yes_no("cap_warning");
+    } else {
+      return false;
     }
-  } else if (key == "until") {
-    c.until.name = a.next("until NAME");
-    c.until.value = a.number("until value");
-  } else if (key == "variables") {
-    c.named_variables = a.yes_no("variables");
-  } else if (key == "continue") {
-    c.continue_previous = a.yes_no("continue");
-  } else {
-    return false;
+    return true;
   }
-  return true;
-}
+
+  // csv, extra, until, variables, continue
+  inline bool record_keyword(const std::string &key, ArgList &a, CellCommand &c)
+  {
+    if (key == "csv") {
+      c.csv_path = a.next("csv FILE");
+      if (c.csv_path.empty()) throw std::invalid_argument("csv needs a file name, got ''");
+      c.csv_every = a.positive_integer("csv interval N");
+    } else if (key == "extra") {
+      const int n = a.positive_integer("extra column count N");
+      if (a.remaining() < std::size_t(2 * n))
+        throw std::invalid_argument("extra " + std::to_string(n) + " needs " + std::to_string(n) +
+                                    " name-value pairs");
+      for (int j = 0; j < n; ++j) {
+        const std::string name = a.next("extra name"), ref = a.next("extra reference");
+        check_extra_column(name, ref, c.extra);
+        c.extra.emplace_back(name, ref);
+      }
+    } else if (key == "until") {
+      c.until.name = a.next("until NAME");
+      c.until.value = a.number("until value");
+    } else if (key == "variables") {
+      c.named_variables = a.yes_no("variables");
+    } else if (key == "continue") {
+      c.continue_previous = a.yes_no("continue");
+    } else {
+      return false;
+    }
+    return true;
+  }
 
 }    // namespace command_detail
 
 // `until NAME VALUE` against what the programme reports and strains; throws if the test could
 // never end by it
-inline void check_until(UntilTarget& until, const CellProgramme& programme)
+inline void check_until(UntilTarget &until, const CellProgramme &programme)
 {
   if (until.name.empty()) return;
   const ProgrammeProfile p = programme.profile();
-  const std::string& name = until.name;
+  const std::string &name = until.name;
   const int k = out::index(name);
-  static const int plane_or_undrained[] = {out::GAMMA, out::TAU, out::SIG_N, out::TAU_RATIO,
-                                           out::R_U, out::CYCLES, out::EPS_A, out::SIG_A,
-                                           out::SIG_R, out::Q_A, out::K0, out::OCR};
-  const bool of_a_programme = std::find(std::begin(plane_or_undrained),
-                                        std::end(plane_or_undrained), k)
-                              != std::end(plane_or_undrained);
+  static const int plane_or_undrained[] = {out::GAMMA, out::TAU,    out::SIG_N, out::TAU_RATIO,
+                                           out::R_U,   out::CYCLES, out::EPS_A, out::SIG_A,
+                                           out::SIG_R, out::Q_A,    out::K0,    out::OCR};
+  const bool of_a_programme =
+      std::find(std::begin(plane_or_undrained), std::end(plane_or_undrained), k) !=
+      std::end(plane_or_undrained);
   if (k < 0 || !(out::measure_of_a_test(k) || of_a_programme))
-    throw std::invalid_argument("until: '" + name + "' is not a strain, stress, void ratio, "
+    throw std::invalid_argument("until: '" + name +
+                                "' is not a strain, stress, void ratio, "
                                 "time, boundary_work, shear or cycle output of the fix (names: "
                                 "docs/fix_cell_servo.md)");
   if (of_a_programme && !reports(p, k))
     throw std::invalid_argument(
-        "until " + name + ": " + programme.name() + " does not report " + name
-        + (k == out::R_U ? " (r_u: shear_cv, cyclic_shear and cyclic_triaxial)"
-           : k == out::CYCLES ? " (cycles: cyclic_shear and cyclic_triaxial)"
-           : k == out::K0 || k == out::OCR ? " (" + name + ": k0)"
-           : k >= out::EPS_A ? " (" + name + ": k0 and cyclic_triaxial)"
-                              : " (it has no shear plane: use gamma_xy, gamma_xz or gamma_yz, "
-                                "or a programme with a plane)"));
+        "until " + name + ": " + programme.name() + " does not report " + name +
+        (k == out::R_U                       ? " (r_u: shear_cv, cyclic_shear and cyclic_triaxial)"
+             : k == out::CYCLES              ? " (cycles: cyclic_shear and cyclic_triaxial)"
+             : k == out::K0 || k == out::OCR ? " (" + name + ": k0)"
+             : k >= out::EPS_A               ? " (" + name + ": k0 and cyclic_triaxial)"
+                               : " (it has no shear plane: use gamma_xy, gamma_xz or gamma_yz, "
+                                 "or a programme with a plane)"));
   if (k >= out::GAMMA_XY && k <= out::GAMMA_YZ && !p.strains_shear[k - out::GAMMA_XY])
-    throw std::invalid_argument("until " + name + ": " + programme.name() + " does not strain "
-                                "the " + voigt_names[3 + k - out::GAMMA_XY] + " shear (" + name
-                                + " stays 0)");
+    throw std::invalid_argument("until " + name + ": " + programme.name() +
+                                " does not strain "
+                                "the " +
+                                voigt_names[3 + k - out::GAMMA_XY] + " shear (" + name +
+                                " stays 0)");
   if (k == out::R_U && until.value > 1.0)
-    throw std::invalid_argument("until r_u " + number_text(until.value) + ": r_u = 1 - "
-                                + (p.plane ? "sigma_n/sigma_n0" : "p/p0") + " cannot exceed 1 "
-                                "(a granular cell carries no tension, " + (p.plane ? "sigma_n"
-                                : "p") + " >= 0): give a target <= 1");
+    throw std::invalid_argument("until r_u " + number_text(until.value) + ": r_u = 1 - " +
+                                (p.plane ? "sigma_n/sigma_n0" : "p/p0") +
+                                " cannot exceed 1 "
+                                "(a granular cell carries no tension, " +
+                                (p.plane ? "sigma_n" : "p") + " >= 0): give a target <= 1");
   if (k == out::CYCLES && !(until.value > 0.0))
-    throw std::invalid_argument("until cycles " + number_text(until.value) + ": the cycle count "
+    throw std::invalid_argument("until cycles " + number_text(until.value) +
+                                ": the cycle count "
                                 "starts at 0 and grows: give a positive target");
   until.output = k;
 }
 
 // MODE args [keyword value ...], args without the fix's ID, group and style, for a cell with
 // shears (triclinic) or without
-inline CellCommand parse_cell_command(const std::vector<std::string>& args, bool triclinic)
+inline CellCommand parse_cell_command(const std::vector<std::string> &args, bool triclinic)
 {
   ArgList a(args);
   CellCommand c;
@@ -168,8 +172,8 @@ inline CellCommand parse_cell_command(const std::vector<std::string>& args, bool
     const std::string key = a.next("keyword");
     if (!seen.insert(key).second)
       throw std::invalid_argument("keyword '" + key + "' is given twice");
-    if (c.programme->keyword(key, a) || command_detail::servo_keyword(key, a, c)
-        || command_detail::record_keyword(key, a, c))
+    if (c.programme->keyword(key, a) || command_detail::servo_keyword(key, a, c) ||
+        command_detail::record_keyword(key, a, c))
       continue;
     const std::string owners = owners_of(key);
     if (!owners.empty())
@@ -195,41 +199,48 @@ inline CellCommand parse_cell_command(const std::vector<std::string>& args, bool
     c.settings.gain = SHEAR_GAIN;
     c.settings.integral_gain = SHEAR_INTEGRAL_GAIN;
   } else if (p.holds_shear_stress && c.settings.gain > MAX_SHEAR_GAIN) {
-    c.warnings.push_back("gain " + g_text(c.settings.gain) + " on a held shear stress "
+    c.warnings.push_back("gain " + g_text(c.settings.gain) +
+                         " on a held shear stress "
                          "overshoots and rings (the packing's shear response relaxes to a "
-                         "fraction of the affine estimate over tens of steps): use gain <= "
-                         + g_text(MAX_SHEAR_GAIN) + " (default " + g_text(SHEAR_GAIN)
-                         + " when a shear stress is held)");
+                         "fraction of the affine estimate over tens of steps): use gain <= " +
+                         g_text(MAX_SHEAR_GAIN) + " (default " + g_text(SHEAR_GAIN) +
+                         " when a shear stress is held)");
   }
   return c;
 }
 
 // the names of extra columns: not a built-in column, not one taken already, nothing that
 // breaks a CSV line; `ref` a c_, f_ or v_ reference (the message names the column)
-inline void check_extra_column(const std::string& name, const std::string& ref,
-                               const std::vector<std::pair<std::string, std::string>>& taken)
+inline void check_extra_column(const std::string &name, const std::string &ref,
+                               const std::vector<std::pair<std::string, std::string>> &taken)
 {
   if (name.empty() || name.find_first_of(",\"' ") != std::string::npos)
-    throw RecordError("extra column name '" + name + "' may not hold commas, quotes "
-                                "or blanks");
+    throw RecordError("extra column name '" + name +
+                      "' may not hold commas, quotes "
+                      "or blanks");
   if (name == "step")
-    throw RecordError("extra column " + name + " (" + ref + ") has the name of the "
-                                "record's built-in column step: choose another name");
+    throw RecordError("extra column " + name + " (" + ref +
+                      ") has the name of the "
+                      "record's built-in column step: choose another name");
   const int k = out::index(name);
   if (k >= 0)
-    throw RecordError("extra column " + name + " (" + ref + ") has the name of the "
-                                "fix's built-in output " + name + " (output "
-                                + std::to_string(k + 1) + "): choose another name");
-  for (const auto& e : taken)
+    throw RecordError("extra column " + name + " (" + ref +
+                      ") has the name of the "
+                      "fix's built-in output " +
+                      name + " (output " + std::to_string(k + 1) + "): choose another name");
+  for (const auto &e : taken)
     if (name == e.first)
-      throw RecordError("extra column " + name + " (" + ref + ") has the name of "
-                                  "extra column " + e.first + " (" + e.second + "): choose "
-                                  "another name");
+      throw RecordError("extra column " + name + " (" + ref +
+                        ") has the name of "
+                        "extra column " +
+                        e.first + " (" + e.second +
+                        "): choose "
+                        "another name");
   if (ref.size() < 3 || ref[1] != '_' || (ref[0] != 'c' && ref[0] != 'f' && ref[0] != 'v'))
-    throw RecordError("extra column " + name + ": '" + ref + "' is not a c_ID, "
-                                "c_ID[i], f_ID, f_ID[i] or v_name reference");
+    throw RecordError("extra column " + name + ": '" + ref +
+                      "' is not a c_ID, "
+                      "c_ID[i], f_ID, f_ID[i] or v_name reference");
 }
-
 
 // ---------------------------------------------------------------------------------------------
 // The extra columns of a record (`extra N name ref ...`): a reference c_ID, c_ID[i], f_ID, f_ID[i]
@@ -237,12 +248,12 @@ inline void check_extra_column(const std::string& name, const std::string& ref,
 // vector gives one column per element, name[1] ... name[n]
 
 struct Reference {
-  char kind;              // 'c' compute, 'f' fix, 'v' variable
-  std::string id;         // its ID or name
-  int index = 0;          // [i], 0 without
+  char kind;         // 'c' compute, 'f' fix, 'v' variable
+  std::string id;    // its ID or name
+  int index = 0;     // [i], 0 without
 };
 
-inline Reference parse_reference(const std::string& ref)
+inline Reference parse_reference(const std::string &ref)
 {
   const std::size_t open = ref.find('[');
   Reference r{ref[0], ref.substr(2, open == std::string::npos ? open : open - 2)};
@@ -261,9 +272,9 @@ struct ReferenceTarget {
 
 // the columns (name, reference) of the request `name ref`; a RecordError names what is wrong
 inline std::vector<std::pair<std::string, std::string>>
-extra_columns_of(const std::string& name, const std::string& ref, const ReferenceTarget& t)
+extra_columns_of(const std::string &name, const std::string &ref, const ReferenceTarget &t)
 {
-  const char* accepted = "extra takes global scalars and vectors (c_ID, c_ID[i], f_ID, f_ID[i]) "
+  const char *accepted = "extra takes global scalars and vectors (c_ID, c_ID[i], f_ID, f_ID[i]) "
                          "and equal-style variables (v_name)";
   const Reference r = parse_reference(ref);
   const std::string column = "extra column " + name + ": ";
@@ -271,27 +282,29 @@ extra_columns_of(const std::string& name, const std::string& ref, const Referenc
     if (!t.exists) throw RecordError(column + "variable " + r.id + " does not exist");
     if (!t.equal_style)
       throw RecordError(column + "variable " + r.id + " is not a number each step (" +
-                        (t.atom_style ? "it is per-atom" : t.vector_style
-                                            ? "it is vector-style" : "it is a string, read as 0")
-                        + "); " + accepted);
+                        (t.atom_style         ? "it is per-atom"
+                             : t.vector_style ? "it is vector-style"
+                                              : "it is a string, read as 0") +
+                        "); " + accepted);
     return {{name, ref}};
   }
   const std::string source = (r.kind == 'c' ? "compute " : "fix ") + r.id;
   if (!t.exists) throw RecordError(column + source + " does not exist");
   const bool indexed = r.index != 0 || ref.find('[') != std::string::npos;
-  const char* kind = (!indexed && t.scalar) || t.vector ? nullptr
-                     : t.array                          ? "a global array"
-                     : t.peratom                        ? "per-atom (not global)"
-                     : t.local                          ? "local (not global)"
-                     : indexed                          ? "no global vector"
+  const char *kind = (!indexed && t.scalar) || t.vector ? nullptr
+      : t.array                                         ? "a global array"
+      : t.peratom                                       ? "per-atom (not global)"
+      : t.local                                         ? "local (not global)"
+      : indexed                                         ? "no global vector"
                                                         : "no global scalar or vector";
   if (kind)
-    throw RecordError(column + source + " is " + kind + "; " + accepted + " (reduce per-atom or "
+    throw RecordError(column + source + " is " + kind + "; " + accepted +
+                      " (reduce per-atom or "
                       "local values first, e.g. with compute reduce)");
   if (indexed && !t.variable_size && (r.index < 1 || r.index > t.size))
-    throw RecordError(column + ref + " is out of range: " + source + " has a global vector of "
-                      + std::to_string(t.size) + " values (index 1 to " + std::to_string(t.size)
-                      + ")");
+    throw RecordError(column + ref + " is out of range: " + source + " has a global vector of " +
+                      std::to_string(t.size) + " values (index 1 to " + std::to_string(t.size) +
+                      ")");
   if (indexed || t.scalar) return {{name, ref}};
   std::vector<std::pair<std::string, std::string>> columns;
   for (int k = 1; k <= t.size; ++k)
@@ -304,8 +317,8 @@ extra_columns_of(const std::string& name, const std::string& ref, const Referenc
 // well), which the fix gives as errors or warnings naming itself
 
 // printf into a string
-inline std::string printf_text(const char* format, ...) __attribute__((format(printf, 1, 2)));
-inline std::string printf_text(const char* format, ...)
+inline std::string printf_text(const char *format, ...) __attribute__((format(printf, 1, 2)));
+inline std::string printf_text(const char *format, ...)
 {
   char text[1024];
   va_list args;
@@ -320,7 +333,7 @@ inline std::string printf_text(const char* format, ...)
 constexpr double MIN_STRAIN_PER_STEP = 1e-15;
 
 // a constant prescribed rate (or path speed, or cap) the cell cannot resolve or follow
-inline std::string unresolvable_rate(const NamedRate& r, double dt)
+inline std::string unresolvable_rate(const NamedRate &r, double dt)
 {
   const double strain = std::fabs(r.rate) * dt;
   if (r.rate == 0.0 || (strain >= MIN_STRAIN_PER_STEP && strain <= MAX_STRAIN_PER_STEP)) return "";
@@ -351,8 +364,8 @@ inline std::string inertial_number_warning(double rate, double level, double ine
   if (!(rate > 0.0 && level > 0.0 && rate > limit)) return "";
   return printf_text("the prescribed strain rate %.4g 1/s gives an inertial number I = %.3g at "
                      "stress %.4g (mean diameter %.4g, density %.4g), above the quasi-static "
-                     "limit max_inertial = %g: use a rate <= %.4g 1/s", rate,
-                     inertial * rate / limit, level, diameter, density, inertial, limit);
+                     "limit max_inertial = %g: use a rate <= %.4g 1/s",
+                     rate, inertial * rate / limit, level, diameter, density, inertial, limit);
 }
 
 // 'until NAME VALUE' while NAME moves away from VALUE: the run would not stop by it. Judged
@@ -365,7 +378,7 @@ struct UntilDirection {
   bool judged = false;
   std::string error, warning;
 };
-inline UntilDirection judge_until_direction(const UntilTarget& u, double run_start, double now,
+inline UntilDirection judge_until_direction(const UntilTarget &u, double run_start, double now,
                                             double test_start, bool continued, long long step)
 {
   UntilDirection d;
@@ -373,18 +386,20 @@ inline UntilDirection judge_until_direction(const UntilTarget& u, double run_sta
   if (!(std::fabs(now - run_start) > UNTIL_DIRECTION_FRACTION * std::fabs(distance))) return d;
   d.judged = true;
   if ((now - run_start) * distance >= 0.0) return d;
-  const char* name = u.name.c_str();
+  const char *name = u.name.c_str();
   if (continued && (u.value - test_start) * (run_start - u.value) > 0.0)
     d.error = printf_text("until %s %g: the test this fix continues has passed that target "
                           "already (%s went from %.6g at its start to %.6g when this fix took "
                           "over) and moves on away from it: give a target beyond %.6g, or "
-                          "'continue no' to start a new test", name, u.value, name,
-                          test_start + 0.0, run_start + 0.0, run_start + 0.0);   // (no "-0")
+                          "'continue no' to start a new test",
+                          name, u.value, name, test_start + 0.0, run_start + 0.0,
+                          run_start + 0.0);    // (no "-0")
   else
     d.warning = printf_text("until %s %g: %s moves away from the target (from %.6g at the start "
                             "of the run to %.6g at step %lld): the run will not stop there "
                             "unless the programme turns back; check the sign of the target and "
-                            "of the rates", name, u.value, name, run_start + 0.0, now, step);
+                            "of the rates",
+                            name, u.value, name, run_start + 0.0, now, step);
   return d;
 }
 
@@ -398,7 +413,7 @@ struct CapWatch {
   bool warned = false;                       // in this run
 
   // whether the warning is due after a step (enabled: keyword cap_warning; loaded: contacts)
-  bool due(const ServoCommandOf<6>& c, bool enabled, bool loaded)
+  bool due(const ServoCommandOf<6> &c, bool enabled, bool loaded)
   {
     if (!c.saturated) {
       steps = 0;
@@ -408,16 +423,18 @@ struct CapWatch {
       error_at_cap = c.stress_error;
       return false;
     }
-    if (steps % WARN_STEPS != 0 || !enabled || warned || !loaded || !(c.stress_error > error_at_cap))
+    if (steps % WARN_STEPS != 0 || !enabled || warned || !loaded ||
+        !(c.stress_error > error_at_cap))
       return false;
     return warned = true;
   }
-  std::string message(double cap, double error_now, const std::string& held, double rate) const
+  std::string message(double cap, double error_now, const std::string &held, double rate) const
   {
     return printf_text("the servo has been at its strain-rate cap max_rate = %.3g for %lld "
                        "steps and its stress error grew from %.4g to %.4g (%s; prescribed rate "
                        "%.4g 1/s); raise max_rate or lower the prescribed rate (said once per "
-                       "run)", cap, steps, error_at_cap, error_now, held.c_str(), rate);
+                       "run)",
+                       cap, steps, error_at_cap, error_now, held.c_str(), rate);
   }
 };
 

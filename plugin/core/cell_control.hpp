@@ -36,7 +36,7 @@ using MixedControl6 = MixedControlOf<6>;
 // three-component servo on the principal block (the shears outside the programme set nothing,
 // cell_servo.hpp's used_components), so a principal programme gives the same numbers on any cell.
 
-inline MixedControl6 six_component_control(const MixedControl& c)
+inline MixedControl6 six_component_control(const MixedControl &c)
 {
   MixedControl6 six;
   six.prescribed_strain_rate.head<3>() = c.prescribed_strain_rate;
@@ -57,33 +57,34 @@ struct ShearPlane {
   int component() const { return voigt_index(direction, normal); }
 };
 
-inline void require_valid(const ShearPlane& plane)
+inline void require_valid(const ShearPlane &plane)
 {
   if (!(plane.direction >= 0 && plane.direction < plane.normal && plane.normal <= 2))
-    throw std::invalid_argument("simple shear plane (" + std::to_string(plane.direction) + ", "
-                                + std::to_string(plane.normal) + ") must be xy, xz or yz: an "
+    throw std::invalid_argument("simple shear plane (" + std::to_string(plane.direction) + ", " +
+                                std::to_string(plane.normal) +
+                                ") must be xy, xz or yz: an "
                                 "upper-triangular cell only tilts the edge of the larger axis "
                                 "towards the smaller");
 }
 
-inline void require_finite(const std::string& name, double value)
+inline void require_finite(const std::string &name, double value)
 {
   if (!std::isfinite(value)) throw std::invalid_argument(name + " is not finite");
 }
 
 // tau and sigma_n of the plane from the compression-positive Voigt6 stress
-inline double shear_stress(const Vector6d& stress, const ShearPlane& plane)
+inline double shear_stress(const Vector6d &stress, const ShearPlane &plane)
 {
   return -stress(plane.component());
 }
-inline double normal_stress(const Vector6d& stress, const ShearPlane& plane)
+inline double normal_stress(const Vector6d &stress, const ShearPlane &plane)
 {
   return stress(plane.normal);
 }
 
 // every component strain-controlled at zero rate except the shear of the plane at gamma_dot
 // (the rigid lateral boundaries of a simple-shear device), the normal axis free if asked
-inline std::array<AxisProgramme, 6> simple_shear_components(const ShearPlane& plane,
+inline std::array<AxisProgramme, 6> simple_shear_components(const ShearPlane &plane,
                                                             double shear_rate)
 {
   require_valid(plane);
@@ -98,8 +99,8 @@ inline std::array<AxisProgramme, 6> simple_shear_components(const ShearPlane& pl
 // gamma_dot prescribed
 struct DrainedSimpleShear {
   ShearPlane plane;
-  double shear_rate;        // gamma_dot = L_ij [1/s]
-  double normal_stress;     // sigma_n [Pa]
+  double shear_rate;       // gamma_dot = L_ij [1/s]
+  double normal_stress;    // sigma_n [Pa]
 
   MixedControl6 control() const
   {
@@ -115,7 +116,10 @@ struct ConstantVolumeSimpleShear {
   ShearPlane plane;
   double shear_rate;
 
-  MixedControl6 control() const { return per_axis_control<6>(simple_shear_components(plane, shear_rate)); }
+  MixedControl6 control() const
+  {
+    return per_axis_control<6>(simple_shear_components(plane, shear_rate));
+  }
 };
 
 // excess pore pressure ratio of an undrained test: the drop of the effective normal stress
@@ -141,19 +145,19 @@ struct LiquefactionCriteria {
 // (half cycles completed + 1)/2: 0.5 in the first half cycle, N at the end of the 2N-th (0
 // while it has not held).
 struct CycleCount {
-  int direction = 1;               // +1 towards the upper bound, -1 towards the lower
-  int reversals = 0;               // completed half cycles
+  int direction = 1;    // +1 towards the upper bound, -1 towards the lower
+  int reversals = 0;    // completed half cycles
   double strain_at_reversal = 0.0;
-  double cycles_to_pore_pressure = 0.0;      // N_L by r_u
-  double cycles_to_double_amplitude = 0.0;   // N_L by double amplitude strain
+  double cycles_to_pore_pressure = 0.0;       // N_L by r_u
+  double cycles_to_double_amplitude = 0.0;    // N_L by double amplitude strain
 
   static constexpr int size = 5;
-  void to_array(double* a) const
+  void to_array(double *a) const
   {
     a[0] = direction, a[1] = reversals, a[2] = strain_at_reversal;
     a[3] = cycles_to_pore_pressure, a[4] = cycles_to_double_amplitude;
   }
-  static CycleCount from_array(const double* a)
+  static CycleCount from_array(const double *a)
   {
     return {static_cast<int>(a[0]), static_cast<int>(a[1]), a[2], a[3], a[4]};
   }
@@ -162,7 +166,7 @@ struct CycleCount {
 
   // after a step that ended at the cycled stress s, the strain of the cycle and r_u
   void update(double s, double lower, double upper, double strain, double r_u,
-              const LiquefactionCriteria& criteria)
+              const LiquefactionCriteria &criteria)
   {
     if (direction > 0 ? s >= upper : s <= lower) {
       direction = -direction;
@@ -171,8 +175,8 @@ struct CycleCount {
     }
     if (cycles_to_pore_pressure == 0.0 && r_u >= criteria.pore_pressure_ratio)
       cycles_to_pore_pressure = cycles_to_now();
-    if (cycles_to_double_amplitude == 0.0
-        && std::abs(strain - strain_at_reversal) >= criteria.double_amplitude_strain)
+    if (cycles_to_double_amplitude == 0.0 &&
+        std::abs(strain - strain_at_reversal) >= criteria.double_amplitude_strain)
       cycles_to_double_amplitude = cycles_to_now();
   }
 };
@@ -182,12 +186,12 @@ struct CycleCount {
 // cycles, the double amplitude gamma and N_L as CycleCount counts them.
 struct CyclicSimpleShear {
   ShearPlane plane;
-  double shear_rate;                 // |gamma_dot| [1/s]
-  double cyclic_stress_ratio;        // CSR = tau_cyc/sigma_n0
-  double initial_normal_stress;      // sigma_n0 [Pa]
+  double shear_rate;               // |gamma_dot| [1/s]
+  double cyclic_stress_ratio;      // CSR = tau_cyc/sigma_n0
+  double initial_normal_stress;    // sigma_n0 [Pa]
   LiquefactionCriteria criteria;
 
-  using State = CycleCount;          // its direction is the sign of gamma_dot
+  using State = CycleCount;    // its direction is the sign of gamma_dot
 
   void require_valid() const
   {
@@ -205,16 +209,16 @@ struct CyclicSimpleShear {
   }
 
   double amplitude() const { return cyclic_stress_ratio * initial_normal_stress; }
-  double cycles(const State& s) const { return s.cycles(); }
+  double cycles(const State &s) const { return s.cycles(); }
 
   // the state after a step ended at (tau, gamma, sigma_n): reverse at the amplitude, record N_L
-  void update(State& s, double tau, double gamma, double normal_stress) const
+  void update(State &s, double tau, double gamma, double normal_stress) const
   {
     s.update(tau, -amplitude(), amplitude(), gamma,
              pore_pressure_ratio(normal_stress, initial_normal_stress), criteria);
   }
 
-  MixedControl6 control(const State& s) const
+  MixedControl6 control(const State &s) const
   {
     return ConstantVolumeSimpleShear{plane, s.direction * shear_rate}.control();
   }
@@ -247,11 +251,11 @@ struct UndrainedTriaxial {
 // sigma_r = (sigma_b + sigma_c)/2 (the mean of the two lateral stresses) and the signed deviator
 // q_a = sigma_a - sigma_r (> 0 in compression, sigma1 - sigma3 while sigma_b = sigma_c)
 
-inline double radial_stress(const Vector6d& stress, int axis)
+inline double radial_stress(const Vector6d &stress, int axis)
 {
   return 0.5 * (stress((axis + 1) % 3) + stress((axis + 2) % 3));
 }
-inline double axial_deviator(const Vector6d& stress, int axis)
+inline double axial_deviator(const Vector6d &stress, int axis)
 {
   return stress(axis) - radial_stress(stress, axis);
 }
@@ -284,29 +288,34 @@ struct OedometerCourse {
   double ocr = 1.0;    // the overconsolidation ratio at the end of unloading (1: no unloading)
 
   struct State {
-    int direction = 1;    // +1 loading, -1 unloading, 0 done
+    int direction = 1;                                           // +1 loading, -1 unloading, 0 done
     double axial0 = std::numeric_limits<double>::quiet_NaN();    // sigma_a0 (NaN: not begun)
     double radial0 = 0.0, largest = 0.0, last = 0.0;             // sigma_r0, max sigma_a, sigma_a
 
     static constexpr int size = 5;
-    std::vector<double> to_vector() const { return {double(direction), axial0, radial0, largest, last}; }
-    static State from_array(const double* a) { return {int(a[0]), a[1], a[2], a[3], a[4]}; }
+    std::vector<double> to_vector() const
+    {
+      return {double(direction), axial0, radial0, largest, last};
+    }
+    static State from_array(const double *a) { return {int(a[0]), a[1], a[2], a[3], a[4]}; }
   };
 
   State begin(double axial, double radial) const { return {1, axial, radial, axial, axial}; }
 
   // the state after a step that ended at sigma_a
-  void update(State& s, double axial) const
+  void update(State &s, double axial) const
   {
     s.largest = std::max(s.largest, axial);
     s.last = axial;
-    if (s.direction > 0 && axial >= peak) s.direction = ocr > 1.0 ? -1 : 0;
-    else if (s.direction < 0 && axial * ocr <= s.largest) s.direction = 0;
+    if (s.direction > 0 && axial >= peak)
+      s.direction = ocr > 1.0 ? -1 : 0;
+    else if (s.direction < 0 && axial * ocr <= s.largest)
+      s.direction = 0;
   }
 
   // the fraction of the stress path sigma_a0 -> peak -> (largest sigma_a)/R done (the largest
   // sigma_a is the peak until loading ends); 1 only once the course is over
-  double progress(const State& s) const
+  double progress(const State &s) const
   {
     if (s.direction == 0) return 1.0;
     const double top = s.direction > 0 ? peak : s.largest;
@@ -323,28 +332,28 @@ struct OedometerCourse {
 // by r_u and by the double amplitude axial strain as CycleCount counts them
 struct CyclicUndrainedTriaxial {
   int axis;
-  double axial_strain_rate;          // R > 0 [1/s]
-  double cyclic_stress_ratio;        // CSR = q_cyc/(2 p0)
-  double initial_mean_stress;        // p0 [Pa]
+  double axial_strain_rate;      // R > 0 [1/s]
+  double cyclic_stress_ratio;    // CSR = q_cyc/(2 p0)
+  double initial_mean_stress;    // p0 [Pa]
   bool one_way = false;
   LiquefactionCriteria criteria{0.95, 0.05};
 
-  using State = CycleCount;          // its direction is the sign of the axial rate
+  using State = CycleCount;    // its direction is the sign of the axial rate
 
   double amplitude() const { return 2.0 * cyclic_stress_ratio * initial_mean_stress; }
   double lower_bound() const { return one_way ? 0.0 : -amplitude(); }
-  double pore_pressure_ratio_of(const Vector6d& stress) const
+  double pore_pressure_ratio_of(const Vector6d &stress) const
   {
     return pore_pressure_ratio(mean_stress(stress.head<3>()), initial_mean_stress);
   }
 
-  void update(State& s, const Vector6d& stress, const Vector6d& strain) const
+  void update(State &s, const Vector6d &stress, const Vector6d &strain) const
   {
     s.update(axial_deviator(stress, axis), lower_bound(), amplitude(), strain(axis),
              pore_pressure_ratio_of(stress), criteria);
   }
 
-  MixedControl6 control(const State& s) const
+  MixedControl6 control(const State &s) const
   {
     return UndrainedTriaxial{axis, s.direction * axial_strain_rate}.control();
   }
@@ -352,7 +361,7 @@ struct CyclicUndrainedTriaxial {
 
 // Constant p with a prescribed deviatoric strain rate (Voigt6, any shears): the p servo acts
 // on the isotropic mode (1, 1, 1, 0, 0, 0), as mean_stress_control on three axes
-inline MixedControl6 mean_stress_control6(double mean_stress, const Vector6d& strain_rate)
+inline MixedControl6 mean_stress_control6(double mean_stress, const Vector6d &strain_rate)
 {
   require_positive_stress("p", mean_stress);
   MixedControl6 c;

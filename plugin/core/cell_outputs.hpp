@@ -23,7 +23,7 @@ namespace tycore {
 
 // indices of the outputs (0-based here, 1-based for users)
 namespace out {
-// clang-format off
+  // clang-format off
 enum Output {
   EPS1, EPS2, EPS3, EPS_V, EPS_Q, EPS_D13, SIG1, SIG2, SIG3, P, Q, B, LODE_DEG, ETA_LD,
   SINPHI, VOID_RATIO, SOLID_FRACTION, Z, ZM, SLIDING_FRACTION, UNBALANCED, INERTIAL_NUMBER,
@@ -42,11 +42,11 @@ enum Output {
   EPS_A, SIG_A, SIG_R, Q_A, K0, K0_INC, OCR, N_L_EPS,
   COUNT
 };
-// clang-format on
+  // clang-format on
 
-inline const char* name(int i)
-{
-  // clang-format off
+  inline const char *name(int i)
+  {
+    // clang-format off
   static const char* const names[COUNT] = {
       "eps1", "eps2", "eps3", "eps_v", "eps_q", "eps_d13", "sig1", "sig2", "sig3", "p", "q", "b",
       "lode_deg", "eta_LD", "sinphi", "void_ratio", "solid_fraction", "Z", "Zm",
@@ -59,66 +59,97 @@ inline const char* name(int i)
       "gamma", "tau", "sig_n", "tau_ratio", "stress_angle", "rate_angle", "noncoaxiality",
       "r_u", "cycles", "N_L_ru", "N_L_gamma",
       "eps_a", "sig_a", "sig_r", "q_a", "K0", "K0_inc", "ocr", "N_L_eps"};
-  // clang-format on
-  return names[i];
-}
+    // clang-format on
+    return names[i];
+  }
 
-// the index of the output `text`, -1 if none
-inline int index(const std::string& text)
-{
-  for (int k = 0; k < COUNT; ++k)
-    if (text == name(k)) return k;
-  return -1;
-}
+  // the index of the output `text`, -1 if none
+  inline int index(const std::string &text)
+  {
+    for (int k = 0; k < COUNT; ++k)
+      if (text == name(k)) return k;
+    return -1;
+  }
 
-// the outputs computed from the particles (a pass over the atoms): only on the steps that
-// record or test them
-inline bool of_particles(int k)
-{
-  return k == Z || k == ZM || k == UNBALANCED || k == P_KINETIC || k == KINETIC_RATIO;
-}
+  // the outputs computed from the particles (a pass over the atoms): only on the steps that
+  // record or test them
+  inline bool of_particles(int k)
+  {
+    return k == Z || k == ZM || k == UNBALANCED || k == P_KINETIC || k == KINETIC_RATIO;
+  }
 
-// the columns after `step` of every record, then those of a triclinic cell and of a plane
-inline std::vector<int> record_columns(bool triclinic, const std::vector<int>& programme)
-{
-  std::vector<int> c{TIME, EPS1, EPS2, EPS3, EPS_V, EPS_Q, EPS_D13, SIG1, SIG2, SIG3, P, Q, B,
-                     LODE_DEG, ETA_LD, SINPHI, VOID_RATIO, SOLID_FRACTION, Z, ZM,
-                     SLIDING_FRACTION, UNBALANCED, INERTIAL_NUMBER, PI_X, PI_Y, PI_EX, PI_EY,
-                     RATE1, RATE2, RATE3, BOUNDARY_WORK, P_KINETIC, VOLUME, PROGRESS};
-  if (triclinic)
-    c.insert(c.end(), {SIG_XY, SIG_XZ, SIG_YZ, GAMMA_XY, GAMMA_XZ, GAMMA_YZ, RATE_XY, RATE_XZ,
-                       RATE_YZ, SIG_MAJOR, SIG_INTER, SIG_MINOR});
-  c.insert(c.end(), programme.begin(), programme.end());
-  return c;
-}
+  // the columns after `step` of every record, then those of a triclinic cell and of a plane
+  inline std::vector<int> record_columns(bool triclinic, const std::vector<int> &programme)
+  {
+    std::vector<int> c{TIME,
+                       EPS1,
+                       EPS2,
+                       EPS3,
+                       EPS_V,
+                       EPS_Q,
+                       EPS_D13,
+                       SIG1,
+                       SIG2,
+                       SIG3,
+                       P,
+                       Q,
+                       B,
+                       LODE_DEG,
+                       ETA_LD,
+                       SINPHI,
+                       VOID_RATIO,
+                       SOLID_FRACTION,
+                       Z,
+                       ZM,
+                       SLIDING_FRACTION,
+                       UNBALANCED,
+                       INERTIAL_NUMBER,
+                       PI_X,
+                       PI_Y,
+                       PI_EX,
+                       PI_EY,
+                       RATE1,
+                       RATE2,
+                       RATE3,
+                       BOUNDARY_WORK,
+                       P_KINETIC,
+                       VOLUME,
+                       PROGRESS};
+    if (triclinic)
+      c.insert(c.end(),
+               {SIG_XY, SIG_XZ, SIG_YZ, GAMMA_XY, GAMMA_XZ, GAMMA_YZ, RATE_XY, RATE_XZ, RATE_YZ,
+                SIG_MAJOR, SIG_INTER, SIG_MINOR});
+    c.insert(c.end(), programme.begin(), programme.end());
+    return c;
+  }
 
-inline const std::vector<int>& plane_columns()
-{
-  static const std::vector<int> c{GAMMA, TAU, SIG_N, TAU_RATIO, STRESS_ANGLE, RATE_ANGLE,
-                                  NONCOAXIALITY};
-  return c;
-}
+  inline const std::vector<int> &plane_columns()
+  {
+    static const std::vector<int> c{GAMMA,        TAU,        SIG_N,        TAU_RATIO,
+                                    STRESS_ANGLE, RATE_ANGLE, NONCOAXIALITY};
+    return c;
+  }
 
-// the outputs of a test along an axis
-inline const std::vector<int>& axial_columns()
-{
-  static const std::vector<int> c{EPS_A, SIG_A, SIG_R, Q_A};
-  return c;
-}
+  // the outputs of a test along an axis
+  inline const std::vector<int> &axial_columns()
+  {
+    static const std::vector<int> c{EPS_A, SIG_A, SIG_R, Q_A};
+    return c;
+  }
 
-// the outputs `until NAME VALUE` may end a test by: strains, stresses, state, time, work,
-// shears (a programme adds its own: the plane's, r_u, cycles)
-inline bool measure_of_a_test(int k)
-{
-  return (k >= EPS1 && k <= SINPHI) || k == VOID_RATIO || k == SOLID_FRACTION
-         || (k >= PI_X && k <= PI_EY) || k == TIME || k == BOUNDARY_WORK
-         || (k >= SIG_XY && k <= GAMMA_YZ);
-}
+  // the outputs `until NAME VALUE` may end a test by: strains, stresses, state, time, work,
+  // shears (a programme adds its own: the plane's, r_u, cycles)
+  inline bool measure_of_a_test(int k)
+  {
+    return (k >= EPS1 && k <= SINPHI) || k == VOID_RATIO || k == SOLID_FRACTION ||
+        (k >= PI_X && k <= PI_EY) || k == TIME || k == BOUNDARY_WORK ||
+        (k >= SIG_XY && k <= GAMMA_YZ);
+  }
 }    // namespace out
 
 // what the outputs are computed from
 struct CellSnapshot {
-  Vector6d stress = Vector6d::Zero();         // contact stress [Pa], compression positive
+  Vector6d stress = Vector6d::Zero();                  // contact stress [Pa], compression positive
   Eigen::Vector3d strain = Eigen::Vector3d::Zero();    // natural strains of the axes
   Eigen::Vector3d shear = Eigen::Vector3d::Zero();     // gamma_xy, gamma_xz, gamma_yz
   Vector6d last_strain_rate = Vector6d::Zero();        // the rates of the last step [1/s]
@@ -129,11 +160,11 @@ struct CellSnapshot {
 };
 
 // the principal measures (docs/theory.md §7.1, §4.2): outputs 1-26, the rates and the volume
-inline void principal_outputs(const CellSnapshot& s, double* o)
+inline void principal_outputs(const CellSnapshot &s, double *o)
 {
   using namespace out;
   constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
-  const Eigen::Vector3d& eps = s.strain;
+  const Eigen::Vector3d &eps = s.strain;
   const Eigen::Vector3d sig = s.stress.head<3>();
   o[EPS1] = eps(0), o[EPS2] = eps(1), o[EPS3] = eps(2);
   o[EPS_V] = volumetric_strain(eps);
@@ -154,11 +185,10 @@ inline void principal_outputs(const CellSnapshot& s, double* o)
   const Eigen::Vector3d rate = s.last_strain_rate.head<3>();
   // I = eps_dot_q d sqrt(rho/p), eps_dot_q = sqrt(2/3 e':e') (docs/theory.md §4.2), the
   // tensor's shears gamma_dot/2 included
-  const double shear_rate =
-      std::sqrt(2.0 / 3.0)
-      * std::sqrt(deviator(rate).squaredNorm() + 0.5 * s.last_strain_rate.tail<3>().squaredNorm());
-  o[INERTIAL_NUMBER] =
-      o[P] > 0.0 ? shear_rate * s.mean_diameter * std::sqrt(s.mean_density / o[P]) : NaN;
+  const double shear_rate = std::sqrt(2.0 / 3.0) *
+      std::sqrt(deviator(rate).squaredNorm() + 0.5 * s.last_strain_rate.tail<3>().squaredNorm());
+  o[INERTIAL_NUMBER] = o[P] > 0.0 ? shear_rate * s.mean_diameter * std::sqrt(s.mean_density / o[P])
+                                  : NaN;
   o[PI_X] = pi_stress.x(), o[PI_Y] = pi_stress.y();
   o[PI_EX] = pi_strain.x(), o[PI_EY] = pi_strain.y();
   o[RATE1] = rate(0), o[RATE2] = rate(1), o[RATE3] = rate(2);
@@ -169,11 +199,11 @@ inline void principal_outputs(const CellSnapshot& s, double* o)
 // (gamma_ij = int L_ij dt, rate_ij = L_ij), tau = -sigma_ij and sigma_n = sigma_jj of the
 // plane (i, j), principal directions and the non-coaxiality angle in that plane, both tensors
 // compression positive
-inline void cell_outputs(const CellSnapshot& s, double* o)
+inline void cell_outputs(const CellSnapshot &s, double *o)
 {
   using namespace out;
   constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
-  const Vector6d& rate = s.last_strain_rate;
+  const Vector6d &rate = s.last_strain_rate;
   for (int k = 0; k < 3; ++k) {
     o[SIG_XY + k] = s.stress(3 + k);
     o[GAMMA_XY + k] = s.shear(k);
@@ -185,7 +215,7 @@ inline void cell_outputs(const CellSnapshot& s, double* o)
   o[SIG_INTER] = principal.values(1);
   o[SIG_MINOR] = principal.values(2);
   if (!s.plane) return;
-  const ShearPlane& plane = *s.plane;
+  const ShearPlane &plane = *s.plane;
   const int i = plane.direction, j = plane.normal;
   const Eigen::Matrix3d strain_rate = tensor_from_strain(rate);
   o[GAMMA] = s.shear(plane.component() - 3);
@@ -198,7 +228,7 @@ inline void cell_outputs(const CellSnapshot& s, double* o)
 }
 
 // the outputs from the particles (cell_statistics.hpp)
-inline void particle_outputs(const ParticleStatistics& st, double* o)
+inline void particle_outputs(const ParticleStatistics &st, double *o)
 {
   o[out::Z] = st.Z;
   o[out::ZM] = st.Zm;
@@ -208,7 +238,7 @@ inline void particle_outputs(const ParticleStatistics& st, double* o)
 }
 
 // the quasi-equilibrium outputs of a check (docs/theory.md §6.4)
-inline void equilibrium_outputs(const EquilibriumCheck& check, double* o)
+inline void equilibrium_outputs(const EquilibriumCheck &check, double *o)
 {
   o[out::EQUILIBRIUM] = check.reached;
   o[out::EQ_STRESS_OK] = check.stress_ok;
@@ -221,13 +251,13 @@ inline void equilibrium_outputs(const EquilibriumCheck& check, double* o)
 // text ("" if none): a box changed behind a test's back
 inline std::string box_changes(const double before[6], const double now[6])
 {
-  static const char* const names[6] = {"lx", "ly", "lz", "yz", "xz", "xy"};
+  static const char *const names[6] = {"lx", "ly", "lz", "yz", "xz", "xy"};
   std::string text;
   for (int k = 0; k < 6; ++k)
     if (before[k] != now[k]) {
       char item[96];
-      std::snprintf(item, sizeof item, "%s%s %.10g -> %.10g", text.empty() ? "" : ", ",
-                    names[k], before[k], now[k]);
+      std::snprintf(item, sizeof item, "%s%s %.10g -> %.10g", text.empty() ? "" : ", ", names[k],
+                    before[k], now[k]);
       text += item;
     }
   return text;

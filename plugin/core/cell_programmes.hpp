@@ -22,53 +22,54 @@ namespace tycore {
 
 namespace programme_detail {
 
-// a number as %.4g writes it (messages)
-inline std::string g4(double value)
-{
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4g", value);
-  return text;
-}
+  // a number as %.4g writes it (messages)
+  inline std::string g4(double value)
+  {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.4g", value);
+    return text;
+  }
 
-inline int axis_of(ArgList& a, const std::string& mode)
-{
-  const std::string& name = a.next(mode + " axis");
-  if (name == "x") return 0;
-  if (name == "y") return 1;
-  if (name == "z") return 2;
-  throw std::invalid_argument(mode + ": axis '" + name + "' is not x, y or z");
-}
+  inline int axis_of(ArgList &a, const std::string &mode)
+  {
+    const std::string &name = a.next(mode + " axis");
+    if (name == "x") return 0;
+    if (name == "y") return 1;
+    if (name == "z") return 2;
+    throw std::invalid_argument(mode + ": axis '" + name + "' is not x, y or z");
+  }
 
-// a plane xy, xz or yz: the edge along the second axis tilts towards the first
-inline ShearPlane plane_of(ArgList& a, const std::string& mode)
-{
-  const std::string& name = a.next(mode + " plane");
-  for (int k = 3; k < 6; ++k)
-    if (name == voigt_names[k]) return {voigt_pairs[k][0], voigt_pairs[k][1]};
-  throw std::invalid_argument(mode + ": plane '" + name + "' is not xy, xz or yz (the edge "
-                              "along the second axis tilts towards the first; LAMMPS's "
-                              "triclinic box has no other shears)");
-}
+  // a plane xy, xz or yz: the edge along the second axis tilts towards the first
+  inline ShearPlane plane_of(ArgList &a, const std::string &mode)
+  {
+    const std::string &name = a.next(mode + " plane");
+    for (int k = 3; k < 6; ++k)
+      if (name == voigt_names[k]) return {voigt_pairs[k][0], voigt_pairs[k][1]};
+    throw std::invalid_argument(mode + ": plane '" + name +
+                                "' is not xy, xz or yz (the edge "
+                                "along the second axis tilts towards the first; LAMMPS's "
+                                "triclinic box has no other shears)");
+  }
 
-// a strain rate that is a variable or a non-zero number
-inline Setting nonzero_rate(ArgList& a, const std::string& what, const std::string& hint = "")
-{
-  Setting s = a.setting(what);
-  if (!s.is_variable() && s.value == 0.0)
-    throw std::invalid_argument(what + " must be non-zero" + hint);
-  return s;
-}
+  // a strain rate that is a variable or a non-zero number
+  inline Setting nonzero_rate(ArgList &a, const std::string &what, const std::string &hint = "")
+  {
+    Setting s = a.setting(what);
+    if (!s.is_variable() && s.value == 0.0)
+      throw std::invalid_argument(what + " must be non-zero" + hint);
+    return s;
+  }
 
-inline std::string held_mean_stress(const Vector6d& stress, double p)
-{
-  return "p = " + g4(mean_stress(stress.head<3>())) + ", target " + g4(p);
-}
+  inline std::string held_mean_stress(const Vector6d &stress, double p)
+  {
+    return "p = " + g4(mean_stress(stress.head<3>())) + ", target " + g4(p);
+  }
 
-// the rates of Settings given as numbers
-inline void add_constant(std::vector<NamedRate>& rates, const Setting& s)
-{
-  if (!s.is_variable()) rates.push_back({s.what, s.value});
-}
+  // the rates of Settings given as numbers
+  inline void add_constant(std::vector<NamedRate> &rates, const Setting &s)
+  {
+    if (!s.is_variable()) rates.push_back({s.what, s.value});
+  }
 
 }    // namespace programme_detail
 
@@ -78,21 +79,30 @@ inline void add_constant(std::vector<NamedRate>& rates, const Setting& s)
 
 class IsotropicCompression : public CellProgramme {
  public:
-  explicit IsotropicCompression(ArgList& a)
+  explicit IsotropicCompression(ArgList &a)
   {
     a.need(1, "iso P");
     p_ = a.stress("iso mean stress p");
   }
-  bool keyword(const std::string& key, ArgList& a) override
+  bool keyword(const std::string &key, ArgList &a) override
   {
-    auto fraction = [&]() { return a.number_in(key, 0.0, 1.0, true); };
-    if (key == "equilibrium") every_ = a.positive_integer("equilibrium interval N");
-    else if (key == "eq_stress") criteria_.stress_tolerance = fraction();
-    else if (key == "eq_unbalanced") criteria_.max_unbalanced_force_ratio = fraction();
-    else if (key == "eq_kinetic") criteria_.max_kinetic_energy_ratio = fraction();
-    else if (key == "eq_coordination") criteria_.coordination_tolerance = fraction();
-    else if (key == "eq_window") criteria_.window = a.positive_integer("eq_window");
-    else return false;
+    auto fraction = [&]() {
+      return a.number_in(key, 0.0, 1.0, true);
+    };
+    if (key == "equilibrium")
+      every_ = a.positive_integer("equilibrium interval N");
+    else if (key == "eq_stress")
+      criteria_.stress_tolerance = fraction();
+    else if (key == "eq_unbalanced")
+      criteria_.max_unbalanced_force_ratio = fraction();
+    else if (key == "eq_kinetic")
+      criteria_.max_kinetic_energy_ratio = fraction();
+    else if (key == "eq_coordination")
+      criteria_.coordination_tolerance = fraction();
+    else if (key == "eq_window")
+      criteria_.window = a.positive_integer("eq_window");
+    else
+      return false;
     return true;
   }
   ProgrammeProfile profile() const override
@@ -104,15 +114,15 @@ class IsotropicCompression : public CellProgramme {
   }
   double largest_rate() const override { return 0.0; }
   std::vector<NamedRate> constant_rates() const override { return {}; }
-  std::string held_targets(const Vector6d& s) const override
+  std::string held_targets(const Vector6d &s) const override
   {
     return programme_detail::held_mean_stress(s, p_);
   }
-  MixedControl6 control(const CellState&, SettingValues&) override
+  MixedControl6 control(const CellState &, SettingValues &) override
   {
     return six_component_control(isotropic_compression_control(p_));
   }
-  EquilibriumCheck check_equilibrium(const EquilibriumSample& sample) override
+  EquilibriumCheck check_equilibrium(const EquilibriumSample &sample) override
   {
     const EquilibriumCheck check = update_equilibrium(state_, sample, criteria_);
     reached_ = check.reached;
@@ -125,7 +135,7 @@ class IsotropicCompression : public CellProgramme {
     state_.to_array(e);
     return {e[0], e[1], reached_ ? 1.0 : 0.0};
   }
-  void restore(const std::vector<double>& s) override
+  void restore(const std::vector<double> &s) override
   {
     state_ = EquilibriumState::from_array(s.data());
     reached_ = s[2] != 0.0;
@@ -146,7 +156,7 @@ class IsotropicCompression : public CellProgramme {
 
 class MajorAxisProgramme : public CellProgramme {
  public:
-  MajorAxisProgramme(ArgList& a, bool constant_b)
+  MajorAxisProgramme(ArgList &a, bool constant_b)
   {
     using namespace programme_detail;
     const std::string mode = constant_b ? "constant_b" : "axisym";
@@ -173,7 +183,7 @@ class MajorAxisProgramme : public CellProgramme {
     p.mean_stress = p_;
     return p;
   }
-  std::vector<Setting*> settings() override { return {&rate_}; }
+  std::vector<Setting *> settings() override { return {&rate_}; }
   double largest_rate() const override { return std::fabs(rate_.value); }
   std::vector<NamedRate> constant_rates() const override
   {
@@ -181,16 +191,16 @@ class MajorAxisProgramme : public CellProgramme {
     programme_detail::add_constant(r, rate_);
     return r;
   }
-  std::string held_targets(const Vector6d& s) const override
+  std::string held_targets(const Vector6d &s) const override
   {
     return programme_detail::held_mean_stress(s, p_);
   }
-  std::string begin_run(const CellState&, SettingValues& values) override
+  std::string begin_run(const CellState &, SettingValues &values) override
   {
     if (rate_.is_variable()) values(rate_);
     return "";
   }
-  MixedControl6 control(const CellState&, SettingValues& values) override
+  MixedControl6 control(const CellState &, SettingValues &values) override
   {
     // (axisym: axisymmetric_control, the constant-b control at b = 0)
     return six_component_control(
@@ -208,7 +218,7 @@ class MajorAxisProgramme : public CellProgramme {
 
 class DeviatoricStrainRate : public CellProgramme {
  public:
-  explicit DeviatoricStrainRate(ArgList& a)
+  explicit DeviatoricStrainRate(ArgList &a)
   {
     a.need(4, "deviatoric R1 R2 R3 P");
     for (int k = 0; k < 3; ++k)
@@ -221,25 +231,25 @@ class DeviatoricStrainRate : public CellProgramme {
     p.mean_stress = p_;
     return p;
   }
-  std::vector<Setting*> settings() override { return {&rate_[0], &rate_[1], &rate_[2]}; }
+  std::vector<Setting *> settings() override { return {&rate_[0], &rate_[1], &rate_[2]}; }
   double largest_rate() const override
   {
     double r = 0.0;
-    for (const Setting& s : rate_)
+    for (const Setting &s : rate_)
       if (!s.is_variable()) r = std::max(r, std::fabs(s.value));
     return r;
   }
   std::vector<NamedRate> constant_rates() const override
   {
     std::vector<NamedRate> r;
-    for (const Setting& s : rate_) programme_detail::add_constant(r, s);
+    for (const Setting &s : rate_) programme_detail::add_constant(r, s);
     return r;
   }
-  std::string held_targets(const Vector6d& s) const override
+  std::string held_targets(const Vector6d &s) const override
   {
     return programme_detail::held_mean_stress(s, p_);
   }
-  MixedControl6 control(const CellState&, SettingValues& values) override
+  MixedControl6 control(const CellState &, SettingValues &values) override
   {
     Eigen::Vector3d rate;
     for (int k = 0; k < 3; ++k) rate(k) = values(rate_[k]);
@@ -257,7 +267,7 @@ class DeviatoricStrainRate : public CellProgramme {
 
 class PerComponent : public CellProgramme {
  public:
-  explicit PerComponent(ArgList& a)
+  explicit PerComponent(ArgList &a)
   {
     bool given[6] = {false, false, false, false, false, false};
     for (int k = 0; k < 6; ++k) value_[k].what = std::string("axes ") + voigt_names[k] + " rate";
@@ -265,11 +275,11 @@ class PerComponent : public CellProgramme {
       const std::string name = a.next("axes component");
       const int k = component(name);
       if (given[k])
-        throw std::invalid_argument("axes: component " + name + " (" + voigt_names[k]
-                                    + ") is given twice");
+        throw std::invalid_argument("axes: component " + name + " (" + voigt_names[k] +
+                                    ") is given twice");
       if (a.remaining() < 2)
-        throw std::invalid_argument("axes: component " + name
-                                    + " needs 'stress VALUE' or 'rate VALUE'");
+        throw std::invalid_argument("axes: component " + name +
+                                    " needs 'stress VALUE' or 'rate VALUE'");
       const int kind = a.choice("axes: the control of component " + name, {"stress", "rate"});
       control_[k] = kind == 0 ? AxisControl::STRESS : AxisControl::STRAIN_RATE;
       value_[k] = a.setting("axes " + name + (kind == 0 ? " stress" : " rate"),
@@ -278,21 +288,22 @@ class PerComponent : public CellProgramme {
         value_[k].sign = Setting::Sign::POSITIVE;
         value_[k].sign_reason = "a target stress must be positive";
         if (!value_[k].is_variable() && !(value_[k].value > 0.0))
-          throw std::invalid_argument("axes: target stress of axis " + name + " = "
-                                      + number_text(value_[k].value) + " must be positive");
+          throw std::invalid_argument("axes: target stress of axis " + name + " = " +
+                                      number_text(value_[k].value) + " must be positive");
       }
       given[k] = true;
     }
-    const std::string& next = a.peek();
+    const std::string &next = a.peek();
     if (next == "yx" || next == "zx" || next == "zy")
-      throw std::invalid_argument("axes: component " + next + ": LAMMPS's triclinic box cannot "
+      throw std::invalid_argument("axes: component " + next +
+                                  ": LAMMPS's triclinic box cannot "
                                   "deform it (its tilts are xy, xz and yz: the edge along the "
-                                  "second axis tilts towards the first); use "
-                                  + std::string{next[1], next[0]});
+                                  "second axis tilts towards the first); use " +
+                                  std::string{next[1], next[0]});
     for (int k = 0; k < 3; ++k)
       if (!given[k])
-        throw std::invalid_argument(std::string("axes: axis ") + axis_name(k)
-                                    + " has no control: give it 'stress VALUE' or 'rate VALUE'");
+        throw std::invalid_argument(std::string("axes: axis ") + axis_name(k) +
+                                    " has no control: give it 'stress VALUE' or 'rate VALUE'");
   }
   // controllability depends on which components hold a stress, not on the values
   void finish() override
@@ -313,10 +324,10 @@ class PerComponent : public CellProgramme {
     }
     return p;
   }
-  std::vector<Setting*> settings() override
+  std::vector<Setting *> settings() override
   {
-    std::vector<Setting*> s;
-    for (Setting& v : value_) s.push_back(&v);
+    std::vector<Setting *> s;
+    for (Setting &v : value_) s.push_back(&v);
     return s;
   }
   // the largest held stress (variables at their value when the run began)
@@ -330,7 +341,7 @@ class PerComponent : public CellProgramme {
   double largest_rate() const override
   {
     double r = 0.0;
-    for (const NamedRate& n : constant_rates()) r = std::max(r, std::fabs(n.rate));
+    for (const NamedRate &n : constant_rates()) r = std::max(r, std::fabs(n.rate));
     return r;
   }
   std::vector<NamedRate> constant_rates() const override
@@ -340,24 +351,24 @@ class PerComponent : public CellProgramme {
       if (control_[k] == AxisControl::STRAIN_RATE) programme_detail::add_constant(r, value_[k]);
     return r;
   }
-  std::string held_targets(const Vector6d& stress) const override
+  std::string held_targets(const Vector6d &stress) const override
   {
     using programme_detail::g4;
     std::string text;
     for (int k = 0; k < 6; ++k)
       if (control_[k] == AxisControl::STRESS)
-        text += (text.empty() ? "" : "; ") + std::string("sig_") + voigt_names[k] + " = "
-                + g4(stress(k)) + ", target "
-                + (value_[k].is_variable() ? "v_" + value_[k].variable : g4(value_[k].value));
+        text += (text.empty() ? "" : "; ") + std::string("sig_") + voigt_names[k] + " = " +
+            g4(stress(k)) + ", target " +
+            (value_[k].is_variable() ? "v_" + value_[k].variable : g4(value_[k].value));
     return text;
   }
-  std::string begin_run(const CellState&, SettingValues& values) override
+  std::string begin_run(const CellState &, SettingValues &values) override
   {
     for (int k = 0; k < 6; ++k)
       if (control_[k] == AxisControl::STRESS && value_[k].is_variable()) values(value_[k]);
     return "";
   }
-  MixedControl6 control(const CellState&, SettingValues& values) override
+  MixedControl6 control(const CellState &, SettingValues &values) override
   {
     std::array<AxisProgramme, 6> c;
     for (int k = 0; k < 6; ++k) c[k] = {control_[k], values(value_[k])};
@@ -366,7 +377,7 @@ class PerComponent : public CellProgramme {
 
  private:
   // x, y, z (or xx, yy, zz) and the shears xy, xz, yz: its Voigt6 index, -1 if none
-  static int component(const std::string& name)
+  static int component(const std::string &name)
   {
     for (int k = 0; k < 3; ++k)
       if (name == axis_name(k)) return k;
@@ -388,10 +399,11 @@ class PerComponent : public CellProgramme {
 class PiPlanePath : public CellProgramme {
  public:
   enum class Kind { CIRCLE, TRIANGLE, POLYGON };
-  PiPlanePath(ArgList& a, Kind kind) : kind_(kind)
+  PiPlanePath(ArgList &a, Kind kind) : kind_(kind)
   {
-    const std::string mode = kind == Kind::CIRCLE ? "circle" : kind == Kind::TRIANGLE ? "triangle"
-                                                                                      : "polygon";
+    const std::string mode = kind == Kind::CIRCLE ? "circle"
+        : kind == Kind::TRIANGLE                  ? "triangle"
+                                                  : "polygon";
     if (kind != Kind::POLYGON) {
       a.need(2, mode + " PRESTRAIN P");
       prestrain_ = a.number_in(mode + " pre-strain", 0.0, 1.0, true, " (a natural strain)");
@@ -399,8 +411,7 @@ class PiPlanePath : public CellProgramme {
       a.need(1, "polygon N x1 y1 ... xN yN P");
       const int n = a.positive_integer("polygon vertex count N");
       if (n < 2)
-        throw std::invalid_argument("polygon: needs at least 2 vertices, got "
-                                    + std::to_string(n));
+        throw std::invalid_argument("polygon: needs at least 2 vertices, got " + std::to_string(n));
       a.need(2 * n + 1, "polygon N x1 y1 ... xN yN P");
       for (int k = 0; k < n; ++k) {
         const std::string v = "polygon vertex " + std::to_string(k + 1);
@@ -411,7 +422,7 @@ class PiPlanePath : public CellProgramme {
     }
     p_ = a.stress(mode + " mean stress p");
   }
-  bool keyword(const std::string& key, ArgList& a) override
+  bool keyword(const std::string &key, ArgList &a) override
   {
     if (key == "speed") {
       speed_ = a.number("speed");
@@ -419,11 +430,11 @@ class PiPlanePath : public CellProgramme {
         throw std::invalid_argument("path speed must be positive, got " + number_text(speed_));
     } else if (key == "rotation") {
       rotation_ = a.choice("rotation", {"cw", "ccw"}) == 0 ? Rotation::CLOCKWISE
-                                                          : Rotation::ANTICLOCKWISE;
+                                                           : Rotation::ANTICLOCKWISE;
     } else if (key == "measure") {
       measure_ = a.choice("measure", {"d13", "q"}) == 0
-                     ? DeviatoricStrainMeasure::STRAIN_DIFFERENCE_13
-                     : DeviatoricStrainMeasure::EPS_Q;
+          ? DeviatoricStrainMeasure::STRAIN_DIFFERENCE_13
+          : DeviatoricStrainMeasure::EPS_Q;
     } else if (key == "prestrain_leg") {
       with_prestrain_ = a.yes_no("prestrain_leg");
     } else if (key == "sweep") {
@@ -432,7 +443,8 @@ class PiPlanePath : public CellProgramme {
       close_ = a.yes_no("close");
     } else if (key == "plane_strain") {
       plane_strain_ = a.choice("plane_strain", {"total", "deviatoric"}) == 0
-                          ? PlaneStrain::TOTAL : PlaneStrain::DEVIATORIC;
+          ? PlaneStrain::TOTAL
+          : PlaneStrain::DEVIATORIC;
     } else {
       return false;
     }
@@ -443,8 +455,8 @@ class PiPlanePath : public CellProgramme {
     if (!(speed_ > 0.0))
       throw std::invalid_argument("a Pi-plane path needs 'speed V' (|de/dt|, 1/s)");
     if (kind_ == Kind::CIRCLE)
-      path_ = constant_deviatoric_strain_path(prestrain_, measure_, rotation_, with_prestrain_,
-                                              sweep_);
+      path_ =
+          constant_deviatoric_strain_path(prestrain_, measure_, rotation_, with_prestrain_, sweep_);
     else if (kind_ == Kind::TRIANGLE)
       path_ = multiaxial_plane_strain_path(prestrain_, measure_, rotation_, with_prestrain_);
     else
@@ -459,39 +471,41 @@ class PiPlanePath : public CellProgramme {
   }
   double largest_rate() const override { return speed_; }
   std::vector<NamedRate> constant_rates() const override { return {{"speed", speed_}}; }
-  std::string held_targets(const Vector6d& s) const override
+  std::string held_targets(const Vector6d &s) const override
   {
     return programme_detail::held_mean_stress(s, p_);
   }
   // every path starts from the current strain (from the reference, kept by a continued test):
   // a leg to the path's first point goes in front unless the follower can close the gap itself
-  std::string enter(const Vector6d& strain, double dt) override
+  std::string enter(const Vector6d &strain, double dt) override
   {
     const Eigen::Vector2d from = pi_coordinates(Eigen::Vector3d(strain.head<3>()));
     const int legs = path_.segment_count();
     path_ = path_.starting_from(from, MIN_STEPS_PER_LEG * speed_ * dt);
     if (path_.segment_count() == legs) return "";
     char text[200];
-    std::snprintf(text, sizeof text, "the path starts at the current strain, Pi point (%.6g, "
-                  "%.6g); a leg of length %.6g to its first point goes first", from.x(),
-                  from.y(), path_.segments().front().length());
+    std::snprintf(text, sizeof text,
+                  "the path starts at the current strain, Pi point (%.6g, "
+                  "%.6g); a leg of length %.6g to its first point goes first",
+                  from.x(), from.y(), path_.segments().front().length());
     return text;
   }
-  std::string begin_run(const CellState& state, SettingValues&) override
+  std::string begin_run(const CellState &state, SettingValues &) override
   {
     const double fastest = max_followable_speed(path_, state.dt);
     if (speed_ > fastest) {
       char text[400];
-      std::snprintf(text, sizeof text, "at speed %.4g the shortest leg of the Pi-plane path "
+      std::snprintf(text, sizeof text,
+                    "at speed %.4g the shortest leg of the Pi-plane path "
                     "(length %.4g) takes %.3g steps, and the cell cannot follow a leg in fewer "
-                    "than %d: use speed <= %.4g (or a smaller timestep)", speed_,
-                    path_.shortest_leg(), path_.shortest_leg() / (speed_ * state.dt),
+                    "than %d: use speed <= %.4g (or a smaller timestep)",
+                    speed_, path_.shortest_leg(), path_.shortest_leg() / (speed_ * state.dt),
                     MIN_STEPS_PER_LEG, fastest);
       throw std::invalid_argument(text);
     }
     return "";
   }
-  MixedControl6 control(const CellState& state, SettingValues&) override
+  MixedControl6 control(const CellState &state, SettingValues &) override
   {
     const Eigen::Vector3d strain = state.strain.head<3>();
     return six_component_control(
@@ -515,7 +529,7 @@ class PiPlanePath : public CellProgramme {
     s.insert(s.end(), followed.begin(), followed.end());
     return s;
   }
-  void restore(const std::vector<double>& s) override
+  void restore(const std::vector<double> &s) override
   {
     done_ = s[0];
     path_ = PiPath::from_array(s.data() + 1);
@@ -552,7 +566,7 @@ class PlaneProgramme : public CellProgramme {
     p.columns = out::plane_columns();
     return p;
   }
-  std::string begin_run(const CellState& state, SettingValues&) override
+  std::string begin_run(const CellState &state, SettingValues &) override
   {
     if (std::isnan(initial_normal_stress_))
       initial_normal_stress_ = normal_stress(state.stress, plane_);
@@ -562,16 +576,18 @@ class PlaneProgramme : public CellProgramme {
   std::string identity_mismatch() const override
   {
     return std::string("the restart file was written by a run on another plane; this one "
-                       "shears ") + voigt_names[plane_.component()] + ": resume it on the same "
-                       "plane, or define the fix under a new ID";
+                       "shears ") +
+        voigt_names[plane_.component()] +
+        ": resume it on the same "
+        "plane, or define the fix under a new ID";
   }
   std::vector<double> state() const override { return {initial_normal_stress_}; }
-  void restore(const std::vector<double>& s) override { initial_normal_stress_ = s[0]; }
+  void restore(const std::vector<double> &s) override { initial_normal_stress_ = s[0]; }
   std::vector<double> carried() const override
   {
     return {double(plane_.component()), initial_normal_stress_};
   }
-  void take_carried(const std::vector<double>& c) override
+  void take_carried(const std::vector<double> &c) override
   {
     if (c.size() == 2 && c[0] == plane_.component()) initial_normal_stress_ = c[1];
   }
@@ -580,12 +596,13 @@ class PlaneProgramme : public CellProgramme {
   ShearPlane plane_;
   double initial_normal_stress_ = std::numeric_limits<double>::quiet_NaN();    // sigma_n0
   // sigma_n0 of r_u must be a compressive stress
-  void require_initial_normal_stress(const std::string& mode) const
+  void require_initial_normal_stress(const std::string &mode) const
   {
     if (!(initial_normal_stress_ > 0.0))
       throw std::invalid_argument(
-          mode + ": the normal stress sigma_" + voigt_names[plane_.normal] + " is "
-          + programme_detail::g4(initial_normal_stress_) + " when the test begins (sigma_n0), "
+          mode + ": the normal stress sigma_" + voigt_names[plane_.normal] + " is " +
+          programme_detail::g4(initial_normal_stress_) +
+          " when the test begins (sigma_n0), "
           "so r_u = 1 - sigma_n/sigma_n0 is undefined: load the specimen first (e.g. fix "
           "cell/servo iso P or shear PLANE GDOT SN)");
   }
@@ -595,7 +612,7 @@ class PlaneProgramme : public CellProgramme {
 // volume, r_u = 1 - sigma_n/sigma_n0
 class SimpleShear : public PlaneProgramme {
  public:
-  SimpleShear(ArgList& a, bool drained) : drained_(drained)
+  SimpleShear(ArgList &a, bool drained) : drained_(drained)
   {
     const std::string mode = drained ? "shear" : "shear_cv";
     a.need(drained ? 3 : 2, drained ? "shear PLANE GDOT SN" : "shear_cv PLANE GDOT");
@@ -608,8 +625,10 @@ class SimpleShear : public PlaneProgramme {
   {
     ProgrammeProfile p = PlaneProgramme::profile();
     // drained: the held sigma_jj and its coupling to gamma_ij alone (docs/theory.md §11.2)
-    if (drained_) p.stiffness_entries = servo_stiffness_entries(simple_shear());
-    else p.columns.push_back(out::R_U);
+    if (drained_)
+      p.stiffness_entries = servo_stiffness_entries(simple_shear());
+    else
+      p.columns.push_back(out::R_U);
     return p;
   }
   double largest_rate() const override { return std::fabs(rate_); }
@@ -617,22 +636,23 @@ class SimpleShear : public PlaneProgramme {
   {
     return {{(drained_ ? "shear" : "shear_cv") + std::string(" shear rate gamma_dot"), rate_}};
   }
-  std::string held_targets(const Vector6d& s) const override
+  std::string held_targets(const Vector6d &s) const override
   {
     using programme_detail::g4;
     return drained_ ? "sig_n = " + g4(normal_stress(s, plane_)) + ", target " + g4(normal_) : "";
   }
-  std::string begin_run(const CellState& state, SettingValues& values) override
+  std::string begin_run(const CellState &state, SettingValues &values) override
   {
     PlaneProgramme::begin_run(state, values);
     if (!drained_) require_initial_normal_stress("shear_cv");
     return "";
   }
-  MixedControl6 control(const CellState&, SettingValues&) override { return simple_shear(); }
-  void outputs(const CellState& state, double* o) const override
+  MixedControl6 control(const CellState &, SettingValues &) override { return simple_shear(); }
+  void outputs(const CellState &state, double *o) const override
   {
     if (!drained_)
-      o[out::R_U] = pore_pressure_ratio(normal_stress(state.stress, plane_), initial_normal_stress_);
+      o[out::R_U] =
+          pore_pressure_ratio(normal_stress(state.stress, plane_), initial_normal_stress_);
   }
 
  private:
@@ -652,25 +672,27 @@ class CyclicShear : public PlaneProgramme {
   // below this CSR the amplitude CSR sigma_n0 is a shear strain of about CSR sigma_n0/G of a
   // few 1e-9 on the specimens of the tests: the cycles would be round-off of the cell
   static constexpr double MIN_CSR = 1e-6;
-  explicit CyclicShear(ArgList& a)
+  explicit CyclicShear(ArgList &a)
   {
     a.need(3, "cyclic_shear PLANE GDOT CSR");
     plane_ = programme_detail::plane_of(a, "cyclic_shear");
     rate_ = a.number("cyclic_shear shear rate gamma_dot");
     if (!(rate_ > 0.0))
-      throw std::invalid_argument("cyclic_shear shear rate gamma_dot = " + number_text(rate_)
-                                  + " must be positive (the first half cycle shears towards "
+      throw std::invalid_argument("cyclic_shear shear rate gamma_dot = " + number_text(rate_) +
+                                  " must be positive (the first half cycle shears towards "
                                   "+tau; each reversal turns its sign)");
     csr_ = a.number_in("cyclic_shear CSR", MIN_CSR, 10.0, false,
                        " (below, the cyclic amplitude is lost in round-off)");
   }
-  bool keyword(const std::string& key, ArgList& a) override
+  bool keyword(const std::string &key, ArgList &a) override
   {
-    if (key == "ru_limit") criteria_.pore_pressure_ratio = a.number_in(key, 0.0, 1.0, true);
+    if (key == "ru_limit")
+      criteria_.pore_pressure_ratio = a.number_in(key, 0.0, 1.0, true);
     else if (key == "da_limit")
-      criteria_.double_amplitude_strain = a.number_in(key, 0.0, 1.0, true,
-                                                      " (a double-amplitude shear strain)");
-    else return false;
+      criteria_.double_amplitude_strain =
+          a.number_in(key, 0.0, 1.0, true, " (a double-amplitude shear strain)");
+    else
+      return false;
     return true;
   }
   ProgrammeProfile profile() const override
@@ -684,8 +706,8 @@ class CyclicShear : public PlaneProgramme {
   {
     return {{"cyclic_shear shear rate gamma_dot", rate_}};
   }
-  std::string held_targets(const Vector6d&) const override { return ""; }
-  std::string begin_run(const CellState& state, SettingValues& values) override
+  std::string held_targets(const Vector6d &) const override { return ""; }
+  std::string begin_run(const CellState &state, SettingValues &values) override
   {
     PlaneProgramme::begin_run(state, values);
     require_initial_normal_stress("cyclic_shear");
@@ -694,22 +716,25 @@ class CyclicShear : public PlaneProgramme {
     const double tau = shear_stress(state.stress, plane_);
     if (state_.reversals == 0 && state_.direction * tau >= cyclic().amplitude())
       return "cyclic_shear: the shear stress when the test begins, tau = " +
-             programme_detail::g4(tau) + " (tau/sigma_n0 = " +
-             programme_detail::g4(tau / initial_normal_stress_) + "), is at the amplitude CSR "
-             "sigma_n0 = " + programme_detail::g4(cyclic().amplitude()) + " already: the first "
-             "half cycle ends at its first step; use a CSR above |tau|/sigma_n0";
+          programme_detail::g4(tau) +
+          " (tau/sigma_n0 = " + programme_detail::g4(tau / initial_normal_stress_) +
+          "), is at the amplitude CSR "
+          "sigma_n0 = " +
+          programme_detail::g4(cyclic().amplitude()) +
+          " already: the first "
+          "half cycle ends at its first step; use a CSR above |tau|/sigma_n0";
     return "";
   }
-  MixedControl6 control(const CellState&, SettingValues&) override
+  MixedControl6 control(const CellState &, SettingValues &) override
   {
     return cyclic().control(state_);
   }
-  void after_step(const CellState& s) override
+  void after_step(const CellState &s) override
   {
     cyclic().update(state_, shear_stress(s.stress, plane_), -s.strain(plane_.component()),
                     normal_stress(s.stress, plane_));
   }
-  void outputs(const CellState& state, double* o) const override
+  void outputs(const CellState &state, double *o) const override
   {
     o[out::R_U] = pore_pressure_ratio(normal_stress(state.stress, plane_), initial_normal_stress_);
     o[out::CYCLES] = cyclic().cycles(state_);
@@ -723,7 +748,7 @@ class CyclicShear : public PlaneProgramme {
     state_.to_array(s.data() + 1);
     return s;
   }
-  void restore(const std::vector<double>& s) override
+  void restore(const std::vector<double> &s) override
   {
     initial_normal_stress_ = s[0];
     state_ = CyclicSimpleShear::State::from_array(s.data() + 1);
@@ -747,26 +772,27 @@ class StressRotation : public PlaneProgramme {
   // the largest turn of the principal direction in a step: a target that turns by more is no
   // stress path the servo, which removes a few per cent of its error per step, can follow
   static constexpr double MAX_DEGREES_PER_STEP = 1.0;
-  explicit StressRotation(ArgList& a)
+  explicit StressRotation(ArgList &a)
   {
     a.need(5, "stress_rotation PLANE P Q B ALPHA_DOT");
     plane_ = programme_detail::plane_of(a, "stress_rotation");
     r_.i = plane_.direction, r_.j = plane_.normal;
     r_.mean_stress = a.stress("stress_rotation mean stress p");
-    r_.deviatoric_stress = a.number_in("stress_rotation Q = sigma1 - sigma3", 0.0, MAX_STRESS,
-                                       true, " Pa (Q = 0 is an isotropic stress, which has no "
+    r_.deviatoric_stress = a.number_in("stress_rotation Q = sigma1 - sigma3", 0.0, MAX_STRESS, true,
+                                       " Pa (Q = 0 is an isotropic stress, which has no "
                                        "direction to turn)");
     r_.b = a.number_in("stress_rotation b", 0.0, 1.0, false);
     r_.rotation_rate_deg = a.number("stress_rotation rate ALPHA_DOT (degrees per second)");
     // sigma_3 = p - (1 + b) Q/3 must stay compressive
     if (!(r_.mean_stress - (1.0 + r_.b) * r_.deviatoric_stress / 3.0 > 0.0))
       throw std::invalid_argument(
-          "stress_rotation: Q = " + g_text(r_.deviatoric_stress) + " at p = "
-          + g_text(r_.mean_stress) + " and b = " + g_text(r_.b) + " puts the minor principal "
-          "stress p - (1 + b) Q/3 in tension (a granular cell carries none): use Q < "
-          + g_text(3.0 * r_.mean_stress / (1.0 + r_.b)));
+          "stress_rotation: Q = " + g_text(r_.deviatoric_stress) +
+          " at p = " + g_text(r_.mean_stress) + " and b = " + g_text(r_.b) +
+          " puts the minor principal "
+          "stress p - (1 + b) Q/3 in tension (a granular cell carries none): use Q < " +
+          g_text(3.0 * r_.mean_stress / (1.0 + r_.b)));
   }
-  bool keyword(const std::string& key, ArgList& a) override
+  bool keyword(const std::string &key, ArgList &a) override
   {
     if (key != "start_angle") return false;
     r_.initial_angle_deg = a.number_in(key, -360.0, 360.0, false, " degrees");
@@ -782,24 +808,28 @@ class StressRotation : public PlaneProgramme {
   }
   double largest_rate() const override { return 0.0; }
   std::vector<NamedRate> constant_rates() const override { return {}; }
-  std::string held_targets(const Vector6d& s) const override
+  std::string held_targets(const Vector6d &s) const override
   {
     return programme_detail::held_mean_stress(s, r_.mean_stress);
   }
-  std::string begin_run(const CellState& state, SettingValues& values) override
+  std::string begin_run(const CellState &state, SettingValues &values) override
   {
     PlaneProgramme::begin_run(state, values);
     const double per_step = std::fabs(r_.rotation_rate_deg) * state.dt;
     if (per_step > MAX_DEGREES_PER_STEP)
       throw std::invalid_argument(
-          "stress_rotation: ALPHA_DOT = " + g_text(r_.rotation_rate_deg) + " degrees per second "
-          "turns the principal direction by " + programme_detail::g4(per_step) + " degrees per "
-          "step (timestep " + programme_detail::g4(state.dt) + "), more than the "
-          + g_text(MAX_DEGREES_PER_STEP) + " a servo can follow: use |ALPHA_DOT| <= "
-          + programme_detail::g4(MAX_DEGREES_PER_STEP / state.dt) + " degrees per second");
+          "stress_rotation: ALPHA_DOT = " + g_text(r_.rotation_rate_deg) +
+          " degrees per second "
+          "turns the principal direction by " +
+          programme_detail::g4(per_step) +
+          " degrees per "
+          "step (timestep " +
+          programme_detail::g4(state.dt) + "), more than the " + g_text(MAX_DEGREES_PER_STEP) +
+          " a servo can follow: use |ALPHA_DOT| <= " +
+          programme_detail::g4(MAX_DEGREES_PER_STEP / state.dt) + " degrees per second");
     return "";
   }
-  MixedControl6 control(const CellState& state, SettingValues&) override
+  MixedControl6 control(const CellState &state, SettingValues &) override
   {
     return r_.control(state.time);
   }
@@ -814,7 +844,7 @@ class StressRotation : public PlaneProgramme {
 
 class UndrainedTriaxialTest : public CellProgramme {
  public:
-  explicit UndrainedTriaxialTest(ArgList& a)
+  explicit UndrainedTriaxialTest(ArgList &a)
   {
     a.need(2, "undrained AXIS RATE");
     axis_ = programme_detail::axis_of(a, "undrained");
@@ -822,7 +852,7 @@ class UndrainedTriaxialTest : public CellProgramme {
                                            " (> 0 compression, < 0 extension)");
   }
   ProgrammeProfile profile() const override { return {}; }
-  std::vector<Setting*> settings() override { return {&rate_}; }
+  std::vector<Setting *> settings() override { return {&rate_}; }
   double largest_rate() const override { return std::fabs(rate_.value); }
   std::vector<NamedRate> constant_rates() const override
   {
@@ -830,17 +860,17 @@ class UndrainedTriaxialTest : public CellProgramme {
     programme_detail::add_constant(r, rate_);
     return r;
   }
-  std::string held_targets(const Vector6d& s) const override
+  std::string held_targets(const Vector6d &s) const override
   {
-    return "sig2 - sig3 = " + programme_detail::g4(s((axis_ + 1) % 3) - s((axis_ + 2) % 3))
-           + ", target 0";
+    return "sig2 - sig3 = " + programme_detail::g4(s((axis_ + 1) % 3) - s((axis_ + 2) % 3)) +
+        ", target 0";
   }
-  std::string begin_run(const CellState&, SettingValues& values) override
+  std::string begin_run(const CellState &, SettingValues &values) override
   {
     if (rate_.is_variable()) values(rate_);
     return "";
   }
-  MixedControl6 control(const CellState&, SettingValues& values) override
+  MixedControl6 control(const CellState &, SettingValues &values) override
   {
     return UndrainedTriaxial{axis_, values(rate_)}.control();
   }
@@ -863,7 +893,7 @@ class AxialTest : public CellProgramme {
     p.columns = out::axial_columns();
     return p;
   }
-  void outputs(const CellState& state, double* o) const override
+  void outputs(const CellState &state, double *o) const override
   {
     o[out::EPS_A] = state.strain(axis_);
     o[out::SIG_A] = state.stress(axis_);
@@ -874,8 +904,10 @@ class AxialTest : public CellProgramme {
   std::string identity_mismatch() const override
   {
     return std::string("the restart file was written by a run along another axis; this one "
-                       "loads ") + axis_name(axis_) + ": resume it along the same axis, or "
-                       "define the fix under a new ID";
+                       "loads ") +
+        axis_name(axis_) +
+        ": resume it along the same axis, or "
+        "define the fix under a new ID";
   }
 
  protected:
@@ -887,22 +919,24 @@ class AxialTest : public CellProgramme {
 // -RATE until OCR = (largest sigma_a)/sigma_a reaches R; then the cell rests (progress 1)
 class OedometerTest : public AxialTest {
  public:
-  explicit OedometerTest(ArgList& a)
+  explicit OedometerTest(ArgList &a)
   {
     a.need(3, "k0 AXIS RATE SIGMA_MAX");
     axis_ = programme_detail::axis_of(a, "k0");
     rate_ = a.number("k0 axial strain rate");
     if (!(rate_ > 0.0))
-      throw std::invalid_argument("k0 axial strain rate = " + number_text(rate_) + " must be "
+      throw std::invalid_argument("k0 axial strain rate = " + number_text(rate_) +
+                                  " must be "
                                   "positive (loading compresses the axis; the unloading of "
                                   "keyword 'ocr' runs at -RATE)");
     course_.peak = a.stress("k0 largest axial stress SIGMA_MAX");
   }
-  bool keyword(const std::string& key, ArgList& a) override
+  bool keyword(const std::string &key, ArgList &a) override
   {
     if (key != "ocr") return false;
-    course_.ocr = a.number_in(key, 1.0, 1e6, false, " (SIGMA_MAX/sigma_a at the end of "
-                                                    "unloading; 1: no unloading)");
+    course_.ocr = a.number_in(key, 1.0, 1e6, false,
+                              " (SIGMA_MAX/sigma_a at the end of "
+                              "unloading; 1: no unloading)");
     return true;
   }
   ProgrammeProfile profile() const override
@@ -913,26 +947,29 @@ class OedometerTest : public AxialTest {
     return p;
   }
   double largest_rate() const override { return rate_; }
-  std::vector<NamedRate> constant_rates() const override { return {{"k0 axial strain rate", rate_}}; }
-  std::string held_targets(const Vector6d&) const override { return ""; }
-  std::string begin_run(const CellState& state, SettingValues&) override
+  std::vector<NamedRate> constant_rates() const override
+  {
+    return {{"k0 axial strain rate", rate_}};
+  }
+  std::string held_targets(const Vector6d &) const override { return ""; }
+  std::string begin_run(const CellState &state, SettingValues &) override
   {
     if (!std::isnan(state_.axial0)) return "";
     const double axial = state.stress(axis_);
     if (!(axial < course_.peak))
       throw std::invalid_argument(
-          "k0: the axial stress sigma_" + std::string(axis_name(axis_)) + " is "
-          + programme_detail::g4(axial) + " when the test begins, not below SIGMA_MAX = "
-          + programme_detail::g4(course_.peak) + ": give a SIGMA_MAX above it");
+          "k0: the axial stress sigma_" + std::string(axis_name(axis_)) + " is " +
+          programme_detail::g4(axial) + " when the test begins, not below SIGMA_MAX = " +
+          programme_detail::g4(course_.peak) + ": give a SIGMA_MAX above it");
     state_ = course_.begin(axial, radial_stress(state.stress, axis_));
     return "";
   }
-  MixedControl6 control(const CellState&, SettingValues&) override
+  MixedControl6 control(const CellState &, SettingValues &) override
   {
     return OedometricCompression{axis_, state_.direction * rate_}.control();
   }
-  void after_step(const CellState& s) override { course_.update(state_, s.stress(axis_)); }
-  void outputs(const CellState& state, double* o) const override
+  void after_step(const CellState &s) override { course_.update(state_, s.stress(axis_)); }
+  void outputs(const CellState &state, double *o) const override
   {
     constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
     AxialTest::outputs(state, o);
@@ -951,7 +988,10 @@ class OedometerTest : public AxialTest {
     return course_.progress(now);
   }
   std::vector<double> state() const override { return state_.to_vector(); }
-  void restore(const std::vector<double>& s) override { state_ = OedometerCourse::State::from_array(s.data()); }
+  void restore(const std::vector<double> &s) override
+  {
+    state_ = OedometerCourse::State::from_array(s.data());
+  }
 
  private:
   double rate_;
@@ -966,26 +1006,29 @@ class OedometerTest : public AxialTest {
 class CyclicTriaxial : public AxialTest {
  public:
   static constexpr double MIN_CSR = 1e-6;    // as cyclic_shear's: below, round-off
-  explicit CyclicTriaxial(ArgList& a)
+  explicit CyclicTriaxial(ArgList &a)
   {
     a.need(3, "cyclic_triaxial AXIS RATE CSR");
     axis_ = programme_detail::axis_of(a, "cyclic_triaxial");
     rate_ = a.number("cyclic_triaxial axial strain rate");
     if (!(rate_ > 0.0))
-      throw std::invalid_argument("cyclic_triaxial axial strain rate = " + number_text(rate_)
-                                  + " must be positive (the first half cycle compresses the "
+      throw std::invalid_argument("cyclic_triaxial axial strain rate = " + number_text(rate_) +
+                                  " must be positive (the first half cycle compresses the "
                                   "axis; each reversal turns its sign)");
     csr_ = a.number_in("cyclic_triaxial CSR", MIN_CSR, 10.0, false,
                        " (below, the cyclic amplitude is lost in round-off)");
   }
-  bool keyword(const std::string& key, ArgList& a) override
+  bool keyword(const std::string &key, ArgList &a) override
   {
-    if (key == "ru_limit") criteria_.pore_pressure_ratio = a.number_in(key, 0.0, 1.0, true);
+    if (key == "ru_limit")
+      criteria_.pore_pressure_ratio = a.number_in(key, 0.0, 1.0, true);
     else if (key == "da_limit")
-      criteria_.double_amplitude_strain = a.number_in(key, 0.0, 1.0, true,
-                                                      " (a double-amplitude axial strain)");
-    else if (key == "one_way") one_way_ = a.yes_no(key);
-    else return false;
+      criteria_.double_amplitude_strain =
+          a.number_in(key, 0.0, 1.0, true, " (a double-amplitude axial strain)");
+    else if (key == "one_way")
+      one_way_ = a.yes_no(key);
+    else
+      return false;
     return true;
   }
   ProgrammeProfile profile() const override
@@ -1000,32 +1043,35 @@ class CyclicTriaxial : public AxialTest {
   {
     return {{"cyclic_triaxial axial strain rate", rate_}};
   }
-  std::string held_targets(const Vector6d& s) const override
+  std::string held_targets(const Vector6d &s) const override
   {
-    return "sig2 - sig3 = " + programme_detail::g4(s((axis_ + 1) % 3) - s((axis_ + 2) % 3))
-           + ", target 0";
+    return "sig2 - sig3 = " + programme_detail::g4(s((axis_ + 1) % 3) - s((axis_ + 2) % 3)) +
+        ", target 0";
   }
-  std::string begin_run(const CellState& state, SettingValues&) override
+  std::string begin_run(const CellState &state, SettingValues &) override
   {
     if (std::isnan(p0_)) p0_ = mean_stress(state.stress.head<3>());
     if (!(p0_ > 0.0))
-      throw std::invalid_argument("cyclic_triaxial: the mean stress is " + programme_detail::g4(p0_)
-                                  + " when the test begins (p0), so r_u = 1 - p/p0 is undefined: "
+      throw std::invalid_argument("cyclic_triaxial: the mean stress is " +
+                                  programme_detail::g4(p0_) +
+                                  " when the test begins (p0), so r_u = 1 - p/p0 is undefined: "
                                   "load the specimen first (e.g. fix cell/servo iso P)");
     const double q = axial_deviator(state.stress, axis_);
     if (count_.reversals == 0 && q >= cyclic().amplitude())
-      return "cyclic_triaxial: the deviator when the test begins, q_a = " + programme_detail::g4(q)
-             + ", is at the amplitude 2 CSR p0 = " + programme_detail::g4(cyclic().amplitude())
-             + " already: the first half cycle ends at its first step; use a CSR above "
-               "q_a/(2 p0) = " + programme_detail::g4(q / (2.0 * p0_));
+      return "cyclic_triaxial: the deviator when the test begins, q_a = " +
+          programme_detail::g4(q) +
+          ", is at the amplitude 2 CSR p0 = " + programme_detail::g4(cyclic().amplitude()) +
+          " already: the first half cycle ends at its first step; use a CSR above "
+          "q_a/(2 p0) = " +
+          programme_detail::g4(q / (2.0 * p0_));
     return "";
   }
-  MixedControl6 control(const CellState&, SettingValues&) override
+  MixedControl6 control(const CellState &, SettingValues &) override
   {
     return cyclic().control(count_);
   }
-  void after_step(const CellState& s) override { cyclic().update(count_, s.stress, s.strain); }
-  void outputs(const CellState& state, double* o) const override
+  void after_step(const CellState &s) override { cyclic().update(count_, s.stress, s.strain); }
+  void outputs(const CellState &state, double *o) const override
   {
     AxialTest::outputs(state, o);
     o[out::R_U] = cyclic().pore_pressure_ratio_of(state.stress);
@@ -1040,24 +1086,21 @@ class CyclicTriaxial : public AxialTest {
     count_.to_array(s.data() + 1);
     return s;
   }
-  void restore(const std::vector<double>& s) override
+  void restore(const std::vector<double> &s) override
   {
     p0_ = s[0];
     count_ = CycleCount::from_array(s.data() + 1);
   }
   // a redefinition continuing the test along the same axis takes p0 over
   std::vector<double> carried() const override { return {CARRY_TAG + axis_, p0_}; }
-  void take_carried(const std::vector<double>& c) override
+  void take_carried(const std::vector<double> &c) override
   {
     if (c.size() == 2 && c[0] == CARRY_TAG + axis_) p0_ = c[1];
   }
 
  private:
   static constexpr double CARRY_TAG = 100.0;    // (a plane programme carries its component)
-  CyclicUndrainedTriaxial cyclic() const
-  {
-    return {axis_, rate_, csr_, p0_, one_way_, criteria_};
-  }
+  CyclicUndrainedTriaxial cyclic() const { return {axis_, rate_, csr_, p0_, one_way_, criteria_}; }
   double rate_, csr_;
   double p0_ = std::numeric_limits<double>::quiet_NaN();
   bool one_way_ = false;
@@ -1069,14 +1112,14 @@ class CyclicTriaxial : public AxialTest {
 // The registry: one row per MODE word
 
 struct ProgrammeKind {
-  const char* name;      // the MODE word
-  int restart_id;        // its number in restart records: never reused
-  const char* usage;     // its arguments
-  std::function<std::unique_ptr<CellProgramme>(ArgList&)> parse;
+  const char *name;     // the MODE word
+  int restart_id;       // its number in restart records: never reused
+  const char *usage;    // its arguments
+  std::function<std::unique_ptr<CellProgramme>(ArgList &)> parse;
   std::vector<std::string> keywords;    // its own keywords
 };
 
-inline const std::vector<ProgrammeKind>& programme_kinds()
+inline const std::vector<ProgrammeKind> &programme_kinds()
 {
   using P = std::unique_ptr<CellProgramme>;
   using Path = PiPlanePath::Kind;
@@ -1126,7 +1169,7 @@ inline const std::vector<ProgrammeKind>& programme_kinds()
 }
 
 // words that were MODEs or keywords once, and what to write instead
-inline std::string renamed(const std::string& word)
+inline std::string renamed(const std::string &word)
 {
   if (word == "rotation")
     return "the mode 'rotation PLANE P Q B DEG' is now 'stress_rotation PLANE P Q B ALPHA_DOT' "
@@ -1139,10 +1182,10 @@ inline std::string renamed(const std::string& word)
 }
 
 // the programme of `MODE args` at the front of a (the MODE word read)
-inline std::unique_ptr<CellProgramme> parse_programme(ArgList& a)
+inline std::unique_ptr<CellProgramme> parse_programme(ArgList &a)
 {
   const std::string mode = a.next("MODE");
-  for (const ProgrammeKind& kind : programme_kinds())
+  for (const ProgrammeKind &kind : programme_kinds())
     if (mode == kind.name) {
       std::unique_ptr<CellProgramme> p = kind.parse(a);
       p->set_kind(kind.name, kind.restart_id);
@@ -1151,18 +1194,18 @@ inline std::unique_ptr<CellProgramme> parse_programme(ArgList& a)
   const std::string old = renamed(mode);
   if (!old.empty()) throw std::invalid_argument(old);
   std::string names;
-  for (const ProgrammeKind& kind : programme_kinds())
+  for (const ProgrammeKind &kind : programme_kinds())
     names += (names.empty() ? "" : ", ") + std::string(kind.name);
   throw std::invalid_argument("unknown mode '" + mode + "' (expected " + names + ")");
 }
 
 // the programmes a keyword belongs to ("" if none): for the message of a keyword given to
 // another programme
-inline std::string owners_of(const std::string& key)
+inline std::string owners_of(const std::string &key)
 {
   std::vector<std::string> owners;
-  for (const ProgrammeKind& kind : programme_kinds())
-    for (const std::string& k : kind.keywords)
+  for (const ProgrammeKind &kind : programme_kinds())
+    for (const std::string &k : kind.keywords)
       if (k == key) owners.push_back(kind.name);
   std::string text;
   for (std::size_t k = 0; k < owners.size(); ++k)

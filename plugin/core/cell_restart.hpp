@@ -22,11 +22,11 @@
 namespace tycore {
 
 struct CellTestState {
-  CumulativeStrain strain;         // reference edges and cumulative shears (docs/theory.md §10.4)
-  ServoMemoryOf<6> memory;         // integral and the strain rate of the last step
-  double boundary_work = 0.0;      // int V sigma:deps [J]
-  double elapsed_time = 0.0;       // simulated time since the test began [s]
-  long long clock_step = 0;        // the step up to which elapsed_time is counted
+  CumulativeStrain strain;       // reference edges and cumulative shears (docs/theory.md §10.4)
+  ServoMemoryOf<6> memory;       // integral and the strain rate of the last step
+  double boundary_work = 0.0;    // int V sigma:deps [J]
+  double elapsed_time = 0.0;     // simulated time since the test began [s]
+  long long clock_step = 0;      // the step up to which elapsed_time is counted
   double until_start = std::numeric_limits<double>::quiet_NaN();    // the until measure then
 };
 
@@ -37,7 +37,7 @@ constexpr int RESTART_VERSION = 4;
 
 // [tag, version, size, programme number, identity (n, ...), strain (6), memory (12), boundary
 //  work, elapsed time, clock step, until start, programme state (n, ...)]
-inline std::vector<double> restart_record(const CellTestState& t, const CellProgramme& p)
+inline std::vector<double> restart_record(const CellTestState &t, const CellProgramme &p)
 {
   std::vector<double> list{RESTART_TAG, RESTART_VERSION, 0.0, double(p.restart_id())};
   const std::vector<double> identity = p.identity(), state = p.state();
@@ -57,16 +57,18 @@ inline std::vector<double> restart_record(const CellTestState& t, const CellProg
 // the test and the programme's state from a record written by restart_record; `fix` names the
 // fix in the messages. Throws std::invalid_argument when the record is not one of this
 // programme (another programme, path or plane), of this version, or is damaged
-inline void read_restart_record(const double* list, CellTestState& t, CellProgramme& p,
-                                const std::string& fix)
+inline void read_restart_record(const double *list, CellTestState &t, CellProgramme &p,
+                                const std::string &fix)
 {
   if (list[0] != RESTART_TAG)
-    throw std::invalid_argument("the restart file's record for fix " + fix + " is not a "
+    throw std::invalid_argument("the restart file's record for fix " + fix +
+                                " is not a "
                                 "cell/servo record; define the fix under a new ID");
   if (static_cast<int>(list[1]) != RESTART_VERSION)
     throw std::invalid_argument(
-        "the restart record of fix " + fix + " has version " + number_text(list[1])
-        + ", this build reads version " + std::to_string(RESTART_VERSION) + " (a record of an "
+        "the restart record of fix " + fix + " has version " + number_text(list[1]) +
+        ", this build reads version " + std::to_string(RESTART_VERSION) +
+        " (a record of an "
         "earlier build of tylmp): rerun the stage that wrote it, or define the fix under a new "
         "ID, which starts a new test");
   if (static_cast<int>(list[3]) != p.restart_id())
@@ -76,9 +78,10 @@ inline void read_restart_record(const double* list, CellTestState& t, CellProgra
   const std::vector<double> identity = p.identity();
   constexpr std::size_t fixed = CumulativeStrain::size + ServoMemoryOf<6>::size + 4;
   const auto damaged = [&](std::size_t parts) {
-    return std::invalid_argument("the restart record of fix " + fix + " says it holds "
-                                 + std::to_string(size) + " numbers, but its parts hold "
-                                 + std::to_string(parts) + ": the file is damaged or was "
+    return std::invalid_argument("the restart record of fix " + fix + " says it holds " +
+                                 std::to_string(size) + " numbers, but its parts hold " +
+                                 std::to_string(parts) +
+                                 ": the file is damaged or was "
                                  "written by another programme");
   };
   if (size < 5 || size < 5 + static_cast<std::size_t>(list[4])) throw damaged(5);
@@ -101,7 +104,6 @@ inline void read_restart_record(const double* list, CellTestState& t, CellProgra
   if (n > 0) p.restore(std::vector<double>(list + k, list + k + n));
 }
 
-
 // What a redefinition of a fix (same ID, `continue yes`) takes over from the fix it replaces:
 // the test, the programme's carried state (sigma_n0 of a plane), the record and the box it
 // left, the outputs when the test began. LAMMPS deletes the old fix before it constructs the
@@ -115,7 +117,7 @@ struct TestCarry {
   std::array<double, out::COUNT> origin;
 };
 
-inline std::map<std::string, TestCarry>& test_carries()
+inline std::map<std::string, TestCarry> &test_carries()
 {
   static std::map<std::string, TestCarry> carries;
   return carries;

@@ -58,7 +58,10 @@ namespace tycore {
 
 enum class AxisControl { STRAIN_RATE, STRESS };
 
-inline const char* axis_name(int axis) { return axis == 0 ? "x" : axis == 1 ? "y" : "z"; }
+inline const char *axis_name(int axis)
+{
+  return axis == 0 ? "x" : axis == 1 ? "y" : "z";
+}
 
 // a number in a message: 6 significant digits (std::to_string writes 1e300 in 301 digits)
 inline std::string number_text(double value)
@@ -71,11 +74,11 @@ inline std::string number_text(double value)
 // ---------------------------------------------------------------------------------------------
 // Input checks; messages name the offending quantity so the fix can pass them on
 
-inline void require_positive_stress(const std::string& name, double value)
+inline void require_positive_stress(const std::string &name, double value)
 {
   if (!(value > 0.0) || !std::isfinite(value))
-    throw std::invalid_argument("target stress " + name + " = " + number_text(value)
-                                + " must be positive (a granular cell carries no tension)");
+    throw std::invalid_argument("target stress " + name + " = " + number_text(value) +
+                                " must be positive (a granular cell carries no tension)");
 }
 
 inline void require_b_in_range(double b)
@@ -106,7 +109,7 @@ inline Eigen::Matrix3d affine_stiffness(const double sums[6], double volume)
 
 // one contact's share of V*C, branch = x2 - x1 (image-shifted); sum over contacts, each once
 // (the formula: affine_stiffness_entries.hpp)
-inline Eigen::Matrix3d affine_stiffness_contribution(const Eigen::Vector3d& branch,
+inline Eigen::Matrix3d affine_stiffness_contribution(const Eigen::Vector3d &branch,
                                                      double normal_stiffness,
                                                      double tangential_stiffness = 0.0)
 {
@@ -114,7 +117,9 @@ inline Eigen::Matrix3d affine_stiffness_contribution(const Eigen::Vector3d& bran
   const Eigen::Vector3d n = branch / std::sqrt(l2);
   double sums[6];
   affine_principal_entries(n(0), n(1), n(2), l2, normal_stiffness, tangential_stiffness,
-                           [&sums](int m, double value) { sums[m] = value; });
+                           [&sums](int m, double value) {
+                             sums[m] = value;
+                           });
   return affine_stiffness(sums, 1.0);
 }
 
@@ -132,16 +137,13 @@ inline double quasi_static_strain_rate(double inertial_number, double mean_stres
 // The cell's state and the servo's data, on N controlled components: N = 3 for the principal
 // axes of an orthogonal cell, N = 6 for the full stress and strain of a triclinic cell (Voigt6
 // order xx yy zz xy xz yz, engineering shears; cell_kinematics.hpp, docs/theory.md §11.2)
-template <int N>
-using VectorN = Eigen::Matrix<double, N, 1>;
-template <int N>
-using MatrixN = Eigen::Matrix<double, N, N>;
+template <int N> using VectorN = Eigen::Matrix<double, N, 1>;
+template <int N> using MatrixN = Eigen::Matrix<double, N, N>;
 
-template <int N>
-struct CellMeasurementOf {
-  VectorN<N> stress;      // compression positive [Pa]; principal stresses along x, y, z if N = 3
-  MatrixN<N> stiffness;   // affine stiffness C [Pa]
-  VectorN<N> strain;      // strains from the reference cell, compression positive
+template <int N> struct CellMeasurementOf {
+  VectorN<N> stress;       // compression positive [Pa]; principal stresses along x, y, z if N = 3
+  MatrixN<N> stiffness;    // affine stiffness C [Pa]
+  VectorN<N> strain;       // strains from the reference cell, compression positive
 };
 using CellMeasurement = CellMeasurementOf<3>;
 
@@ -159,20 +161,19 @@ struct ServoSettings {
   double integral_gain = 0.005;
   // the integral accumulates only while every |error| <= integral_band * stress level
   double integral_band = 0.05;
-  double max_strain_rate = 0.0;   // cap on each axis' servo rate [1/s]; must be set
+  double max_strain_rate = 0.0;    // cap on each axis' servo rate [1/s]; must be set
 };
 
-template <int N>
-struct ServoMemoryOf {
-  VectorN<N> integral = VectorN<N>::Zero();          // S [Pa], one per held stress
-  VectorN<N> last_strain_rate = VectorN<N>::Zero();  // rate commanded last step
+template <int N> struct ServoMemoryOf {
+  VectorN<N> integral = VectorN<N>::Zero();            // S [Pa], one per held stress
+  VectorN<N> last_strain_rate = VectorN<N>::Zero();    // rate commanded last step
 
   static constexpr int size = 2 * N;
-  void to_array(double* a) const
+  void to_array(double *a) const
   {
     for (int i = 0; i < N; ++i) a[i] = integral(i), a[N + i] = last_strain_rate(i);
   }
-  static ServoMemoryOf from_array(const double* a)
+  static ServoMemoryOf from_array(const double *a)
   {
     ServoMemoryOf m;
     for (int i = 0; i < N; ++i) m.integral(i) = a[i], m.last_strain_rate(i) = a[N + i];
@@ -181,15 +182,14 @@ struct ServoMemoryOf {
 };
 using ServoMemory = ServoMemoryOf<3>;
 
-template <int N>
-struct MixedControlOf {
-  VectorN<N> prescribed_strain_rate = VectorN<N>::Zero();   // r_p [1/s]
-  int actuator_count = 0;                                   // m
-  MatrixN<N> actuators = MatrixN<N>::Zero();        // columns 0..m-1: w_k
-  MatrixN<N> stress_rows = MatrixN<N>::Zero();      // rows 0..m-1: a_k
-  VectorN<N> stress_targets = VectorN<N>::Zero();   // t_k [Pa]
+template <int N> struct MixedControlOf {
+  VectorN<N> prescribed_strain_rate = VectorN<N>::Zero();    // r_p [1/s]
+  int actuator_count = 0;                                    // m
+  MatrixN<N> actuators = MatrixN<N>::Zero();                 // columns 0..m-1: w_k
+  MatrixN<N> stress_rows = MatrixN<N>::Zero();               // rows 0..m-1: a_k
+  VectorN<N> stress_targets = VectorN<N>::Zero();            // t_k [Pa]
 
-  void add(const VectorN<N>& actuator, const VectorN<N>& row, double target)
+  void add(const VectorN<N> &actuator, const VectorN<N> &row, double target)
   {
     if (actuator_count == N)
       throw std::invalid_argument("more held stresses than controlled components");
@@ -201,11 +201,10 @@ struct MixedControlOf {
 };
 using MixedControl = MixedControlOf<3>;
 
-template <int N>
-struct ServoCommandOf {
-  VectorN<N> strain_rate;        // strain rates for the next step [1/s]
-  bool saturated;                // the strain-rate cap limited the servo part
-  double stress_error = 0.0;     // largest |target - stress| of the held stresses [Pa]
+template <int N> struct ServoCommandOf {
+  VectorN<N> strain_rate;       // strain rates for the next step [1/s]
+  bool saturated;               // the strain-rate cap limited the servo part
+  double stress_error = 0.0;    // largest |target - stress| of the held stresses [Pa]
 };
 using ServoCommand = ServoCommandOf<3>;
 
@@ -222,13 +221,13 @@ inline Eigen::Vector2d constant_b_targets(double major_stress, double mean_stres
 
 struct AxisProgramme {
   AxisControl control;
-  double value;   // strain rate [1/s] or target stress [Pa]
+  double value;    // strain rate [1/s] or target stress [Pa]
 };
 
 // each component at a prescribed strain rate or a target stress; N = 3: the principal axes
 // (targets positive), N = 6: also the shears of a triclinic cell (targets of any sign)
 template <std::size_t N = 3>
-MixedControlOf<int(N)> per_axis_control(const std::array<AxisProgramme, N>& components)
+MixedControlOf<int(N)> per_axis_control(const std::array<AxisProgramme, N> &components)
 {
   MixedControlOf<int(N)> c;
   for (int i = 0; i < int(N); ++i) {
@@ -241,8 +240,8 @@ MixedControlOf<int(N)> per_axis_control(const std::array<AxisProgramme, N>& comp
     if (i < 3)
       require_positive_stress(std::string("sigma_") + axis_name(i), value);
     else if (!std::isfinite(value))
-      throw std::invalid_argument(std::string("target shear stress sigma_") + voigt_names[i]
-                                  + " is not finite");
+      throw std::invalid_argument(std::string("target shear stress sigma_") + voigt_names[i] +
+                                  " is not finite");
     c.add(unit, unit, value);
   }
   return c;
@@ -256,7 +255,7 @@ inline MixedControl isotropic_compression_control(double mean_stress)
 
 // constant p with a prescribed deviatoric strain rate: deps/dt = e' + (eps_v'/3) 1
 inline MixedControl mean_stress_control(double mean_stress,
-                                        const Eigen::Vector3d& deviatoric_strain_rate)
+                                        const Eigen::Vector3d &deviatoric_strain_rate)
 {
   require_positive_stress("p", mean_stress);
   MixedControl c;
@@ -295,8 +294,7 @@ inline MixedControl axisymmetric_control(int axis, double axial_strain_rate, dou
 }
 
 // the free axes must be able to move every held stress combination
-template <int N>
-void require_controllable(const MixedControlOf<N>& c)
+template <int N> void require_controllable(const MixedControlOf<N> &c)
 {
   const int m = c.actuator_count;
   if (m == 0) return;
@@ -306,18 +304,18 @@ void require_controllable(const MixedControlOf<N>& c)
                                 "some stress target has no strain-controlled freedom");
 }
 
-inline void require_valid(const ServoSettings& s)
+inline void require_valid(const ServoSettings &s)
 {
   if (!(s.gain > 0.0 && s.gain <= 1.0))
     throw std::invalid_argument("servo gain " + number_text(s.gain) + " is outside (0, 1]");
   if (!(s.integral_gain >= 0.0 && s.integral_gain <= 0.25 * s.gain * s.gain))
-    throw std::invalid_argument("servo integral gain " + number_text(s.integral_gain)
-                                + " must lie in [0, gain^2/4] (larger values overshoot)");
+    throw std::invalid_argument("servo integral gain " + number_text(s.integral_gain) +
+                                " must lie in [0, gain^2/4] (larger values overshoot)");
   if (!(s.integral_band >= 0.0))
     throw std::invalid_argument("servo integral band must not be negative");
   if (!(s.max_strain_rate > 0.0))
-    throw std::invalid_argument("servo maximum strain rate " + number_text(s.max_strain_rate)
-                                + " must be positive");
+    throw std::invalid_argument("servo maximum strain rate " + number_text(s.max_strain_rate) +
+                                " must be positive");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -325,128 +323,126 @@ inline void require_valid(const ServoSettings& s)
 
 namespace detail {
 
-// The components a control works on: every normal component, and a shear (N = 6) that it
-// prescribes a rate, moves or holds a stress of. A shear outside the programme does not set the
-// scale of the stiffness floor, so that a principal programme is stepped on six components to
-// the same numbers as on three (docs/theory.md §11.2).
-template <int N>
-std::array<bool, N> used_components(const MixedControlOf<N>& c)
-{
-  std::array<bool, N> used;
-  for (int j = 0; j < N; ++j)
-    used[j] = j < 3 || c.prescribed_strain_rate(j) != 0.0 || c.actuators.row(j).any()
-              || c.stress_rows.col(j).any();
-  return used;
-}
-
-// the largest stiffness, stress and target of the used components: the scale of the floor
-template <int N>
-double floor_scale(const MixedControlOf<N>& control, const CellMeasurementOf<N>& cell)
-{
-  const std::array<bool, N> used = used_components(control);
-  double scale = control.stress_targets.cwiseAbs().maxCoeff();
-  for (int i = 0; i < N; ++i) {
-    if (!used[i]) continue;
-    scale = std::max(scale, std::abs(cell.stress(i)));
+  // The components a control works on: every normal component, and a shear (N = 6) that it
+  // prescribes a rate, moves or holds a stress of. A shear outside the programme does not set the
+  // scale of the stiffness floor, so that a principal programme is stepped on six components to
+  // the same numbers as on three (docs/theory.md §11.2).
+  template <int N> std::array<bool, N> used_components(const MixedControlOf<N> &c)
+  {
+    std::array<bool, N> used;
     for (int j = 0; j < N; ++j)
-      if (used[j]) scale = std::max(scale, std::abs(cell.stiffness(i, j)));
+      used[j] = j < 3 || c.prescribed_strain_rate(j) != 0.0 || c.actuators.row(j).any() ||
+          c.stress_rows.col(j).any();
+    return used;
   }
-  return scale;
-}
 
-// Rate floor (docs/theory.md §6.2): an actuator that moves no held stress, because no
-// contact carries load along it (an axis of a loose specimen that no contact crosses),
-// would be normalised by the stiffness floor alone, and the cap, which scales the servo
-// part as a whole, would freeze every other axis behind it. Such an actuator moves at the
-// cap towards its target (the sign of its error times its row's weight on it), and the
-// loaded actuators are servoed among themselves. Returns the floor's strain rates and marks
-// the unloaded actuators.
-template <int N>
-VectorN<N> unloaded_actuator_rates(const MixedControlOf<N>& control,
-                                   const CellMeasurementOf<N>& cell,
-                                   const ServoSettings& settings, double floor,
-                                   std::array<bool, N>& unloaded)
-{
-  const MatrixN<N> raw_response = control.stress_rows * cell.stiffness * control.actuators;
-  VectorN<N> floor_rate = VectorN<N>::Zero();
-  for (int k = 0; k < control.actuator_count; ++k) {
-    unloaded[k] = raw_response.col(k).cwiseAbs().maxCoeff() <= floor;
-    const double pull = control.stress_rows.row(k).dot(control.actuators.col(k)) *
-        (control.stress_targets(k) - control.stress_rows.row(k).dot(cell.stress));
-    if (unloaded[k] && pull != 0.0)
-      floor_rate += (pull > 0.0 ? 1.0 : -1.0) * settings.max_strain_rate *
-                    control.actuators.col(k) / control.actuators.col(k).cwiseAbs().maxCoeff();
-  }
-  return floor_rate;
-}
-
-// the loaded actuators' system (A C W) u = g e - A C r_p dt + g_I S, padded to NxN with
-// identity on unused and unloaded actuators so that one fixed-size solve serves all m
-template <int N>
-struct LoadedServoSystem {
-  MatrixN<N> response = MatrixN<N>::Identity();   // A C W
-  VectorN<N> error = VectorN<N>::Zero();          // e = t - A sigma
-  VectorN<N> feed_forward = VectorN<N>::Zero();   // A C r_p dt
-  VectorN<N> held_integral;                       // S of the last step
-  double stress_error = 0.0;                      // largest |e| of the held stresses
-};
-
-// C has the stiffness floor on its diagonal
-template <int N>
-LoadedServoSystem<N> loaded_servo_system(const MixedControlOf<N>& control,
-                                         const CellMeasurementOf<N>& cell, double floor,
-                                         double dt, const VectorN<N>& integral,
-                                         const std::array<bool, N>& unloaded)
-{
-  const int m = control.actuator_count;
-  const MatrixN<N> C = cell.stiffness + floor * MatrixN<N>::Identity();
-  const VectorN<N> prescribed_step = control.prescribed_strain_rate * dt;
-  LoadedServoSystem<N> s;
-  s.response.topLeftCorner(m, m) =
-      control.stress_rows.topRows(m) * C * control.actuators.leftCols(m);
-  s.error.head(m) = control.stress_targets.head(m) - control.stress_rows.topRows(m) * cell.stress;
-  for (int k = 0; k < m; ++k) s.stress_error = std::max(s.stress_error, std::abs(s.error(k)));
-  s.feed_forward.head(m) = control.stress_rows.topRows(m) * C * prescribed_step;
-  s.held_integral = integral;
-  for (int k = 0; k < m; ++k)
-    if (unloaded[k]) {    // out of the loaded actuators' system, like an unused one
-      s.response.row(k).setZero();
-      s.response.col(k).setZero();
-      s.response(k, k) = 1.0;
-      s.error(k) = s.feed_forward(k) = s.held_integral(k) = 0.0;
+  // the largest stiffness, stress and target of the used components: the scale of the floor
+  template <int N>
+  double floor_scale(const MixedControlOf<N> &control, const CellMeasurementOf<N> &cell)
+  {
+    const std::array<bool, N> used = used_components(control);
+    double scale = control.stress_targets.cwiseAbs().maxCoeff();
+    for (int i = 0; i < N; ++i) {
+      if (!used[i]) continue;
+      scale = std::max(scale, std::abs(cell.stress(i)));
+      for (int j = 0; j < N; ++j)
+        if (used[j]) scale = std::max(scale, std::abs(cell.stiffness(i, j)));
     }
-  return s;
-}
+    return scale;
+  }
 
-// the amplitudes u (strain per step) of the actuators: proportional, affine feed-forward and
-// integral parts; `integral` is the accumulated error S after this step (it accumulates only
-// near the target)
-template <int N>
-VectorN<N> servo_amplitudes(const LoadedServoSystem<N>& s, const MixedControlOf<N>& control,
-                            const CellMeasurementOf<N>& cell, const ServoSettings& settings,
-                            VectorN<N>& integral)
-{
-  const int m = control.actuator_count;
-  const Eigen::FullPivLU<MatrixN<N>> lu(s.response);
-  if (!lu.isInvertible())
-    throw std::runtime_error("servo: the free axes cannot move the held stresses "
-                             "(singular response matrix)");
-  const VectorN<N> normalised_error = lu.solve(s.error);
-  const double stress_level = std::max(control.stress_targets.head(m).cwiseAbs().maxCoeff(),
-                                       std::abs(mean_stress(cell.stress.template head<3>())));
-  const bool near_target = s.error.cwiseAbs().maxCoeff() <= settings.integral_band * stress_level;
-  integral = s.held_integral + (near_target ? s.error : VectorN<N>::Zero());
-  VectorN<N> u = settings.gain * normalised_error - lu.solve(s.feed_forward)
-                      + settings.integral_gain * lu.solve(integral);
-  u.tail(N - m).setZero();
-  return u;
-}
+  // Rate floor (docs/theory.md §6.2): an actuator that moves no held stress, because no
+  // contact carries load along it (an axis of a loose specimen that no contact crosses),
+  // would be normalised by the stiffness floor alone, and the cap, which scales the servo
+  // part as a whole, would freeze every other axis behind it. Such an actuator moves at the
+  // cap towards its target (the sign of its error times its row's weight on it), and the
+  // loaded actuators are servoed among themselves. Returns the floor's strain rates and marks
+  // the unloaded actuators.
+  template <int N>
+  VectorN<N> unloaded_actuator_rates(const MixedControlOf<N> &control,
+                                     const CellMeasurementOf<N> &cell,
+                                     const ServoSettings &settings, double floor,
+                                     std::array<bool, N> &unloaded)
+  {
+    const MatrixN<N> raw_response = control.stress_rows * cell.stiffness * control.actuators;
+    VectorN<N> floor_rate = VectorN<N>::Zero();
+    for (int k = 0; k < control.actuator_count; ++k) {
+      unloaded[k] = raw_response.col(k).cwiseAbs().maxCoeff() <= floor;
+      const double pull = control.stress_rows.row(k).dot(control.actuators.col(k)) *
+          (control.stress_targets(k) - control.stress_rows.row(k).dot(cell.stress));
+      if (unloaded[k] && pull != 0.0)
+        floor_rate += (pull > 0.0 ? 1.0 : -1.0) * settings.max_strain_rate *
+            control.actuators.col(k) / control.actuators.col(k).cwiseAbs().maxCoeff();
+    }
+    return floor_rate;
+  }
+
+  // the loaded actuators' system (A C W) u = g e - A C r_p dt + g_I S, padded to NxN with
+  // identity on unused and unloaded actuators so that one fixed-size solve serves all m
+  template <int N> struct LoadedServoSystem {
+    MatrixN<N> response = MatrixN<N>::Identity();    // A C W
+    VectorN<N> error = VectorN<N>::Zero();           // e = t - A sigma
+    VectorN<N> feed_forward = VectorN<N>::Zero();    // A C r_p dt
+    VectorN<N> held_integral;                        // S of the last step
+    double stress_error = 0.0;                       // largest |e| of the held stresses
+  };
+
+  // C has the stiffness floor on its diagonal
+  template <int N>
+  LoadedServoSystem<N> loaded_servo_system(const MixedControlOf<N> &control,
+                                           const CellMeasurementOf<N> &cell, double floor,
+                                           double dt, const VectorN<N> &integral,
+                                           const std::array<bool, N> &unloaded)
+  {
+    const int m = control.actuator_count;
+    const MatrixN<N> C = cell.stiffness + floor * MatrixN<N>::Identity();
+    const VectorN<N> prescribed_step = control.prescribed_strain_rate * dt;
+    LoadedServoSystem<N> s;
+    s.response.topLeftCorner(m, m) =
+        control.stress_rows.topRows(m) * C * control.actuators.leftCols(m);
+    s.error.head(m) = control.stress_targets.head(m) - control.stress_rows.topRows(m) * cell.stress;
+    for (int k = 0; k < m; ++k) s.stress_error = std::max(s.stress_error, std::abs(s.error(k)));
+    s.feed_forward.head(m) = control.stress_rows.topRows(m) * C * prescribed_step;
+    s.held_integral = integral;
+    for (int k = 0; k < m; ++k)
+      if (unloaded[k]) {    // out of the loaded actuators' system, like an unused one
+        s.response.row(k).setZero();
+        s.response.col(k).setZero();
+        s.response(k, k) = 1.0;
+        s.error(k) = s.feed_forward(k) = s.held_integral(k) = 0.0;
+      }
+    return s;
+  }
+
+  // the amplitudes u (strain per step) of the actuators: proportional, affine feed-forward and
+  // integral parts; `integral` is the accumulated error S after this step (it accumulates only
+  // near the target)
+  template <int N>
+  VectorN<N> servo_amplitudes(const LoadedServoSystem<N> &s, const MixedControlOf<N> &control,
+                              const CellMeasurementOf<N> &cell, const ServoSettings &settings,
+                              VectorN<N> &integral)
+  {
+    const int m = control.actuator_count;
+    const Eigen::FullPivLU<MatrixN<N>> lu(s.response);
+    if (!lu.isInvertible())
+      throw std::runtime_error("servo: the free axes cannot move the held stresses "
+                               "(singular response matrix)");
+    const VectorN<N> normalised_error = lu.solve(s.error);
+    const double stress_level = std::max(control.stress_targets.head(m).cwiseAbs().maxCoeff(),
+                                         std::abs(mean_stress(cell.stress.template head<3>())));
+    const bool near_target = s.error.cwiseAbs().maxCoeff() <= settings.integral_band * stress_level;
+    integral = s.held_integral + (near_target ? s.error : VectorN<N>::Zero());
+    VectorN<N> u = settings.gain * normalised_error - lu.solve(s.feed_forward) +
+        settings.integral_gain * lu.solve(integral);
+    u.tail(N - m).setZero();
+    return u;
+  }
 
 }    // namespace detail
 
 template <int N>
-ServoCommandOf<N> servo_step(const MixedControlOf<N>& control, const CellMeasurementOf<N>& cell,
-                             const ServoSettings& settings, double dt, ServoMemoryOf<N>& memory)
+ServoCommandOf<N> servo_step(const MixedControlOf<N> &control, const CellMeasurementOf<N> &cell,
+                             const ServoSettings &settings, double dt, ServoMemoryOf<N> &memory)
 {
   if (!(dt > 0.0)) throw std::invalid_argument("servo time step must be positive");
   const int m = control.actuator_count;
@@ -490,14 +486,13 @@ ServoCommandOf<N> servo_step(const MixedControlOf<N>& control, const CellMeasure
 // The Pi-plane point then also moves by the volume change of the free axes (dilatancy), which
 // a purely deviatoric leg would hide in the fixed axis.
 inline MixedControl plane_strain_control(double mean_stress,
-                                         const Eigen::Vector3d& deviatoric_strain_rate,
+                                         const Eigen::Vector3d &deviatoric_strain_rate,
                                          int fixed_axis)
 {
   require_positive_stress("p", mean_stress);
   require_axis_index(fixed_axis);
   const int i = (fixed_axis + 1) % 3, j = (fixed_axis + 2) % 3;
-  const double half_difference =
-      0.5 * (deviatoric_strain_rate(i) - deviatoric_strain_rate(j));
+  const double half_difference = 0.5 * (deviatoric_strain_rate(i) - deviatoric_strain_rate(j));
   MixedControl c;
   c.prescribed_strain_rate(i) = half_difference;
   c.prescribed_strain_rate(j) = -half_difference;
@@ -514,24 +509,24 @@ enum class PlaneStrain { TOTAL, DEVIATORIC };
 // advances; on a leg with a zero deviatoric rate along one axis, PlaneStrain::TOTAL also keeps
 // that axis' total strain rate at zero (true plane strain), DEVIATORIC lets the p servo act on
 // all axes (docs/theory.md §6.3, §7.4)
-inline MixedControl path_control(const PiPath& path, double speed, double mean_stress,
-                                 const Eigen::Vector3d& strain, double dt, double& path_length,
+inline MixedControl path_control(const PiPath &path, double speed, double mean_stress,
+                                 const Eigen::Vector3d &strain, double dt, double &path_length,
                                  PlaneStrain plane_strain = PlaneStrain::TOTAL)
 {
   const int leg = path.segment_at(std::clamp(path_length, 0.0, path.length()));
-  const int fixed_axis = plane_strain == PlaneStrain::TOTAL
-                             ? plane_strain_axis(path.segments()[leg]) : -1;
+  const int fixed_axis =
+      plane_strain == PlaneStrain::TOTAL ? plane_strain_axis(path.segments()[leg]) : -1;
   const PathStep step = follow_path(path, path_length, strain, speed, dt);
   path_length = step.path_length;
   return fixed_axis >= 0
-             ? plane_strain_control(mean_stress, step.deviatoric_strain_rate, fixed_axis)
-             : mean_stress_control(mean_stress, step.deviatoric_strain_rate);
+      ? plane_strain_control(mean_stress, step.deviatoric_strain_rate, fixed_axis)
+      : mean_stress_control(mean_stress, step.deviatoric_strain_rate);
 }
 
 // the step of a path's control by the three-component servo
-inline ServoCommand path_servo_step(const PiPath& path, double speed, double mean_stress,
-                                    const CellMeasurement& cell, const ServoSettings& settings,
-                                    double dt, ServoMemory& memory, double& path_length,
+inline ServoCommand path_servo_step(const PiPath &path, double speed, double mean_stress,
+                                    const CellMeasurement &cell, const ServoSettings &settings,
+                                    double dt, ServoMemory &memory, double &path_length,
                                     PlaneStrain plane_strain = PlaneStrain::TOTAL)
 {
   const MixedControl control =
@@ -559,11 +554,11 @@ inline bool reached(double start, double now, double target)
 // Quasi-equilibrium for specimen preparation (paper section 2; docs/theory.md §6.4)
 
 struct EquilibriumCriteria {
-  double stress_tolerance = 5e-3;             // max_i |sigma_i - sigma_i*| / p*
-  double max_unbalanced_force_ratio = 1e-3;   // mean |sum of forces on a grain| / mean |f_c|
-  double max_kinetic_energy_ratio = 1e-8;     // E_kin/(p* V) = (phi/2) I^2: 1e-8 <-> I ~ 2e-4
-  double coordination_tolerance = 0.01;       // allowed drift of Z over the window
-  int window = 10;                            // consecutive samples that must all pass
+  double stress_tolerance = 5e-3;              // max_i |sigma_i - sigma_i*| / p*
+  double max_unbalanced_force_ratio = 1e-3;    // mean |sum of forces on a grain| / mean |f_c|
+  double max_kinetic_energy_ratio = 1e-8;      // E_kin/(p* V) = (phi/2) I^2: 1e-8 <-> I ~ 2e-4
+  double coordination_tolerance = 0.01;        // allowed drift of Z over the window
+  int window = 10;                             // consecutive samples that must all pass
 };
 
 struct EquilibriumSample {
@@ -575,35 +570,31 @@ struct EquilibriumSample {
 };
 
 struct EquilibriumState {
-  double reference_coordination = 0.0;   // Z when the current run of passing samples began
-  int passing_samples = 0;               // length of that run
+  double reference_coordination = 0.0;    // Z when the current run of passing samples began
+  int passing_samples = 0;                // length of that run
 
   static constexpr int size = 2;
-  void to_array(double* a) const { a[0] = reference_coordination, a[1] = passing_samples; }
-  static EquilibriumState from_array(const double* a)
-  {
-    return {a[0], static_cast<int>(a[1])};
-  }
+  void to_array(double *a) const { a[0] = reference_coordination, a[1] = passing_samples; }
+  static EquilibriumState from_array(const double *a) { return {a[0], static_cast<int>(a[1])}; }
 };
 
 struct EquilibriumCheck {
   bool stress_ok, force_ok, energy_ok, coordination_ok;
-  bool reached;   // every criterion held on `window` consecutive samples
+  bool reached;    // every criterion held on `window` consecutive samples
 };
 
-inline EquilibriumCheck update_equilibrium(EquilibriumState& state,
-                                           const EquilibriumSample& sample,
-                                           const EquilibriumCriteria& criteria)
+inline EquilibriumCheck update_equilibrium(EquilibriumState &state, const EquilibriumSample &sample,
+                                           const EquilibriumCriteria &criteria)
 {
   const double p_target = mean_stress(sample.target_stress);
   EquilibriumCheck check{};
-  check.stress_ok = (sample.stress - sample.target_stress).cwiseAbs().maxCoeff()
-                    <= criteria.stress_tolerance * p_target;
+  check.stress_ok = (sample.stress - sample.target_stress).cwiseAbs().maxCoeff() <=
+      criteria.stress_tolerance * p_target;
   check.force_ok = sample.unbalanced_force_ratio <= criteria.max_unbalanced_force_ratio;
   check.energy_ok = sample.kinetic_energy_ratio <= criteria.max_kinetic_energy_ratio;
-  check.coordination_ok = state.passing_samples == 0
-                          || std::abs(sample.coordination - state.reference_coordination)
-                                 <= criteria.coordination_tolerance;
+  check.coordination_ok = state.passing_samples == 0 ||
+      std::abs(sample.coordination - state.reference_coordination) <=
+          criteria.coordination_tolerance;
   if (!(check.stress_ok && check.force_ok && check.energy_ok)) {
     state.passing_samples = 0;
   } else if (state.passing_samples == 0 || !check.coordination_ok) {

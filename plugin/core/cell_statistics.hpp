@@ -45,23 +45,21 @@ struct ParticleStatistics {
 
 // contacts and contact_force_sum: the number of contacts and the sum of their force
 // magnitudes (each contact once); p_ref the stress level of the kinetic ratio
-inline ParticleStatistics particle_statistics(const ParticleSums& s, double contacts,
-                                              double contact_force_sum, double volume,
-                                              double p_ref)
+inline ParticleStatistics particle_statistics(const ParticleSums &s, double contacts,
+                                              double contact_force_sum, double volume, double p_ref)
 {
   constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
   const double n = s.sum[0], ends = s.sum[1], n0 = s.sum[2], n1 = s.sum[3];
   ParticleStatistics out;
   out.Z = n > 0.0 ? ends / n : NaN;
   out.Zm = n - n0 - n1 > 0.0 ? (ends - n1) / (n - n0 - n1) : 0.0;
-  out.unbalanced = contact_force_sum > 0.0 && n > 0.0
-                       ? (s.sum[4] / n) / (contact_force_sum / contacts) : NaN;
+  out.unbalanced =
+      contact_force_sum > 0.0 && n > 0.0 ? (s.sum[4] / n) / (contact_force_sum / contacts) : NaN;
   for (int k = 0; k < 3; ++k) out.kinetic_stress[k] = s.sum[5 + k] / volume;
   out.p_kinetic = (out.kinetic_stress[0] + out.kinetic_stress[1] + out.kinetic_stress[2]) / 3.0;
   out.kinetic_ratio = p_ref > 0.0 ? s.sum[8] / (p_ref * volume) : NaN;
   return out;
 }
-
 
 // the sizes of the particles: number-mean diameter and density, solid volume
 struct ParticleSizes {

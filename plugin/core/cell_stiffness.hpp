@@ -8,15 +8,15 @@
 #ifndef TYCORE_CELL_STIFFNESS_HPP
 #define TYCORE_CELL_STIFFNESS_HPP
 
+#include "affine_stiffness_entries.hpp"
 #include "cell_kinematics.hpp"
 #include "cell_servo.hpp"
-#include "affine_stiffness_entries.hpp"
 
 #include <Eigen/Core>
 
 #include <algorithm>
-#include <cmath>
 #include <array>
+#include <cmath>
 
 namespace tycore {
 
@@ -36,9 +36,9 @@ struct AffineStiffnessSums {
   static constexpr int index(int I, int J)
   {
     if (I > J) return index(J, I);
-    if (J < 3) return I == J ? I : I + J + 2;       // (0,1) -> 3, (0,2) -> 4, (1,2) -> 5
-    if (I < 3) return 6 + 3 * I + (J - 3);          // (0..2, 3..5) -> 6..14
-    return 15 + (I - 3) * 3 - (I - 3) * (I - 4) / 2 + (J - I);   // (3,3) 15 ... (5,5) 20
+    if (J < 3) return I == J ? I : I + J + 2;    // (0,1) -> 3, (0,2) -> 4, (1,2) -> 5
+    if (I < 3) return 6 + 3 * I + (J - 3);       // (0..2, 3..5) -> 6..14
+    return 15 + (I - 3) * 3 - (I - 3) * (I - 4) / 2 + (J - I);    // (3,3) 15 ... (5,5) 20
   }
 
   // sets of the entries (bit index(I, J)): the principal block, all 21; one entry
@@ -47,14 +47,15 @@ struct AffineStiffnessSums {
   static constexpr unsigned entry(int I, int J) { return 1u << index(I, J); }
 
   // one contact, branch = x2 - x1 (image-shifted), counted once
-  void add_contact(const Eigen::Vector3d& branch, double normal_stiffness,
+  void add_contact(const Eigen::Vector3d &branch, double normal_stiffness,
                    double tangential_stiffness)
   {
-    contact_entries(branch, normal_stiffness, tangential_stiffness,
-                    [this](int k, double value) { sum[k] += value; });
+    contact_entries(branch, normal_stiffness, tangential_stiffness, [this](int k, double value) {
+      sum[k] += value;
+    });
   }
 
-  AffineStiffnessSums& operator+=(const AffineStiffnessSums& other)
+  AffineStiffnessSums &operator+=(const AffineStiffnessSums &other)
   {
     for (int k = 0; k < size; ++k) sum[k] += other.sum[k];
     return *this;
@@ -69,13 +70,15 @@ struct AffineStiffnessSums {
   }
 
   // one contact's share of V*C (Voigt6)
-  static Matrix6d affine_stiffness_contribution_voigt(const Eigen::Vector3d& branch,
+  static Matrix6d affine_stiffness_contribution_voigt(const Eigen::Vector3d &branch,
                                                       double normal_stiffness,
                                                       double tangential_stiffness)
   {
     double entries[size];
     contact_entries(branch, normal_stiffness, tangential_stiffness,
-                    [&entries](int k, double value) { entries[k] = value; });
+                    [&entries](int k, double value) {
+                      entries[k] = value;
+                    });
     Matrix6d c;
     for (int I = 0; I < 6; ++I)
       for (int J = 0; J < 6; ++J) c(I, J) = entries[index(I, J)];
@@ -85,25 +88,29 @@ struct AffineStiffnessSums {
   // one contact's share of the 15 entries with a shear component (J >= 3), in the order of the
   // sums (entries[k] is sum[principal_size + k]); branch = x2 - x1 (either sign). The pair
   // styles' tallies (plugin/lammps/cell_tally.h) add exactly these when a cell has shears
-  static void shear_entries(const Eigen::Vector3d& branch, double normal_stiffness,
+  static void shear_entries(const Eigen::Vector3d &branch, double normal_stiffness,
                             double tangential_stiffness, double entries[shear_size])
   {
     const double l2 = branch.squaredNorm();
     const Eigen::Vector3d n = branch / std::sqrt(l2);
     affine_shear_entries(n(0), n(1), n(2), l2, normal_stiffness, tangential_stiffness,
-                         [entries](int k, double value) { entries[k] = value; });
+                         [entries](int k, double value) {
+                           entries[k] = value;
+                         });
   }
 
   // one contact's 21 entries, entry k handed to store(k, value) (affine_stiffness_entries.hpp)
   template <class Store>
-  static void contact_entries(const Eigen::Vector3d& branch, double normal_stiffness,
-                              double tangential_stiffness, Store&& store)
+  static void contact_entries(const Eigen::Vector3d &branch, double normal_stiffness,
+                              double tangential_stiffness, Store &&store)
   {
     const double l2 = branch.squaredNorm();
     const Eigen::Vector3d n = branch / std::sqrt(l2);
     affine_principal_entries(n(0), n(1), n(2), l2, normal_stiffness, tangential_stiffness, store);
     affine_shear_entries(n(0), n(1), n(2), l2, normal_stiffness, tangential_stiffness,
-                         [&store](int k, double value) { store(principal_size + k, value); });
+                         [&store](int k, double value) {
+                           store(principal_size + k, value);
+                         });
   }
 };
 

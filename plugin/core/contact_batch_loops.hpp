@@ -36,7 +36,6 @@
 
 namespace tycore::batch_loops {
 
-
 constexpr int L = batch_lanes;
 
 // the per-lane state the carry stage hands to the law stage (law::Carry as arrays), and the
@@ -49,7 +48,7 @@ struct CarryLanes {
   {
     return law::Carry<double>{u[i], f1[i], f2[i], step[i], a[i], pending[i]};
   }
-  [[gnu::always_inline]] void store(int i, const law::Carry<double>& w, bool adhesive)
+  [[gnu::always_inline]] void store(int i, const law::Carry<double> &w, bool adhesive)
   {
     if (!adhesive) return;
     u[i] = w.u, f1[i] = w.f1, f2[i] = w.f2, step[i] = w.step, a[i] = w.a, pending[i] = w.pending;
@@ -62,8 +61,8 @@ using detail::lane_outputs;
 // first Halley rounds). (Every loop body reads its inputs before any select and takes the
 // constants by value: a load under a condition may fault, and GCC would keep it in a branch.)
 template <bool Adhesive>
-[[gnu::always_inline]] inline void carry_stage(ContactBatch& b, const PairConstants k, double dt,
-                                               CarryLanes& w)
+[[gnu::always_inline]] inline void carry_stage(ContactBatch &b, const PairConstants k, double dt,
+                                               CarryLanes &w)
 {
   for (int i = 0; i < L; ++i) {
     const double n[3] = {b.n[0][i], b.n[1][i], b.n[2][i]};
@@ -82,8 +81,8 @@ template <bool Adhesive>
 }
 
 // the later Halley rounds (law::halley_again) while a lane of the batch needs one
-[[gnu::always_inline]] inline void halley_rounds(const ContactBatch& b, int n, const double newton_c,
-                                                 CarryLanes& w)
+[[gnu::always_inline]] inline void halley_rounds(const ContactBatch &b, int n,
+                                                 const double newton_c, CarryLanes &w)
 {
   for (int round = 3; round <= 6; ++round) {
     bool any = false;
@@ -101,8 +100,8 @@ template <bool Adhesive>
 // Stage 2 of every lane: law::step, the lane's new history and outputs (store_lane), then
 // lane_outputs (damping, force, torque, tallies)
 template <bool Adhesive, bool Damped, bool Tally, bool Frictionless>
-[[gnu::always_inline]] inline void law_stage(ContactBatch& b, const PairConstants k,
-                                             const BatchParameters p, const CarryLanes& w)
+[[gnu::always_inline]] inline void law_stage(ContactBatch &b, const PairConstants k,
+                                             const BatchParameters p, const CarryLanes &w)
 {
   const double dt = p.dt;
   for (int i = 0; i < L; ++i) {
@@ -117,8 +116,8 @@ template <bool Adhesive, bool Damped, bool Tally, bool Frictionless>
 }
 
 template <bool Adhesive, bool Damped>
-[[gnu::always_inline]] inline void vector_batch(ContactBatch& b, int n, const PairConstants& k,
-                                                const BatchParameters& p)
+[[gnu::always_inline]] inline void vector_batch(ContactBatch &b, int n, const PairConstants &k,
+                                                const BatchParameters &p)
 {
   detail::touch_or_break<Adhesive>(b, n, k);
   CarryLanes w;
@@ -142,11 +141,15 @@ template <bool Adhesive, bool Damped>
   }
   // one material pair per batch: mu = 0 for all its lanes or for none
   if (k.c.mu == 0.0) {
-    if (p.tally) law_stage<Adhesive, Damped, true, true>(b, k, p, w);
-    else law_stage<Adhesive, Damped, false, true>(b, k, p, w);
+    if (p.tally)
+      law_stage<Adhesive, Damped, true, true>(b, k, p, w);
+    else
+      law_stage<Adhesive, Damped, false, true>(b, k, p, w);
   } else {
-    if (p.tally) law_stage<Adhesive, Damped, true, false>(b, k, p, w);
-    else law_stage<Adhesive, Damped, false, false>(b, k, p, w);
+    if (p.tally)
+      law_stage<Adhesive, Damped, true, false>(b, k, p, w);
+    else
+      law_stage<Adhesive, Damped, false, false>(b, k, p, w);
   }
   if (p.energy) detail::stored_energies(b, n, k);
 }
@@ -154,7 +157,7 @@ template <bool Adhesive, bool Damped>
 // the law's inputs of every lane from the gathered sphere data (contact_geometry); whether the
 // overlaps of lanes 0 .. n-1 are valid (overlap_valid)
 template <bool Affine, bool Damped>
-[[gnu::always_inline]] inline bool geometry_stage(ContactBatch& b, int n, const AffineGradient g)
+[[gnu::always_inline]] inline bool geometry_stage(ContactBatch &b, int n, const AffineGradient g)
 {
   for (int i = 0; i < L; ++i) contact_geometry<Affine, Damped>(b, i, g);
   // a loop of its own, with an integer reduction: GCC keeps either in the loop above scalar
@@ -169,36 +172,39 @@ template <bool Affine, bool Damped>
 // The builds of one batch entry Law<Adhesive, Damped>(b, n, k, p) for every instruction set
 // of Isa (tycore::detail::advance_batch_*, declared in contact_batch.hpp) and of the contact
 // geometry (batch_geometry_*). Once per program, at namespace scope.
-#define TYCORE_BATCH_BUILD(Law, suffix, target_attribute)                                         \
-  namespace tycore::detail {                                                                   \
-  template <bool Adhesive, bool Damped>                                                        \
-  target_attribute void advance_batch_##suffix(ContactBatch& b, int n, const PairConstants& k,\
-                                               const BatchParameters& p)                        \
-  {                                                                                            \
-    Law<Adhesive, Damped>(b, n, k, p);                                                         \
-  }                                                                                            \
-  template void advance_batch_##suffix<false, false>(ContactBatch&, int, const PairConstants&,\
-                                                     const BatchParameters&);                  \
-  template void advance_batch_##suffix<false, true>(ContactBatch&, int, const PairConstants&, \
-                                                    const BatchParameters&);                   \
-  template void advance_batch_##suffix<true, false>(ContactBatch&, int, const PairConstants&, \
-                                                    const BatchParameters&);                   \
-  template void advance_batch_##suffix<true, true>(ContactBatch&, int, const PairConstants&,  \
-                                                   const BatchParameters&);                    \
-  template <bool Affine, bool Damped>                                                          \
-  target_attribute bool batch_geometry_##suffix(ContactBatch& b, int n,                        \
-                                                const AffineGradient& g)                       \
-  {                                                                                            \
-    return tycore::batch_loops::geometry_stage<Affine, Damped>(b, n, g);                       \
-  }                                                                                            \
-  template bool batch_geometry_##suffix<false, false>(ContactBatch&, int, const AffineGradient&);\
-  template bool batch_geometry_##suffix<false, true>(ContactBatch&, int, const AffineGradient&); \
-  template bool batch_geometry_##suffix<true, false>(ContactBatch&, int, const AffineGradient&); \
-  template bool batch_geometry_##suffix<true, true>(ContactBatch&, int, const AffineGradient&);  \
+#define TYCORE_BATCH_BUILD(Law, suffix, target_attribute)                                          \
+  namespace tycore::detail {                                                                       \
+    template <bool Adhesive, bool Damped>                                                          \
+    target_attribute void advance_batch_##suffix(ContactBatch &b, int n, const PairConstants &k,   \
+                                                 const BatchParameters &p)                         \
+    {                                                                                              \
+      Law<Adhesive, Damped>(b, n, k, p);                                                           \
+    }                                                                                              \
+    template void advance_batch_##suffix<false, false>(ContactBatch &, int, const PairConstants &, \
+                                                       const BatchParameters &);                   \
+    template void advance_batch_##suffix<false, true>(ContactBatch &, int, const PairConstants &,  \
+                                                      const BatchParameters &);                    \
+    template void advance_batch_##suffix<true, false>(ContactBatch &, int, const PairConstants &,  \
+                                                      const BatchParameters &);                    \
+    template void advance_batch_##suffix<true, true>(ContactBatch &, int, const PairConstants &,   \
+                                                     const BatchParameters &);                     \
+    template <bool Affine, bool Damped>                                                            \
+    target_attribute bool batch_geometry_##suffix(ContactBatch &b, int n, const AffineGradient &g) \
+    {                                                                                              \
+      return tycore::batch_loops::geometry_stage<Affine, Damped>(b, n, g);                         \
+    }                                                                                              \
+    template bool batch_geometry_##suffix<false, false>(ContactBatch &, int,                       \
+                                                        const AffineGradient &);                   \
+    template bool batch_geometry_##suffix<false, true>(ContactBatch &, int,                        \
+                                                       const AffineGradient &);                    \
+    template bool batch_geometry_##suffix<true, false>(ContactBatch &, int,                        \
+                                                       const AffineGradient &);                    \
+    template bool batch_geometry_##suffix<true, true>(ContactBatch &, int,                         \
+                                                      const AffineGradient &);                     \
   }
-#define TYCORE_DEFINE_BATCH_BUILDS(Law)                                                         \
-  TYCORE_BATCH_BUILD(Law, sse2, )                                                              \
-  TYCORE_BATCH_BUILD(Law, avx2, __attribute__((target("avx2"))))                               \
+#define TYCORE_DEFINE_BATCH_BUILDS(Law)                          \
+  TYCORE_BATCH_BUILD(Law, sse2, )                                \
+  TYCORE_BATCH_BUILD(Law, avx2, __attribute__((target("avx2")))) \
   TYCORE_BATCH_BUILD(Law, avx512, __attribute__((target(TYCORE_AVX512))))
 #else
 #define TYCORE_DEFINE_BATCH_BUILDS(Law)

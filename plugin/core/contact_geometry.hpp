@@ -20,8 +20,8 @@ namespace tycore {
 
 // one sphere of a contact
 struct SphereState {
-  const double* v;        // velocity
-  const double* omega;    // angular velocity
+  const double *v;        // velocity
+  const double *omega;    // angular velocity
   double radius;
   double mass;
 };
@@ -35,8 +35,8 @@ struct AffineGradient {
 // Lane l of batch b for the contact of spheres i and j, del = x_i - x_j, rsq = |del|^2;
 // first_touch: no history yet (JKR snap-on). Damped: the masses too (m* of the damping).
 template <bool Damped>
-inline void gather_contact(ContactBatch& b, int l, const double del[3], double rsq,
-                           const SphereState& si, const SphereState& sj, bool first_touch)
+inline void gather_contact(ContactBatch &b, int l, const double del[3], double rsq,
+                           const SphereState &si, const SphereState &sj, bool first_touch)
 {
   for (int d = 0; d < 3; ++d) {
     b.del[d][l] = del[d];
@@ -55,7 +55,7 @@ inline void gather_contact(ContactBatch& b, int l, const double del[3], double r
 // velocity L (x_i - x_j) of a deforming cell is added to the contact velocity (docs/theory.md
 // §5.1); Damped: m* = m_i m_j / (m_i + m_j). Branch-free, for the lane loops.
 template <bool Affine, bool Damped>
-[[gnu::always_inline]] inline void contact_geometry(ContactBatch& b, int l, const AffineGradient& g)
+[[gnu::always_inline]] inline void contact_geometry(ContactBatch &b, int l, const AffineGradient &g)
 {
   const double ri = b.r_i[l], rj = b.r_j[l];
   const double radsum = ri + rj;
@@ -74,7 +74,7 @@ template <bool Affine, bool Damped>
   // relative velocity of i with respect to j at the contact point (docs/theory.md §5.1)
   double vr1 = b.v_rel[0][l], vr2 = b.v_rel[1][l], vr3 = b.v_rel[2][l];
   if (Affine) {
-    const auto& L = g.L;
+    const auto &L = g.L;
     vr1 += L[0][0] * dx + L[0][1] * dy + L[0][2] * dz;
     vr2 += L[1][1] * dy + L[1][2] * dz;
     vr3 += L[2][2] * dz;
@@ -98,7 +98,7 @@ template <bool Affine, bool Damped>
 // delta << R; once the overlap exceeds the smaller radius the law and the explicit step have
 // long failed. A NaN overlap (a NaN position or radius) fails too, and so does a contact torn
 // apart by an infinite position.
-[[gnu::always_inline]] inline bool overlap_valid(const ContactBatch& b, int l)
+[[gnu::always_inline]] inline bool overlap_valid(const ContactBatch &b, int l)
 {
   const double delta = b.delta[l], ri = b.r_i[l], rj = b.r_j[l];
   const double smaller = ri < rj ? ri : rj;
@@ -111,7 +111,7 @@ template <bool Affine, bool Damped>
 // builds agree to the bit. Returns whether every overlap of lanes 0 .. n-1 is valid
 // (overlap_valid).
 template <bool Affine, bool Damped>
-inline bool geometry_lanes(ContactBatch& b, int n, const AffineGradient& g)
+inline bool geometry_lanes(ContactBatch &b, int n, const AffineGradient &g)
 {
   bool valid = true;
   for (int l = 0; l < n; ++l) {
@@ -123,27 +123,31 @@ inline bool geometry_lanes(ContactBatch& b, int n, const AffineGradient& g)
 
 #ifdef TYCORE_VECTOR_BUILDS
 namespace detail {    // the vector builds, contact_batch.cpp
-template <bool Affine, bool Damped>
-bool batch_geometry_sse2(ContactBatch&, int, const AffineGradient&);
-template <bool Affine, bool Damped>
-__attribute__((target("avx2"))) bool batch_geometry_avx2(ContactBatch&, int,
-                                                         const AffineGradient&);
-template <bool Affine, bool Damped>
-__attribute__((target(TYCORE_AVX512))) bool batch_geometry_avx512(ContactBatch&, int,
-                                                                  const AffineGradient&);
+  template <bool Affine, bool Damped>
+  bool batch_geometry_sse2(ContactBatch &, int, const AffineGradient &);
+  template <bool Affine, bool Damped>
+  __attribute__((target("avx2"))) bool batch_geometry_avx2(ContactBatch &, int,
+                                                           const AffineGradient &);
+  template <bool Affine, bool Damped>
+  __attribute__((target(TYCORE_AVX512))) bool batch_geometry_avx512(ContactBatch &, int,
+                                                                    const AffineGradient &);
 }    // namespace detail
 #endif
 
 template <bool Affine, bool Damped>
-inline bool batch_geometry(ContactBatch& b, int n, const AffineGradient& g, Isa isa = best_isa())
+inline bool batch_geometry(ContactBatch &b, int n, const AffineGradient &g, Isa isa = best_isa())
 {
   switch (isa) {
 #ifdef TYCORE_VECTOR_BUILDS
-    case Isa::avx512: return detail::batch_geometry_avx512<Affine, Damped>(b, n, g);
-    case Isa::avx2: return detail::batch_geometry_avx2<Affine, Damped>(b, n, g);
-    case Isa::sse2: return detail::batch_geometry_sse2<Affine, Damped>(b, n, g);
+    case Isa::avx512:
+      return detail::batch_geometry_avx512<Affine, Damped>(b, n, g);
+    case Isa::avx2:
+      return detail::batch_geometry_avx2<Affine, Damped>(b, n, g);
+    case Isa::sse2:
+      return detail::batch_geometry_sse2<Affine, Damped>(b, n, g);
 #endif
-    default: return geometry_lanes<Affine, Damped>(b, n, g);
+    default:
+      return geometry_lanes<Affine, Damped>(b, n, g);
   }
 }
 

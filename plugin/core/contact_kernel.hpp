@@ -35,7 +35,7 @@ struct KernelResult {
 // (normal_contact) and may differ in its last bits from the P of the step that capped T.
 inline constexpr double setup_limit_tolerance = 1e-12;
 
-inline bool slides_without_step(const PairConstants& k, double R, double P, const ContactHistory& h)
+inline bool slides_without_step(const PairConstants &k, double R, double P, const ContactHistory &h)
 {
   const double Pc = jkr::pull_off_force(k.c.Gamma, R);
   const double limit = law::sliding_limit(k, P + 2.0 * Pc);
@@ -46,30 +46,30 @@ inline bool slides_without_step(const PairConstants& k, double R, double P, cons
 
 namespace law {
 
-// the JKR radius after halley_start at V = double: the later Halley rounds where pending, the
-// closed form where they found no radius
-inline void finish_radius(const PairConstants& k, double R, double Rinv, double delta,
-                          Carry<double>& w)
-{
-  for (int round = 3; round <= 6 && w.pending != 0.0; ++round)
-    halley_again(Rinv, delta, k.newton_c, round == 6, w);
-  if (w.a < 0.0) closed_form_radius(k.c, R, delta, w);
-}
+  // the JKR radius after halley_start at V = double: the later Halley rounds where pending, the
+  // closed form where they found no radius
+  inline void finish_radius(const PairConstants &k, double R, double Rinv, double delta,
+                            Carry<double> &w)
+  {
+    for (int round = 3; round <= 6 && w.pending != 0.0; ++round)
+      halley_again(Rinv, delta, k.newton_c, round == 6, w);
+    if (w.a < 0.0) closed_form_radius(k.c, R, delta, w);
+  }
 
-// the whole law for one contact at V = double: carry, the rest of the radius (finish_radius),
-// then the step; Rinv = 1/R
-template <bool Adhesive>
-inline Outputs<double> scalar_step(const PairConstants& k, double R, double Rinv, double delta,
-                                   const double n[3], double twist, const double ds[3],
-                                   History<double>& h)
-{
-  double c = 1.0, s = 0.0;
-  detail::twist_cos_sin(twist, c, s);
-  Carry<double> w;
-  carry<Adhesive>(k, n, c, s, twist != 0.0, Rinv, delta, h, w);
-  if (Adhesive) finish_radius(k, R, Rinv, delta, w);
-  return step<Adhesive, false>(k, R, Rinv, delta, ds, w, h);
-}
+  // the whole law for one contact at V = double: carry, the rest of the radius (finish_radius),
+  // then the step; Rinv = 1/R
+  template <bool Adhesive>
+  inline Outputs<double> scalar_step(const PairConstants &k, double R, double Rinv, double delta,
+                                     const double n[3], double twist, const double ds[3],
+                                     History<double> &h)
+  {
+    double c = 1.0, s = 0.0;
+    detail::twist_cos_sin(twist, c, s);
+    Carry<double> w;
+    carry<Adhesive>(k, n, c, s, twist != 0.0, Rinv, delta, h, w);
+    if (Adhesive) finish_radius(k, R, Rinv, delta, w);
+    return step<Adhesive, false>(k, R, Rinv, delta, ds, w, h);
+  }
 
 }    // namespace law
 
@@ -77,7 +77,7 @@ inline Outputs<double> scalar_step(const PairConstants& k, double R, double Rinv
 // setup pass, forces_without_step): the law's radius (halley_start from `radius`, the previous
 // radius, <= 0: none; finish_radius) and normal_force
 template <bool Adhesive>
-inline KernelResult normal_contact(const PairConstants& k, double R, double delta, double radius)
+inline KernelResult normal_contact(const PairConstants &k, double R, double delta, double radius)
 {
   const double Rinv = 1.0 / R;
   law::Carry<double> w{};
@@ -93,8 +93,8 @@ inline KernelResult normal_contact(const PairConstants& k, double R, double delt
 // elastic energy stored in a contact of radius a: the JKR normal part (zero at first touch,
 // jkr::stored_energy, docs/theory.md §1.7) plus the tangential part carried in the history
 // (tangential work less frictional dissipation, §2.4)
-inline double contact_stored_energy(const PairCoefficients& c, double R, double a, double /*P*/,
-                                    const ContactHistory& h)
+inline double contact_stored_energy(const PairCoefficients &c, double R, double a, double /*P*/,
+                                    const ContactHistory &h)
 {
   return jkr::stored_energy(a, R, c.E_star, c.Gamma) + h.stored_energy;
 }
@@ -104,9 +104,9 @@ inline double contact_stored_energy(const PairCoefficients& c, double R, double 
 // the normal force at overlap delta and the tangential law for the increment ds (in the new
 // tangent plane). Adds the frictional dissipation of the step to `dissipation`.
 template <bool Adhesive>
-inline KernelResult advance_contact(const PairConstants& k, double R, double delta,
+inline KernelResult advance_contact(const PairConstants &k, double R, double delta,
                                     const double n[3], double twist, const double ds[3],
-                                    ContactHistory& h, double& dissipation)
+                                    ContactHistory &h, double &dissipation)
 {
   const law::Outputs<double> out =
       law::scalar_step<Adhesive>(k, R, 1.0 / R, delta, n, twist, ds, h);

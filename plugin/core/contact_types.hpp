@@ -26,7 +26,10 @@ inline double effective_shear_modulus(double E1, double nu1, double E2, double n
   return 1.0 / ((2.0 - nu1) / G1 + (2.0 - nu2) / G2);
 }
 
-inline double effective_radius(double R1, double R2) { return R1 * R2 / (R1 + R2); }
+inline double effective_radius(double R1, double R2)
+{
+  return R1 * R2 / (R1 + R2);
+}
 
 // how many slip bands a contact's Mindlin-Deresiewicz memory holds (slip_bands.hpp, §2.3)
 inline constexpr int memory_bands = 6;
@@ -56,49 +59,51 @@ inline constexpr int memory_bands = 6;
 // history_size, history_transfer_sign, the LIGGGHTS history values' names and newton flags,
 // and the pair's and the LIGGGHTS model's sizes of the history store. Adding a field is one
 // row here (plus its physics in the law); its value starts at 0 in a new contact.
-#define TYCORE_HISTORY_FIELDS(X)                                                                 \
-  X(T, 3, force, -1, "tangential force on i (elastic: damping is not in the history)")           \
-  X(load_dir, 3, direction, -1,                                                                  \
-    "unit axis of the Mindlin-Deresiewicz memory, along which the slip bands' slopes are "        \
-    "counted (zero before any tangential displacement; §2.3)")                                   \
-  X(band_outer, 6, kept, +1,                                                                     \
-    "the memory's slip bands from the contact's edge inwards: the traction ratio m in [-1, 1] "   \
-    "at the outer edge of each (slip_bands.hpp, §2.3)")                                          \
-  X(band_inner, 6, kept, +1, "the traction ratio m at the inner edge of each band (§2.3)")       \
-  X(band_depth, 6, kept, +1,                                                                     \
-    "the depth of each band, in units of the effective overlap; they add up to the effective "    \
-    "overlap of the last step (§2.3)")                                                           \
-  X(peeling, 1, kept, +1, "1 while Savkoor-Briggs peeling lasts (§2.2)")                          \
-  X(sliding, 1, kept, +1, "1 if the contact is at the sliding limit this step")                   \
-  X(stored_energy, 1, kept, +1,                                                                  \
-    "tangential elastic energy: the energy of the memory's tractions, or while peeling the "      \
-    "tangential work less dissipation (§2.4)")                                                   \
-  X(radius, 1, kept, +1,                                                                         \
-    "JKR contact radius of the last evaluated step: the warm start of the delta -> a "            \
+#define TYCORE_HISTORY_FIELDS(X)                                                                \
+  X(T, 3, force, -1, "tangential force on i (elastic: damping is not in the history)")          \
+  X(load_dir, 3, direction, -1,                                                                 \
+    "unit axis of the Mindlin-Deresiewicz memory, along which the slip bands' slopes are "      \
+    "counted (zero before any tangential displacement; §2.3)")                                  \
+  X(band_outer, 6, kept, +1,                                                                    \
+    "the memory's slip bands from the contact's edge inwards: the traction ratio m in [-1, 1] " \
+    "at the outer edge of each (slip_bands.hpp, §2.3)")                                         \
+  X(band_inner, 6, kept, +1, "the traction ratio m at the inner edge of each band (§2.3)")      \
+  X(band_depth, 6, kept, +1,                                                                    \
+    "the depth of each band, in units of the effective overlap; they add up to the effective "  \
+    "overlap of the last step (§2.3)")                                                          \
+  X(peeling, 1, kept, +1, "1 while Savkoor-Briggs peeling lasts (§2.2)")                        \
+  X(sliding, 1, kept, +1, "1 if the contact is at the sliding limit this step")                 \
+  X(stored_energy, 1, kept, +1,                                                                 \
+    "tangential elastic energy: the energy of the memory's tractions, or while peeling the "    \
+    "tangential work less dissipation (§2.4)")                                                  \
+  X(radius, 1, kept, +1,                                                                        \
+    "JKR contact radius of the last evaluated step: the warm start of the delta -> a "          \
     "inversion (law::halley_start, §1.4); 0 = none yet")
 
 static_assert(memory_bands == 6, "the table's band rows hold memory_bands values");
 
 namespace history {
 
-// how a field is carried onto a turned tangent plane (the table's `carried` column)
-enum Carried { force, direction, tangent, kept };
+  // how a field is carried onto a turned tangent plane (the table's `carried` column)
+  enum Carried { force, direction, tangent, kept };
 
-// the type of a field of `values` values of type V: V for a scalar, V[3] for a vector
-template <class V, int values> struct field_type {
-  using type = V[values];
-};
-template <class V> struct field_type<V, 1> {
-  using type = V;
-};
-template <class V, int values> using field = typename field_type<V, values>::type;
+  // the type of a field of `values` values of type V: V for a scalar, V[3] for a vector
+  template <class V, int values> struct field_type {
+    using type = V[values];
+  };
+  template <class V> struct field_type<V, 1> {
+    using type = V;
+  };
+  template <class V, int values> using field = typename field_type<V, values>::type;
 
-// value k of a field, scalar (k = 0) or vector alike
-template <class X> [[gnu::always_inline]] constexpr auto& value(X& x, int k)
-{
-  if constexpr (std::is_array_v<X>) return x[k];
-  else return x;
-}
+  // value k of a field, scalar (k = 0) or vector alike
+  template <class X> [[gnu::always_inline]] constexpr auto &value(X &x, int k)
+  {
+    if constexpr (std::is_array_v<X>)
+      return x[k];
+    else
+      return x;
+  }
 
 }    // namespace history
 
@@ -125,7 +130,7 @@ static_assert(sizeof(ContactHistory) == history_size * sizeof(double),
 namespace slot_index {
 #define TYCORE_SLOT_INDEX(name, values, carried, from_j, meaning) \
   constexpr int name = offsetof(ContactHistory, name) / sizeof(double);
-TYCORE_HISTORY_FIELDS(TYCORE_SLOT_INDEX)
+  TYCORE_HISTORY_FIELDS(TYCORE_SLOT_INDEX)
 #undef TYCORE_SLOT_INDEX
 }    // namespace slot_index
 
@@ -144,9 +149,9 @@ constexpr double history_transfer_sign[history_size] = {
 
 // checks of the table: a vector lies in the tangent plane and flips seen from j, a scalar is
 // kept and does not
-#define TYCORE_HISTORY_CHECK(name, values, carried, from_j, meaning)                              \
-  static_assert((values == 3 && history::carried != history::kept && from_j == -1) ||           \
-                    ((values == 1 || values == memory_bands) &&                                 \
+#define TYCORE_HISTORY_CHECK(name, values, carried, from_j, meaning)                           \
+  static_assert((values == 3 && history::carried != history::kept && from_j == -1) ||          \
+                    ((values == 1 || values == memory_bands) &&                                \
                      history::carried == history::kept && from_j == +1),                       \
                 "history field " #name ": a vector is carried in the tangent plane and flips " \
                 "sign seen from j, a scalar is kept and does not");

@@ -28,18 +28,18 @@ namespace tycore {
 class CsvRecord {
  public:
   CsvRecord() = default;
-  CsvRecord(const CsvRecord&) = delete;
-  CsvRecord& operator=(const CsvRecord&) = delete;
+  CsvRecord(const CsvRecord &) = delete;
+  CsvRecord &operator=(const CsvRecord &) = delete;
   ~CsvRecord() { close(); }
 
   bool is_open() const { return file_ != nullptr; }
-  const std::string& path() const { return path_; }
+  const std::string &path() const { return path_; }
   // step of the last row in the file (-1 without rows)
   long long last_step() const { return last_step_; }
   // rows removed when continuing (superseded rows and a torn line)
   int dropped_rows() const { return dropped_; }
 
-  void start(const std::string& path, const std::string& header)
+  void start(const std::string &path, const std::string &header)
   {
     close();
     path_ = path;
@@ -50,14 +50,14 @@ class CsvRecord {
     write_text(header + "\n");
   }
 
-  void resume(const std::string& path, const std::string& header, long long current_step)
+  void resume(const std::string &path, const std::string &header, long long current_step)
   {
     close();
     path_ = path;
     last_step_ = -1;
     dropped_ = 0;
     std::string text;
-    if (std::FILE* in = std::fopen(path.c_str(), "r")) {
+    if (std::FILE *in = std::fopen(path.c_str(), "r")) {
       char buffer[65536];
       std::size_t n;
       while ((n = std::fread(buffer, 1, sizeof buffer, in)) > 0) text.append(buffer, n);
@@ -71,7 +71,8 @@ class CsvRecord {
     }
     const std::size_t header_end = text.find('\n');
     if (header_end == std::string::npos || text.compare(0, header_end, header) != 0)
-      throw std::runtime_error("the record " + path + " has other columns than this test "
+      throw std::runtime_error("the record " + path +
+                               " has other columns than this test "
                                "writes (its header differs): continue it with the same "
                                "columns, or write to another file");
     // keep complete rows up to the current step
@@ -101,7 +102,7 @@ class CsvRecord {
   }
 
   // one row: the step, then the values with 12 significant digits
-  void write_row(long long step, const std::vector<double>& values)
+  void write_row(long long step, const std::vector<double> &values)
   {
     std::string line = std::to_string(step);
     char number[32];
@@ -120,22 +121,21 @@ class CsvRecord {
   }
 
  private:
-  [[noreturn]] void fail(const char* what) const
+  [[noreturn]] void fail(const char *what) const
   {
-    throw std::runtime_error(std::string(what) + " the record " + path_ + ": "
-                             + std::strerror(errno));
+    throw std::runtime_error(std::string(what) + " the record " + path_ + ": " +
+                             std::strerror(errno));
   }
 
-  void write_text(const std::string& text)
+  void write_text(const std::string &text)
   {
     if (!file_) throw std::runtime_error("the record " + path_ + " is not open");
     errno = 0;
-    if (std::fwrite(text.data(), 1, text.size(), file_) != text.size()
-        || std::fflush(file_) != 0)
+    if (std::fwrite(text.data(), 1, text.size(), file_) != text.size() || std::fflush(file_) != 0)
       fail("cannot write to");
   }
 
-  std::FILE* file_ = nullptr;
+  std::FILE *file_ = nullptr;
   std::string path_;
   long long last_step_ = -1;
   int dropped_ = 0;
@@ -149,20 +149,20 @@ class CsvRecord {
 struct FileIdentity {
   unsigned long long device = 0, inode = 0;
   std::string name;    // empty for an existing file; the file name in its directory otherwise
-  bool operator==(const FileIdentity& o) const
+  bool operator==(const FileIdentity &o) const
   {
     return device == o.device && inode == o.inode && name == o.name;
   }
-  bool operator!=(const FileIdentity& o) const { return !(*this == o); }
+  bool operator!=(const FileIdentity &o) const { return !(*this == o); }
 };
 
-inline FileIdentity identity_of(const struct stat& st, const std::string& name = "")
+inline FileIdentity identity_of(const struct stat &st, const std::string &name = "")
 {
   return {static_cast<unsigned long long>(st.st_dev), static_cast<unsigned long long>(st.st_ino),
           name};
 }
 
-inline FileIdentity file_identity(const std::string& path)
+inline FileIdentity file_identity(const std::string &path)
 {
   struct stat st;
   if (::stat(path.c_str(), &st) == 0) return identity_of(st);
@@ -176,7 +176,7 @@ inline FileIdentity file_identity(const std::string& path)
 }
 
 // the file an open stream writes to or reads from (a log file, the input script)
-inline FileIdentity file_identity(std::FILE* stream)
+inline FileIdentity file_identity(std::FILE *stream)
 {
   struct stat st;
   if (stream && ::fstat(fileno(stream), &st) == 0 && S_ISREG(st.st_mode)) return identity_of(st);
@@ -185,15 +185,15 @@ inline FileIdentity file_identity(std::FILE* stream)
 
 // a path names one of the files of a pattern with '*' (a file per step: restart files,
 // dumps), or, without '*', the pattern's file: the same directory and a matching name
-inline bool names_file_of(const std::string& path, const std::string& pattern)
+inline bool names_file_of(const std::string &path, const std::string &pattern)
 {
   if (pattern.find('*') == std::string::npos) return file_identity(path) == file_identity(pattern);
   const std::filesystem::path p(path), q(pattern);
-  const auto directory = [](const std::filesystem::path& f) {
+  const auto directory = [](const std::filesystem::path &f) {
     return f.has_parent_path() ? f.parent_path().string() : std::string(".");
   };
   return file_identity(directory(p)) == file_identity(directory(q)) &&
-         ::fnmatch(q.filename().c_str(), p.filename().c_str(), 0) == 0;
+      ::fnmatch(q.filename().c_str(), p.filename().c_str(), 0) == 0;
 }
 
 }    // namespace tycore

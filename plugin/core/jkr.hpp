@@ -54,7 +54,10 @@ inline double fast_cbrt(double x)
 }
 
 // Pc = 3 pi Gamma R*                                                 (docs/theory.md §0)
-inline double pull_off_force(double Gamma, double R) { return 3.0 * pi * Gamma * R; }
+inline double pull_off_force(double Gamma, double R)
+{
+  return 3.0 * pi * Gamma * R;
+}
 
 // a0^3 = 9 pi Gamma R*^2 / E*                                        (docs/theory.md §1.1)
 inline double zero_load_radius(double Gamma, double R, double E)
@@ -85,8 +88,8 @@ inline double contact_radius(double delta, double R, double E, double Gamma)
   const double t1 = 27.0 * pi * pi * t0;
   const double t2 = 8.0 * D * D * D * E * E * E;
   const double t3 = 4.0 * D * D * E;
-  const double t4 = std::cbrt(t1 + t2 + 3.0 * std::sqrt(3.0) * pi *
-                                            std::sqrt(std::max(t0 * (t1 + 2.0 * t2), 0.0)));
+  const double t4 = std::cbrt(
+      t1 + t2 + 3.0 * std::sqrt(3.0) * pi * std::sqrt(std::max(t0 * (t1 + 2.0 * t2), 0.0)));
   const double t5 = t3 / t4 + t4 / E;
   const double t6 = std::sqrt(std::max(2.0 * D + t5, 0.0));
   const double inner = 4.0 * D - t5 + 6.0 * std::sqrt(6.0) * pi * Gamma * R * R / (E * t6);
@@ -109,8 +112,8 @@ inline double stored_energy(double a, double R, double E, double Gamma)
   const auto U = [&](double x) {
     const double x2 = x * x;
     return 8.0 * E * (x2 * x2 * x) / (15.0 * R * R) -
-           8.0 / (3.0 * R) * std::sqrt(pi * Gamma * E) * (x2 * x * std::sqrt(x)) +
-           2.0 * pi * Gamma * x2;
+        8.0 / (3.0 * R) * std::sqrt(pi * Gamma * E) * (x2 * x * std::sqrt(x)) +
+        2.0 * pi * Gamma * x2;
   };
   if (Gamma == 0.0) return U(a);
   return U(a) - U(std::cbrt(4.0 / 9.0) * zero_load_radius(Gamma, R, E));

@@ -17,14 +17,14 @@
 namespace tycore {
 
 // a0/R*, JKR's zero-load contact radius over the effective radius; 0 without adhesion
-inline double zero_load_radius_ratio(const PairCoefficients& c, double R)
+inline double zero_load_radius_ratio(const PairCoefficients &c, double R)
 {
   return c.Gamma > 0.0 ? jkr::zero_load_radius(c.Gamma, R, c.E_star) / R : 0.0;
 }
 
 // first quantity of the law that is not finite (nullptr: none), and the overlap where
 struct LawDomainFault {
-  const char* quantity = nullptr;
+  const char *quantity = nullptr;
   double delta = 0.0;
 };
 
@@ -32,10 +32,10 @@ struct LawDomainFault {
 // radius, normal force and stiffness (not at delta_f), stored energy, sliding limit
 // mu (P + 2 Pc), tangential stiffness 8 G* a_T and the tangential energy stored at the sliding
 // limit
-inline LawDomainFault law_domain_fault(const PairCoefficients& c, double R, double delta_max)
+inline LawDomainFault law_domain_fault(const PairCoefficients &c, double R, double delta_max)
 {
   LawDomainFault fault;
-  const auto bad = [&](double value, const char* quantity, double delta) {
+  const auto bad = [&](double value, const char *quantity, double delta) {
     if (std::isfinite(value) || fault.quantity) return;
     fault.quantity = quantity;
     fault.delta = delta;
@@ -57,7 +57,8 @@ inline LawDomainFault law_domain_fault(const PairCoefficients& c, double R, doub
     bad(jkr::stored_energy(a, R, c.E_star, c.Gamma), "stored energy", delta);
     const double limit = law::sliding_limit(k, P + 2.0 * Pc);
     bad(limit, "sliding limit mu (P + 2 Pc)", delta);
-    const double a_T = c.Gamma > 0.0 ? std::cbrt(law::micro_slip_radius_cubed(k, R, P + 2.0 * Pc)) : a;
+    const double a_T = c.Gamma > 0.0 ? std::cbrt(law::micro_slip_radius_cubed(k, R, P + 2.0 * Pc))
+                                     : a;
     const double k_T = 8.0 * c.G_star * a_T;
     bad(k_T, "tangential stiffness 8 G* a", delta);
     if (k_T > 0.0) bad(limit * limit / (2.0 * k_T), "tangential energy at sliding", delta);

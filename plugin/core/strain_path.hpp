@@ -62,7 +62,7 @@ inline Eigen::Vector3d axisymmetric_extension_direction(int axis)
 }
 
 // deviatoric part of v, normalised; v may come from user variables
-inline Eigen::Vector3d unit_deviatoric_direction(const Eigen::Vector3d& v)
+inline Eigen::Vector3d unit_deviatoric_direction(const Eigen::Vector3d &v)
 {
   const Eigen::Vector3d d = deviator(v);
   const double norm = d.norm();
@@ -76,9 +76,8 @@ inline Eigen::Vector3d unit_deviatoric_direction(const Eigen::Vector3d& v)
 // e = (d/3)(2,-1,-1) gives eps1 - eps3 = d, eps_q = 2d/3, |e| = d sqrt(2/3)
 inline double pi_radius_of_axisymmetric_strain(double magnitude, DeviatoricStrainMeasure measure)
 {
-  return measure == DeviatoricStrainMeasure::STRAIN_DIFFERENCE_13
-             ? magnitude * std::sqrt(2.0 / 3.0)
-             : magnitude * std::sqrt(1.5);
+  return measure == DeviatoricStrainMeasure::STRAIN_DIFFERENCE_13 ? magnitude * std::sqrt(2.0 / 3.0)
+                                                                  : magnitude * std::sqrt(1.5);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -118,9 +117,9 @@ struct PiSegment {
 };
 
 struct PathProgress {
-  int segment;               // index of the leg being travelled (last leg once finished)
-  double segment_fraction;   // fraction of that leg done
-  double fraction;           // fraction of the whole path done (by arc length)
+  int segment;                // index of the leg being travelled (last leg once finished)
+  double segment_fraction;    // fraction of that leg done
+  double fraction;            // fraction of the whole path done (by arc length)
   bool finished;
 };
 
@@ -141,8 +140,8 @@ class PiPath {
       leg.start = vertices[i];
       leg.end = vertices[i + 1];
       if (!(leg.length() > 0.0))
-        throw std::invalid_argument("Pi-plane polygon vertices " + std::to_string(i) + " and "
-                                    + std::to_string(i + 1) + " coincide (zero-length leg)");
+        throw std::invalid_argument("Pi-plane polygon vertices " + std::to_string(i) + " and " +
+                                    std::to_string(i + 1) + " coincide (zero-length leg)");
       path.push(leg);
     }
     return path;
@@ -152,8 +151,7 @@ class PiPath {
   static PiPath circle(double radius, double start_lode_deg, double sweep_deg)
   {
     if (!(radius > 0.0))
-      throw std::invalid_argument("circle radius " + std::to_string(radius)
-                                  + " must be positive");
+      throw std::invalid_argument("circle radius " + std::to_string(radius) + " must be positive");
     if (!(sweep_deg != 0.0) || !std::isfinite(sweep_deg))
       throw std::invalid_argument("circle sweep angle must be non-zero and finite");
     PiSegment arc;
@@ -167,7 +165,7 @@ class PiPath {
   }
 
   // circle about the origin through the given Pi point (e.g. the current deviatoric strain)
-  static PiPath circle_through(const Eigen::Vector2d& start, Rotation rotation,
+  static PiPath circle_through(const Eigen::Vector2d &start, Rotation rotation,
                                double sweep_deg = 360.0)
   {
     const double signed_sweep = rotation == Rotation::CLOCKWISE ? sweep_deg : -sweep_deg;
@@ -177,7 +175,7 @@ class PiPath {
   // the same path entered from the point `from` (the current strain): a straight lead-in leg
   // from `from` to the first point is put in front, unless it would be shorter than min_leg
   // (a gap the follower closes by itself, at most speed*dt per step)
-  PiPath starting_from(const Eigen::Vector2d& from, double min_leg) const
+  PiPath starting_from(const Eigen::Vector2d &from, double min_leg) const
   {
     if (segments_.empty()) return *this;
     const Eigen::Vector2d first = segments_.front().start_point();
@@ -186,18 +184,18 @@ class PiPath {
   }
 
   // this path followed by next; next must start where this one ends
-  PiPath then(const PiPath& next) const
+  PiPath then(const PiPath &next) const
   {
     PiPath joined = *this;
     if (!segments_.empty() && !next.segments_.empty()) {
-      const Eigen::Vector2d gap = next.segments_.front().start_point()
-                                  - segments_.back().end_point();
+      const Eigen::Vector2d gap =
+          next.segments_.front().start_point() - segments_.back().end_point();
       const double scale = std::max(length(), next.length());
       if (gap.norm() > 1e-12 * scale)
         throw std::invalid_argument("Pi-plane path pieces do not join: the next piece starts "
                                     "away from the end of the previous one");
     }
-    for (const PiSegment& s : next.segments_) joined.push(s);
+    for (const PiSegment &s : next.segments_) joined.push(s);
     return joined;
   }
 
@@ -205,11 +203,11 @@ class PiPath {
   double shortest_leg() const
   {
     double shortest = length();
-    for (const PiSegment& s : segments_) shortest = std::min(shortest, s.length());
+    for (const PiSegment &s : segments_) shortest = std::min(shortest, s.length());
     return shortest;
   }
   int segment_count() const { return static_cast<int>(segments_.size()); }
-  const std::vector<PiSegment>& segments() const { return segments_; }
+  const std::vector<PiSegment> &segments() const { return segments_; }
   double segment_start(int i) const { return i == 0 ? 0.0 : cumulative_[i - 1]; }
   double segment_end(int i) const { return cumulative_[i]; }
 
@@ -248,7 +246,7 @@ class PiPath {
   std::vector<double> to_array() const
   {
     std::vector<double> a{static_cast<double>(segments_.size())};
-    for (const PiSegment& s : segments_) {
+    for (const PiSegment &s : segments_) {
       if (s.shape == PiSegment::Shape::LINE)
         a.insert(a.end(), {0.0, s.start.x(), s.start.y(), s.end.x(), s.end.y(), 0.0});
       else
@@ -257,12 +255,12 @@ class PiPath {
     return a;
   }
 
-  static PiPath from_array(const double* a)
+  static PiPath from_array(const double *a)
   {
     PiPath path;
     const int n = static_cast<int>(a[0]);
     for (int i = 0; i < n; ++i) {
-      const double* r = a + 1 + 6 * i;
+      const double *r = a + 1 + 6 * i;
       PiSegment s;
       if (r[0] == 0.0) {
         s.start = {r[1], r[2]};
@@ -280,7 +278,7 @@ class PiPath {
   static int array_size(int segments) { return 1 + 6 * segments; }
 
  private:
-  void push(const PiSegment& s)
+  void push(const PiSegment &s)
   {
     segments_.push_back(s);
     cumulative_.push_back(length() + s.length());
@@ -291,7 +289,7 @@ class PiPath {
 };
 
 // axis with zero deviatoric strain rate along a straight leg (plane-strain leg), or -1
-inline int plane_strain_axis(const PiSegment& leg)
+inline int plane_strain_axis(const PiSegment &leg)
 {
   if (leg.shape != PiSegment::Shape::LINE) return -1;
   const Eigen::Vector3d d = deviator_from_pi(leg.end - leg.start);
@@ -307,10 +305,9 @@ inline int plane_strain_axis(const PiSegment& leg)
 inline PiPath axisymmetric_prestrain_path(double prestrain, DeviatoricStrainMeasure measure)
 {
   if (!(prestrain > 0.0))
-    throw std::invalid_argument("pre-strain " + std::to_string(prestrain)
-                                + " must be positive");
-  return PiPath::polygon({{0.0, 0.0}, pi_point(pi_radius_of_axisymmetric_strain(prestrain,
-                                                                                measure), 0.0)});
+    throw std::invalid_argument("pre-strain " + std::to_string(prestrain) + " must be positive");
+  return PiPath::polygon(
+      {{0.0, 0.0}, pi_point(pi_radius_of_axisymmetric_strain(prestrain, measure), 0.0)});
 }
 
 // constant deviatoric strain: circle about the origin through A at Lode 0 (paper section 5)
@@ -319,8 +316,8 @@ inline PiPath constant_deviatoric_strain_path(double prestrain, DeviatoricStrain
                                               double sweep_deg = 360.0)
 {
   const PiPath prestrain_leg = axisymmetric_prestrain_path(prestrain, measure);
-  const PiPath circle = PiPath::circle_through(prestrain_leg.point_at(prestrain_leg.length()),
-                                               rotation, sweep_deg);
+  const PiPath circle =
+      PiPath::circle_through(prestrain_leg.point_at(prestrain_leg.length()), rotation, sweep_deg);
   return with_prestrain ? prestrain_leg.then(circle) : circle;
 }
 
@@ -334,8 +331,8 @@ inline PiPath multiaxial_plane_strain_path(double prestrain, DeviatoricStrainMea
 {
   const PiPath prestrain_leg = axisymmetric_prestrain_path(prestrain, measure);
   const double r = pi_radius_of_axisymmetric_strain(prestrain, measure);
-  const Eigen::Vector2d A = pi_point(r, 0.0), B = pi_point(2 * r, 60.0),
-                        C = pi_point(2 * r, 180.0), D = pi_point(2 * r, 300.0);
+  const Eigen::Vector2d A = pi_point(r, 0.0), B = pi_point(2 * r, 60.0), C = pi_point(2 * r, 180.0),
+                        D = pi_point(2 * r, 300.0);
   const PiPath triangle = rotation == Rotation::CLOCKWISE ? PiPath::polygon({A, B, C, D, A})
                                                           : PiPath::polygon({A, D, C, B, A});
   return with_prestrain ? prestrain_leg.then(triangle) : triangle;
@@ -351,22 +348,22 @@ inline PiPath multiaxial_plane_strain_path(double prestrain, DeviatoricStrainMea
 constexpr int MIN_STEPS_PER_LEG = 10;
 
 // the largest Pi-plane speed at which every leg takes at least MIN_STEPS_PER_LEG steps
-inline double max_followable_speed(const PiPath& path, double dt)
+inline double max_followable_speed(const PiPath &path, double dt)
 {
   return path.shortest_leg() / (MIN_STEPS_PER_LEG * dt);
 }
 
 struct PathStep {
-  Eigen::Vector3d deviatoric_strain_rate;   // traceless, 1/s
-  double path_length;                       // progress s after this step
+  Eigen::Vector3d deviatoric_strain_rate;    // traceless, 1/s
+  double path_length;                        // progress s after this step
 };
 
 // Rate that carries the current deviatoric strain to the path point one step ahead. The
 // target advances by speed*dt but stops exactly at each vertex; the part that pulls the state
 // back onto the path (drift of the radius on a circle, round-off, a late start) is limited to
 // speed*dt per step, so a rate never exceeds twice the path speed.
-inline PathStep follow_path(const PiPath& path, double path_length,
-                            const Eigen::Vector3d& strain, double speed, double dt)
+inline PathStep follow_path(const PiPath &path, double path_length, const Eigen::Vector3d &strain,
+                            double speed, double dt)
 {
   if (path.segment_count() == 0) throw std::invalid_argument("the Pi-plane path is empty");
   if (!(speed > 0.0)) throw std::invalid_argument("path speed must be positive");
@@ -375,15 +372,14 @@ inline PathStep follow_path(const PiPath& path, double path_length,
   const int leg = path.segment_at(s);
   const double leg_start = path.segment_start(leg);
   const double s_next = std::min(s + speed * dt, path.segment_end(leg));
-  const PiSegment& segment = path.segments()[leg];
+  const PiSegment &segment = path.segments()[leg];
   const Eigen::Vector2d on_path = segment.point_at(s - leg_start);
   const bool reaches_vertex = s_next == path.segment_end(leg);
   const Eigen::Vector2d ahead = reaches_vertex ? segment.end_point()
                                                : segment.point_at(s_next - leg_start);
   Eigen::Vector2d back_to_path = on_path - pi_coordinates(strain);
   const double max_correction = speed * dt;
-  if (back_to_path.norm() > max_correction)
-    back_to_path *= max_correction / back_to_path.norm();
+  if (back_to_path.norm() > max_correction) back_to_path *= max_correction / back_to_path.norm();
   return {deviator_from_pi(ahead - on_path + back_to_path) / dt, s_next};
 }
 

@@ -29,7 +29,8 @@ using namespace LAMMPS_NS;
 
 ComputeCellTally::ComputeCellTally(LAMMPS *lmp, int narg, char **arg) : Compute(lmp, narg, arg)
 {
-  if (narg != 3) error->all(FLERR, "Illegal compute CELL_TALLY command (internal to fix cell/servo)");
+  if (narg != 3)
+    error->all(FLERR, "Illegal compute CELL_TALLY command (internal to fix cell/servo)");
   comm_reverse = 1;
 }
 
@@ -50,24 +51,31 @@ unsigned ComputeCellTally::request_cell_tallies(unsigned entries)
   with_shear = (entries & ~Sums::principal_entries) != 0;
   Pair *pair = force->pair;
   if (!pair)
-    error->all(FLERR, "fix cell/servo needs a pair style: the servo's stress and stiffness "
+    error->all(FLERR,
+               "fix cell/servo needs a pair style: the servo's stress and stiffness "
                "come from the contacts");
   if (utils::strmatch(force->pair_style, "^hybrid"))
-    error->all(FLERR, "fix cell/servo cannot estimate the contact stiffness of pair_style {}: "
+    error->all(FLERR,
+               "fix cell/servo cannot estimate the contact stiffness of pair_style {}: "
                "use pair_style thornton/yin, or one granular pair style alone",
                force->pair_style);
   if (!pair->finitecutflag)
-    error->all(FLERR, "fix cell/servo needs a granular pair style (contacts of spheres of "
+    error->all(FLERR,
+               "fix cell/servo needs a granular pair style (contacts of spheres of "
                "finite size, as pair_style thornton/yin, granular or gran/*): pair_style {} is "
-               "not one", force->pair_style);
+               "not one",
+               force->pair_style);
   if (!atom->radius_flag)
     error->all(FLERR, "fix cell/servo requires per-atom radii (atom_style sphere)");
   if (!pair->single_enable)
-    error->all(FLERR, "fix cell/servo: pair_style {} cannot report single contact forces "
+    error->all(FLERR,
+               "fix cell/servo: pair_style {} cannot report single contact forces "
                "(no single()), so the servo cannot estimate its contact stiffness; use pair_style "
-               "thornton/yin or a granular pair style with single()", force->pair_style);
+               "thornton/yin or a granular pair style with single()",
+               force->pair_style);
   if (comm->me == 0 && !warned)
-    error->warning(FLERR, "fix cell/servo with pair_style {}: the servo's stiffness is estimated "
+    error->warning(FLERR,
+                   "fix cell/servo with pair_style {}: the servo's stiffness is estimated "
                    "from the contact forces as for a Hertz law, without the tangential part, and "
                    "the pair does not add the affine contact velocity L (x_i - x_j) of the "
                    "deforming cell (docs/theory.md §5.2, §6.5): its tangential forces miss the "
@@ -82,8 +90,10 @@ void ComputeCellTally::refresh_cell_tallies()
   Pair *pair = force->pair;
   NeighList *list = pair->list;
   if (!list)
-    error->all(FLERR, "fix cell/servo: pair_style {} has no neighbor list to find its contacts "
-               "in", force->pair_style);
+    error->all(FLERR,
+               "fix cell/servo: pair_style {} has no neighbor list to find its contacts "
+               "in",
+               force->pair_style);
   for (double &t : tallies.sum) t = 0.0;
   // which contacts slide is the pair's own state, which other styles do not expose
   tallies.sum[CellTallies::SLIDING] = std::numeric_limits<double>::quiet_NaN();

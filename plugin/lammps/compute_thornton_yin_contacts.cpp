@@ -19,7 +19,8 @@ ComputeThorntonYinContacts::ComputeThorntonYinContacts(LAMMPS *lmp, int narg, ch
     Compute(lmp, narg, arg), nmax(0)
 {
   if (narg != 3)
-    error->all(FLERR, "Illegal compute thornton/yin/contacts command: expected 'compute ID "
+    error->all(FLERR,
+               "Illegal compute thornton/yin/contacts command: expected 'compute ID "
                "group thornton/yin/contacts' (no arguments)");
   local_flag = 1;
   size_local_rows = 0;
@@ -35,8 +36,7 @@ ComputeThorntonYinContacts::~ComputeThorntonYinContacts()
 PairThorntonYin *ComputeThorntonYinContacts::recording_pair(LAMMPS *lmp, const char *style)
 {
   auto pair = dynamic_cast<PairThorntonYin *>(lmp->force->pair_match("thornton/yin", 1));
-  if (!pair)
-    lmp->error->all(FLERR, "compute {} requires pair_style thornton/yin", style);
+  if (!pair) lmp->error->all(FLERR, "compute {} requires pair_style thornton/yin", style);
   return pair;
 }
 
@@ -50,8 +50,10 @@ void ComputeThorntonYinContacts::compute_local()
   invoked_local = update->ntimestep;
   const PairThorntonYin *pair = recording_pair(lmp, style);
   if (!pair->contacts_recorded() || pair->contact_record_step() < 0)
-    error->all(FLERR, "compute {}: pair thornton/yin has not evaluated forces since this compute "
-               "was defined; define it before the run (or give 'run 0')", style);
+    error->all(FLERR,
+               "compute {}: pair thornton/yin has not evaluated forces since this compute "
+               "was defined; define it before the run (or give 'run 0')",
+               style);
   const auto &records = pair->contact_records();
   int n = 0;
   for (const auto &rec : records)

@@ -36,7 +36,8 @@ ComputeThorntonYinMicromechanics::ComputeThorntonYinMicromechanics(LAMMPS *lmp, 
 {
   tylmp::cite(lmp, tylmp::cite_thornton_2000);
   if (narg != 3)
-    error->all(FLERR, "Illegal compute thornton/yin/micromechanics command: expected 'compute "
+    error->all(FLERR,
+               "Illegal compute thornton/yin/micromechanics command: expected 'compute "
                "ID group thornton/yin/micromechanics' (no arguments)");
   vector_flag = 1;
   size_vector = N_VECTOR;
@@ -62,8 +63,10 @@ void ComputeThorntonYinMicromechanics::compute_vector()
   invoked_vector = update->ntimestep;
   const PairThorntonYin *pair = ComputeThorntonYinContacts::recording_pair(lmp, style);
   if (!pair->contacts_recorded() || pair->contact_record_step() < 0)
-    error->all(FLERR, "compute {}: pair thornton/yin has not evaluated forces since this compute "
-               "was defined; define it before the run (or give 'run 0')", style);
+    error->all(FLERR,
+               "compute {}: pair thornton/yin has not evaluated forces since this compute "
+               "was defined; define it before the run (or give 'run 0')",
+               style);
   const auto &records = pair->contact_records();
 
   // pass 1: number of contacts, sliding ones, sum of P (for the mean)

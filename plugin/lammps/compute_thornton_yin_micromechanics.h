@@ -18,17 +18,17 @@ class ComputeThorntonYinMicromechanics : public Compute {
   // xz yz; stresses in pressure units with LAMMPS's virial convention (compression > 0,
   // xy = sum l_x f_y / V); names in analysis/tyanalysis/micromechanics.py
   enum {
-    CONTACTS = 0,           // number of contacts
-    SLIDING_FRACTION,       // fraction of them at the sliding limit
-    MEAN_NORMAL_FORCE,      // <P> over the contacts
-    STRONG_FRACTION,        // fraction with P > <P>
-    FABRIC = 4,             // phi = <n n>, 6 entries
-    FABRIC_DEVIATOR = 10,   // sqrt(3/2 phi':phi')  (= phi1 - phi3 when phi2 = phi3)
-    STRESS = 11,            // (1/V) sum l (x) f, 6 entries
-    STRESS_NORMAL = 17,     // normal forces only
-    STRESS_TANGENTIAL = 23, // tangential forces only
-    STRESS_STRONG = 29,     // contacts with P > <P>
-    STRESS_WEAK = 35,       // contacts with P <= <P>
+    CONTACTS = 0,              // number of contacts
+    SLIDING_FRACTION,          // fraction of them at the sliding limit
+    MEAN_NORMAL_FORCE,         // <P> over the contacts
+    STRONG_FRACTION,           // fraction with P > <P>
+    FABRIC = 4,                // phi = <n n>, 6 entries
+    FABRIC_DEVIATOR = 10,      // sqrt(3/2 phi':phi')  (= phi1 - phi3 when phi2 = phi3)
+    STRESS = 11,               // (1/V) sum l (x) f, 6 entries
+    STRESS_NORMAL = 17,        // normal forces only
+    STRESS_TANGENTIAL = 23,    // tangential forces only
+    STRESS_STRONG = 29,        // contacts with P > <P>
+    STRESS_WEAK = 35,          // contacts with P <= <P>
     N_VECTOR = 41
   };
 

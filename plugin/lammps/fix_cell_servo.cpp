@@ -10,8 +10,8 @@
 ------------------------------------------------------------------------- */
 
 #include "fix_cell_servo.h"
-#include "fix_cell_servo_record.h"
 #include "cell_tally.h"
+#include "fix_cell_servo_record.h"
 #include "tylmp_citations.h"
 
 #include "cell_statistics.hpp"
@@ -56,10 +56,13 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, a
   std::string modes;
   for (const auto &kind : tycore::programme_kinds()) modes += std::string(" ") + kind.name;
   if (narg < 5)
-    error->all(FLERR, "Illegal fix cell/servo command: expected 'fix ID all cell/servo MODE "
-               "...' (modes:{})", modes);
+    error->all(FLERR,
+               "Illegal fix cell/servo command: expected 'fix ID all cell/servo MODE "
+               "...' (modes:{})",
+               modes);
   if (strcmp(arg[1], "all") != 0)
-    error->all(FLERR, "fix cell/servo: group must be 'all' (every particle follows the "
+    error->all(FLERR,
+               "fix cell/servo: group must be 'all' (every particle follows the "
                "homogeneous deformation of the cell)");
   if (domain->dimension != 3) error->all(FLERR, "fix cell/servo requires a 3d simulation");
   if (!domain->xperiodic || !domain->yperiodic || !domain->zperiodic)
@@ -93,8 +96,8 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, a
     if (comm->me == 0) error->warning(FLERR, "fix cell/servo {}: {}", id, w);
   profile = programme().profile();
   if (!command.csv_path.empty())
-    record = std::make_unique<CellRecord>(lmp, id, command.csv_path, command.csv_every,
-                                          command.extra);
+    record =
+        std::make_unique<CellRecord>(lmp, id, command.csv_path, command.csv_every, command.extra);
   take_over_replaced_fix();
   const std::string entered = programme().enter(test.strain.voigt(cell_matrix()), update->dt);
   if (!entered.empty() && comm->me == 0) utils::logmesg(lmp, "fix cell/servo: {}\n", entered);
@@ -130,7 +133,8 @@ void FixCellServo::take_over_replaced_fix()
       std::copy(c.box.begin(), c.box.end(), box_left);
     } else if (record && tycore::file_identity(record->path()) == c.record) {
       // by file identity: ./a.csv, a symbolic link or d/../a.csv name a.csv too
-      error->all(FLERR, "fix cell/servo: 'continue no' starts a new test, whose record {} would "
+      error->all(FLERR,
+                 "fix cell/servo: 'continue no' starts a new test, whose record {} would "
                  "overwrite {}, the record of the test it replaces: name another file",
                  record->path(), c.record_path);
     }
@@ -149,11 +153,13 @@ void FixCellServo::define_named_variables(bool define)
 {
   for (int i = 0; define && i < out::COUNT; ++i)
     if (input->variable->find(variable_name(i).c_str()) >= 0)
-      error->all(FLERR, "fix cell/servo: 'variables yes' defines the variable {} (output {} "
+      error->all(FLERR,
+                 "fix cell/servo: 'variables yes' defines the variable {} (output {} "
                  "of fix {}), which exists already: delete it or give the fix another ID",
                  variable_name(i), i + 1, id);
   for (int i = 0; i < out::COUNT; ++i) {
-    if (define) input->variable->set(fmt::format("{} equal f_{}[{}]", variable_name(i), id, i + 1));
+    if (define)
+      input->variable->set(fmt::format("{} equal f_{}[{}]", variable_name(i), id, i + 1));
     else if (input->variable->find(variable_name(i).c_str()) >= 0)
       input->variable->set(variable_name(i) + " delete");
   }
@@ -196,7 +202,8 @@ void FixCellServo::post_run()
 void FixCellServo::init()
 {
   if (update->whichflag == 2)
-    error->all(FLERR, "fix cell/servo cannot be used with minimize: it deforms the cell by "
+    error->all(FLERR,
+               "fix cell/servo cannot be used with minimize: it deforms the cell by "
                "strain rates in time and holds stresses by a servo, neither of which a "
                "minimizer steps through (use fix box/relax to minimize with a stress-controlled "
                "box, and unfix the cell/servo first)");
@@ -204,10 +211,13 @@ void FixCellServo::init()
     error->all(FLERR, "fix cell/servo does not support run_style respa");
   for (int i = 0; i < modify->nfix; ++i)
     if (modify->fix[i] != this && modify->fix[i]->box_change)
-      error->all(FLERR, "fix cell/servo cannot be combined with fix {} ({}), which also "
-                 "changes the box", modify->fix[i]->id, modify->fix[i]->style);
+      error->all(FLERR,
+                 "fix cell/servo cannot be combined with fix {} ({}), which also "
+                 "changes the box",
+                 modify->fix[i]->id, modify->fix[i]->style);
   if (profile.triclinic && !domain->triclinic)
-    error->all(FLERR, "fix cell/servo: the box was made orthogonal, but this programme moves "
+    error->all(FLERR,
+               "fix cell/servo: the box was made orthogonal, but this programme moves "
                "or holds a shear component, which needs a triclinic box");
 
   // the contact tallies: exact from pair thornton/yin, else estimated (docs/theory.md §6.5),
@@ -218,8 +228,8 @@ void FixCellServo::init()
     if (itally < 0) error->all(FLERR, "fix cell/servo: its contact tally compute was deleted");
     pair = dynamic_cast<CellTallySource *>(modify->compute[itally]);
   }
-  tallied_entries = pair->request_cell_tallies(
-      tycore::stiffness_entries_of(profile, domain->triclinic));
+  tallied_entries =
+      pair->request_cell_tallies(tycore::stiffness_entries_of(profile, domain->triclinic));
   const int icompute = modify->find_compute(pressure_id);
   if (icompute < 0) error->all(FLERR, "fix cell/servo: its stress compute was deleted");
   pressure = modify->compute[icompute];
@@ -255,8 +265,8 @@ double FixCellServo::operator()(tycore::Setting &s)
   modify->addstep_compute(update->ntimestep + 1);
   const std::string refused = s.refusal(value);
   if (!refused.empty())
-    error->all(FLERR, "fix cell/servo: variable {} ({}) evaluated to {} at step {}: {}",
-               s.variable, s.what, value, update->ntimestep, refused);
+    error->all(FLERR, "fix cell/servo: variable {} ({}) evaluated to {} at step {}: {}", s.variable,
+               s.what, value, update->ntimestep, refused);
   return s.value = value;
 }
 
@@ -277,7 +287,8 @@ void FixCellServo::setup(int)
   measure();
   try {
     const std::string warning = programme().begin_run(cell_state(), *this);
-    if (!warning.empty() && comm->me == 0) error->warning(FLERR, "fix cell/servo {}: {}", id, warning);
+    if (!warning.empty() && comm->me == 0)
+      error->warning(FLERR, "fix cell/servo {}: {}", id, warning);
   } catch (std::exception &e) {
     error->all(FLERR, "fix cell/servo {}: {}", id, e.what());
   }
@@ -294,7 +305,8 @@ void FixCellServo::setup(int)
   if (!record) return;
   // a new test starts its record, a continued one appends to it; the row of the run's start
   // is written unless the record holds this step already
-  const bool resume = restored || (continued && tycore::file_identity(record->path()) == continued_csv);
+  const bool resume = restored ||
+      (continued && tycore::file_identity(record->path()) == continued_csv);
   std::string header = "step";
   for (int k : out::record_columns(domain->triclinic, profile.columns))
     header += std::string(",") + out::name(k);
@@ -309,10 +321,12 @@ void FixCellServo::require_box_unchanged()
   if (std::isnan(box_left[0])) return;
   const std::string changed = tycore::box_changes(box_left, domain->h);
   if (!changed.empty())
-    error->all(FLERR, "fix cell/servo {}: the box was changed between runs ({}) by another "
+    error->all(FLERR,
+               "fix cell/servo {}: the box was changed between runs ({}) by another "
                "command (change_box?): the test's strains and shears would not count the "
                "change; start a new test from the changed box ('continue no', or unfix the fix "
-               "first) or leave the box to the fix", id, changed);
+               "first) or leave the box to the fix",
+               id, changed);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -337,15 +351,16 @@ void FixCellServo::end_of_step()
   check_equilibrium();
   // a servo at its cap whose stress error grows (tycore::CapWatch), once per run
   if (cap_watch.due(next, command.cap_warning, contacts > 0.0) && comm->me == 0)
-    error->warning(FLERR, "fix cell/servo: {}", cap_watch.message(
-        command.settings.max_strain_rate, next.stress_error, programme().held_targets(stress),
-        programme().largest_rate()));
+    error->warning(FLERR, "fix cell/servo: {}",
+                   cap_watch.message(command.settings.max_strain_rate, next.stress_error,
+                                     programme().held_targets(stress), programme().largest_rate()));
   const double fastest = next.strain_rate.cwiseAbs().maxCoeff();
   if (fastest * update->dt > tycore::MAX_STRAIN_PER_STEP)
-    error->all(FLERR, "fix cell/servo: at step {} the strain rate {:.4g} 1/s strains the cell by "
+    error->all(FLERR,
+               "fix cell/servo: at step {} the strain rate {:.4g} 1/s strains the cell by "
                "{:.3g} in one step; the cell cannot follow more than {} per step: use rates "
-               "<= {:.4g} 1/s (or a smaller timestep)", update->ntimestep, fastest,
-               fastest * update->dt, tycore::MAX_STRAIN_PER_STEP,
+               "<= {:.4g} 1/s (or a smaller timestep)",
+               update->ntimestep, fastest, fastest * update->dt, tycore::MAX_STRAIN_PER_STEP,
                tycore::MAX_STRAIN_PER_STEP / update->dt);
   // boundary work V sigma : deps over this step (docs/theory.md §5.3; Voigt6 with engineering
   // shears, so that sigma : deps = sum_I sigma_I deps_I)
@@ -367,9 +382,10 @@ void FixCellServo::check_until()
   if (due || met) write_row();
   if (met && !until_met) {
     if (comm->me == 0)
-      utils::logmesg(lmp, "fix cell/servo: {} = {:.6g} reached the target {:.6g} at step {}: "
-                     "the run stops\n", out::name(k), output[k], command.until.value,
-                     update->ntimestep);
+      utils::logmesg(lmp,
+                     "fix cell/servo: {} = {:.6g} reached the target {:.6g} at step {}: "
+                     "the run stops\n",
+                     out::name(k), output[k], command.until.value, update->ntimestep);
     timer->force_timeout();
     until_met = true;
   }
@@ -379,7 +395,8 @@ void FixCellServo::check_until()
       command.until, until_run_start, output[k], origin[k], continued, update->ntimestep);
   until_direction_checked = d.judged;
   if (!d.error.empty()) error->all(FLERR, "fix cell/servo {}: {}", id, d.error);
-  if (!d.warning.empty() && comm->me == 0) error->warning(FLERR, "fix cell/servo {}: {}", id, d.warning);
+  if (!d.warning.empty() && comm->me == 0)
+    error->warning(FLERR, "fix cell/servo {}: {}", id, d.warning);
 }
 
 // the quasi-equilibrium check of a preparation ('equilibrium N'), every N steps
@@ -413,7 +430,8 @@ void FixCellServo::choose_rate_cap()
   }
   // the free axes must be able to follow the prescribed ones
   if (rate > 0.0 && command.settings.max_strain_rate < rate && comm->me == 0)
-    error->warning(FLERR, "fix cell/servo: max_rate {:.3g} is below the prescribed strain rate "
+    error->warning(FLERR,
+                   "fix cell/servo: max_rate {:.3g} is below the prescribed strain rate "
                    "{:.3g}; the servo cannot keep up and the stress will drift (raise max_rate)",
                    command.settings.max_strain_rate, rate);
 }
@@ -504,7 +522,8 @@ void FixCellServo::change_box(const tycore::Vector6d &rate)
   for (int k = 0; k < 3; ++k) {
     const double length = next(k, k);
     if (length < 2.0 * neighbor->cutneighmax)
-      error->all(FLERR, "fix cell/servo: cell edge {} = {:.4g} has shrunk below twice the "
+      error->all(FLERR,
+                 "fix cell/servo: cell edge {} = {:.4g} has shrunk below twice the "
                  "neighbor cutoff ({:.4g}); use a larger specimen or a smaller skin",
                  tycore::axis_name(k), length, 2.0 * neighbor->cutneighmax);
     const double centre = 0.5 * (domain->boxlo[k] + domain->boxhi[k]);
@@ -585,7 +604,8 @@ void FixCellServo::compute_outputs()
   const int k = command.until.output;
   if (k >= 0) {
     if (std::isnan(test.until_start)) test.until_start = output[k];
-    output[out::PROGRESS] = tycore::progress_towards(test.until_start, output[k], command.until.value);
+    output[out::PROGRESS] =
+        tycore::progress_towards(test.until_start, output[k], command.until.value);
     output[out::ETA_SECONDS] = eta_from_progress(output[out::PROGRESS]);
   } else if (!std::isnan(programme().progress())) {
     // a programme that knows its course's time left (a strain path) is timed by it, one that
@@ -618,8 +638,8 @@ void FixCellServo::compute_particle_outputs()
   // the kinetic ratio relative to the held p, else to the measured one
   const double p = profile.mean_stress;
   tycore::particle_outputs(tycore::particle_statistics(total, contacts, force_sum,
-                                                      domain->xprd * domain->yprd * domain->zprd,
-                                                      p > 0.0 ? p : output[out::P]),
+                                                       domain->xprd * domain->yprd * domain->zprd,
+                                                       p > 0.0 ? p : output[out::P]),
                            output);
   particle_step = update->ntimestep;
 }
@@ -668,9 +688,11 @@ void FixCellServo::restart(char *buf)
   // 'continue no' asks for a new test: the state in the restart file is not taken up
   if (!command.continue_previous) {
     if (comm->me == 0)
-      utils::logmesg(lmp, "fix cell/servo {}: continue no: the test whose state the restart "
+      utils::logmesg(lmp,
+                     "fix cell/servo {}: continue no: the test whose state the restart "
                      "file holds is not continued; a new test starts (strains, time and "
-                     "boundary work from zero)\n", id);
+                     "boundary work from zero)\n",
+                     id);
     return;
   }
   try {

@@ -41,7 +41,7 @@ class FixCellServo : public Fix, private tycore::SettingValues {
  private:
   tycore::CellCommand command;
   tycore::CellProgramme &programme() const { return *command.programme; }
-  tycore::ProgrammeProfile profile;     // what the programme needs (fixed at construction)
+  tycore::ProgrammeProfile profile;    // what the programme needs (fixed at construction)
   tycore::CellTestState test;
   bool restored = false, continued = false;
   tycore::FileIdentity continued_csv;

@@ -34,9 +34,10 @@ std::vector<std::pair<const LAMMPS *, const CellRecord *>> &live_records()
 
 }    // namespace
 
-CellRecord::CellRecord(LAMMPS *lmp, const std::string &fix_id, const std::string &path,
-                       int every, const Columns &extra) :
-    Pointers(lmp), fix_id_(fix_id), path_(path), every_(every), requests_(extra)
+CellRecord::CellRecord(LAMMPS *lmp, const std::string &fix_id, const std::string &path, int every,
+                       const Columns &extra) :
+    Pointers(lmp),
+    fix_id_(fix_id), path_(path), every_(every), requests_(extra)
 {
   live_records().emplace_back(lmp, this);
 }
@@ -44,8 +45,9 @@ CellRecord::CellRecord(LAMMPS *lmp, const std::string &fix_id, const std::string
 CellRecord::~CellRecord()
 {
   auto &records = live_records();
-  records.erase(std::remove(records.begin(), records.end(), std::make_pair(
-                                static_cast<const LAMMPS *>(lmp), static_cast<const CellRecord *>(this))),
+  records.erase(std::remove(records.begin(), records.end(),
+                            std::make_pair(static_cast<const LAMMPS *>(lmp),
+                                           static_cast<const CellRecord *>(this))),
                 records.end());
 }
 
@@ -99,14 +101,18 @@ void CellRecord::open(const std::string &header, bool resume, bigint step)
   if (comm->me != 0 || csv_.is_open()) return;
   refuse_aliases();
   try {
-    if (resume) csv_.resume(path_, header, step);
-    else csv_.start(path_, header);
+    if (resume)
+      csv_.resume(path_, header, step);
+    else
+      csv_.start(path_, header);
   } catch (std::exception &e) {
     error->one(FLERR, "fix cell/servo: {}", e.what());
   }
   if (csv_.dropped_rows() > 0)
-    utils::logmesg(lmp, "fix cell/servo: {} continues at step {}: dropped {} row(s) written "
-                   "after that step by an earlier run\n", path_, step, csv_.dropped_rows());
+    utils::logmesg(lmp,
+                   "fix cell/servo: {} continues at step {}: dropped {} row(s) written "
+                   "after that step by an earlier run\n",
+                   path_, step, csv_.dropped_rows());
 }
 
 bool CellRecord::holds(bigint step) const
@@ -139,8 +145,10 @@ void CellRecord::refuse_aliases() const
 {
   const tycore::FileIdentity record = tycore::file_identity(path_);
   auto refuse = [&](const std::string &what) {
-    error->one(FLERR, "fix cell/servo {}: csv {} is {}: the record would overwrite it; name "
-               "another file", fix_id_, path_, what);
+    error->one(FLERR,
+               "fix cell/servo {}: csv {} is {}: the record would overwrite it; name "
+               "another file",
+               fix_id_, path_, what);
   };
   const std::pair<FILE *, const char *> streams[] = {
       {lmp->logfile, "the log file of this LAMMPS run"},
@@ -160,6 +168,6 @@ void CellRecord::refuse_aliases() const
   for (const auto &other : live_records())
     if (other.first == lmp && other.second != this &&
         tycore::file_identity(other.second->path_) == record)
-      refuse(fmt::format("the record of fix {} (csv {})", other.second->fix_id_,
-                         other.second->path_));
+      refuse(
+          fmt::format("the record of fix {} (csv {})", other.second->fix_id_, other.second->path_));
 }

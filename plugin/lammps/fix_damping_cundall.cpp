@@ -24,12 +24,11 @@ using namespace FixConst;
 FixDampingCundall::FixDampingCundall(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg)
 {
   if (narg != 5)
-    error->all(FLERR, "Illegal fix damping/cundall command: expected 'fix ID group "
+    error->all(FLERR,
+               "Illegal fix damping/cundall command: expected 'fix ID group "
                "damping/cundall lambda_linear lambda_angular'");
-  lambda_linear =
-      tylmp::finite_numeric(FLERR, arg[3], "fix damping/cundall: lambda_linear", lmp);
-  lambda_angular =
-      tylmp::finite_numeric(FLERR, arg[4], "fix damping/cundall: lambda_angular", lmp);
+  lambda_linear = tylmp::finite_numeric(FLERR, arg[3], "fix damping/cundall: lambda_linear", lmp);
+  lambda_angular = tylmp::finite_numeric(FLERR, arg[4], "fix damping/cundall: lambda_angular", lmp);
   if (!(lambda_linear >= 0.0 && lambda_linear < 1.0) ||
       !(lambda_angular >= 0.0 && lambda_angular < 1.0))
     error->all(FLERR, "fix damping/cundall: damping coefficients must lie in [0, 1) (got {} {})",

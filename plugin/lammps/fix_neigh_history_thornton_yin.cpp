@@ -35,10 +35,11 @@ void FixNeighHistoryThorntonYin::unpack_restart(int nlocal, int nth)
   for (int i = 0; i < nth; ++i) m += static_cast<int>(values[m]);
   const int size = static_cast<int>(values[m]), count = static_cast<int>(values[m + 1]);
   if (count > 0 && size != 2 + count * (dnum + 1))
-    error->one(FLERR, "pair thornton/yin: the restart file keeps {} values per contact "
+    error->one(FLERR,
+               "pair thornton/yin: the restart file keeps {} values per contact "
                "history, this build of the plugin {}: it was written by a build with another "
-               "contact history and cannot be continued with this one", (size - 2) / count - 1,
-               dnum);
+               "contact history and cannot be continued with this one",
+               (size - 2) / count - 1, dnum);
   FixNeighHistory::unpack_restart(nlocal, nth);
   m += 2;
   for (int n = 0; n < npartner[nlocal]; ++n, m += dnum + 1)

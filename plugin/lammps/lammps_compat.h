@@ -45,8 +45,7 @@ inline void request_history_list(LAMMPS_NS::Neighbor *neighbor, LAMMPS_NS::Pair 
 {
 #if TYLMP_LAMMPS_NEW_REQUEST_AND_COMM
   (void) instance_me;
-  neighbor->add_request(pair, LAMMPS_NS::NeighConst::REQ_SIZE |
-                                  LAMMPS_NS::NeighConst::REQ_HISTORY);
+  neighbor->add_request(pair, LAMMPS_NS::NeighConst::REQ_SIZE | LAMMPS_NS::NeighConst::REQ_HISTORY);
 #else
   const int irequest = neighbor->request(pair, instance_me);
   neighbor->requests[irequest]->size = 1;

@@ -5,8 +5,8 @@
 ------------------------------------------------------------------------- */
 
 #include "pair_thornton_yin.h"
-#include "tylmp_numeric.h"
 #include "tylmp_citations.h"
+#include "tylmp_numeric.h"
 
 #include "box_rate.hpp"
 #include "cell_stiffness.hpp"
@@ -58,8 +58,8 @@ std::string surface_energy_unit(const char *unit_style)
 
 // the global virial of one pair force as Pair::ev_tally_xyz adds it (its additions in its
 // order): with newton_pair on once, else half for each local atom of the pair
-inline void add_pair_virial(double vir[6], bool newton_pair, bool i_local, bool j_local,
-                            double fx, double fy, double fz, double dx, double dy, double dz)
+inline void add_pair_virial(double vir[6], bool newton_pair, bool i_local, bool j_local, double fx,
+                            double fy, double fz, double dx, double dy, double dz)
 {
   const double w[6] = {dx * fx, dy * fy, dz * fz, dx * fy, dx * fz, dy * fz};
   if (newton_pair) {
@@ -92,8 +92,8 @@ PairThorntonYin::PairThorntonYin(LAMMPS *lmp) : PairWithHistory(lmp)
   finitecutflag = 1;
   restartinfo = 1;
 
-  beyond_contact = 1;                  // adhesive contacts live beyond zero overlap
-  nondefault_history_transfer = 1;     // scalars of the history keep their sign
+  beyond_contact = 1;                 // adhesive contacts live beyond zero overlap
+  nondefault_history_transfer = 1;    // scalars of the history keep their sign
 
   nextra = N_PVECTOR;
   pvector = new double[nextra];
@@ -130,7 +130,8 @@ PairThorntonYin::PairThorntonYin(LAMMPS *lmp) : PairWithHistory(lmp)
 
   // one instance only: its contact history has one store, named by fixed IDs (restart files)
   if (modify->find_fix(FIX_DUMMY_ID) >= 0 || modify->find_fix(FIX_HISTORY_ID) >= 0)
-    error->all(FLERR, "pair thornton/yin may appear only once in a hybrid pair style (its "
+    error->all(FLERR,
+               "pair thornton/yin may appear only once in a hybrid pair style (its "
                "contact history has one store): give all its type pairs to one thornton/yin "
                "('pair_coeff I J thornton/yin E nu mu Gamma'; the materials may differ by type)");
 
@@ -147,8 +148,10 @@ PairThorntonYin::~PairThorntonYin()
   delete[] pvector;
   delete[] svector;
   memory->destroy(atom_contacts);
-  if (!fix_history) modify->delete_fix(FIX_DUMMY_ID);
-  else modify->delete_fix(FIX_HISTORY_ID);
+  if (!fix_history)
+    modify->delete_fix(FIX_DUMMY_ID);
+  else
+    modify->delete_fix(FIX_HISTORY_ID);
 
   if (allocated) {
     memory->destroy(setflag);
@@ -206,8 +209,10 @@ void PairThorntonYin::settings(int narg, char **arg)
 {
   // pair_style thornton/yin: no arguments
   if (narg > 0)
-    error->all(FLERR, "pair_style thornton/yin takes no arguments, got '{}'; material "
-               "parameters go in pair_coeff I J E nu mu Gamma [damping beta_n beta_t]", arg[0]);
+    error->all(FLERR,
+               "pair_style thornton/yin takes no arguments, got '{}'; material "
+               "parameters go in pair_coeff I J E nu mu Gamma [damping beta_n beta_t]",
+               arg[0]);
   // the build of the batch law (tycore::advance_batch): the widest this processor runs
   // (tycore::best_isa). Tests and benchmarks may name another in the environment variable
   // TYLMP_LAW_ISA (scalar, sse2, avx2, avx512); all builds give the same forces to the bit.
@@ -215,18 +220,22 @@ void PairThorntonYin::settings(int narg, char **arg)
   const char *forced = std::getenv("TYLMP_LAW_ISA");
   if (!forced) return;
   const std::string value = forced;
-  for (const tycore::Isa choice : {tycore::Isa::scalar, tycore::Isa::sse2, tycore::Isa::avx2,
-                                   tycore::Isa::avx512})
+  for (const tycore::Isa choice :
+       {tycore::Isa::scalar, tycore::Isa::sse2, tycore::Isa::avx2, tycore::Isa::avx512})
     if (value == tycore::isa_name(choice)) {
       if (!tycore::isa_supported(choice))
-        error->all(FLERR, "pair thornton/yin: TYLMP_LAW_ISA={}: this build or processor does "
+        error->all(FLERR,
+                   "pair thornton/yin: TYLMP_LAW_ISA={}: this build or processor does "
                    "not run {} instructions (here the widest is {}); unset it or name a "
-                   "narrower build", value, value, tycore::isa_name(tycore::best_isa()));
+                   "narrower build",
+                   value, value, tycore::isa_name(tycore::best_isa()));
       isa = choice;
       return;
     }
-  error->all(FLERR, "pair thornton/yin: the environment variable TYLMP_LAW_ISA (a setting for "
-             "tests and benchmarks) must be scalar, sse2, avx2 or avx512, got '{}'", value);
+  error->all(FLERR,
+             "pair thornton/yin: the environment variable TYLMP_LAW_ISA (a setting for "
+             "tests and benchmarks) must be scalar, sse2, avx2 or avx512, got '{}'",
+             value);
 }
 
 /* ----------------------------------------------------------------------
@@ -237,8 +246,7 @@ void PairThorntonYin::coeff(int narg, char **arg)
 {
   const char *usage = "pair_coeff I J E nu mu Gamma [damping beta_n beta_t]";
   if (narg < 6)
-    error->all(FLERR, "Incorrect args for pair coefficients of thornton/yin: expected '{}'",
-               usage);
+    error->all(FLERR, "Incorrect args for pair coefficients of thornton/yin: expected '{}'", usage);
   if (!allocated) allocate();
 
   int ilo, ihi, jlo, jhi;
@@ -256,14 +264,17 @@ void PairThorntonYin::coeff(int narg, char **arg)
   if (!(E > 0.0))
     error->all(FLERR, "pair_coeff thornton/yin: Young's modulus E must be > 0 (got {})", E);
   if (!(nu > -1.0 && nu < 0.5))
-    error->all(FLERR, "pair_coeff thornton/yin: Poisson's ratio nu must lie in (-1, 0.5) "
-               "(got {})", nu);
+    error->all(FLERR,
+               "pair_coeff thornton/yin: Poisson's ratio nu must lie in (-1, 0.5) "
+               "(got {})",
+               nu);
   if (!(mu >= 0.0))
-    error->all(FLERR, "pair_coeff thornton/yin: friction coefficient mu must be >= 0 (got {})",
-               mu);
+    error->all(FLERR, "pair_coeff thornton/yin: friction coefficient mu must be >= 0 (got {})", mu);
   if (!(Gamma >= 0.0))
-    error->all(FLERR, "pair_coeff thornton/yin: interface energy Gamma must be >= 0 {} "
-               "(got {})", surface_energy_unit(update->unit_style), Gamma);
+    error->all(FLERR,
+               "pair_coeff thornton/yin: interface energy Gamma must be >= 0 {} "
+               "(got {})",
+               surface_energy_unit(update->unit_style), Gamma);
 
   double beta_n = 0.0, beta_t = 0.0;
   for (int iarg = 6; iarg < narg;) {
@@ -311,9 +322,10 @@ void PairThorntonYin::coeff(int narg, char **arg)
 void PairThorntonYin::mix_pair(int i, int j)
 {
   if (!material_set[i] || !material_set[j])
-    error->all(FLERR, "pair thornton/yin: coefficients for types {} {} are not set and cannot "
-               "be mixed: give 'pair_coeff {} {} ...' and 'pair_coeff {} {} ...'", i, j, i, i,
-               j, j);
+    error->all(FLERR,
+               "pair thornton/yin: coefficients for types {} {} are not set and cannot "
+               "be mixed: give 'pair_coeff {} {} ...' and 'pair_coeff {} {} ...'",
+               i, j, i, i, j, j);
   E_star[i][j] = tycore::effective_modulus(youngs[i], poisson[i], youngs[j], poisson[j]);
   G_star[i][j] = tycore::effective_shear_modulus(youngs[i], poisson[i], youngs[j], poisson[j]);
   friction[i][j] = std::sqrt(friction[i][i] * friction[j][j]);
@@ -337,15 +349,19 @@ void PairThorntonYin::init_style()
     record_step = -1;
   }
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
-    error->all(FLERR, "pair thornton/yin requires atom style sphere (per-atom radius, rmass, "
+    error->all(FLERR,
+               "pair thornton/yin requires atom style sphere (per-atom radius, rmass, "
                "omega and torque)");
   if (comm->ghost_velocity == 0)
-    error->all(FLERR, "pair thornton/yin requires ghost velocities: add 'comm_modify vel yes' "
+    error->all(FLERR,
+               "pair thornton/yin requires ghost velocities: add 'comm_modify vel yes' "
                "before the run");
   const std::string units = update->unit_style;
   if (units != "si" && units != "cgs" && units != "micro" && units != "nano")
-    error->all(FLERR, "pair thornton/yin needs a mechanically consistent unit system "
-               "(units si, cgs, micro or nano), got 'units {}'", units);
+    error->all(FLERR,
+               "pair thornton/yin needs a mechanically consistent unit system "
+               "(units si, cgs, micro or nano), got 'units {}'",
+               units);
 
   check_hybrid_outputs();
 
@@ -359,7 +375,8 @@ void PairThorntonYin::init_style()
 
   if (fix_history == nullptr) {
     fix_history = (FixNeighHistory *) modify->replace_fix(
-        FIX_DUMMY_ID, fmt::format("{} all NEIGH_HISTORY/THORNTON_YIN {}", FIX_HISTORY_ID, HISTORY_SIZE), 1);
+        FIX_DUMMY_ID,
+        fmt::format("{} all NEIGH_HISTORY/THORNTON_YIN {}", FIX_HISTORY_ID, HISTORY_SIZE), 1);
     fix_history->pair = this;
   } else {
     const int ifix = modify->find_fix(FIX_HISTORY_ID);
@@ -403,7 +420,8 @@ void PairThorntonYin::check_break_against_skin()
       const double R = tycore::effective_radius(maxrad_type[i], maxrad_type[j]);
       const double gap = -tycore::jkr::break_overlap(R, E_star[i][j], surface_energy[i][j]);
       if (gap > 0.0 && neighbor->skin <= gap)
-        error->all(FLERR, "pair thornton/yin: neighbor skin {:.6g} is not larger than the JKR "
+        error->all(FLERR,
+                   "pair thornton/yin: neighbor skin {:.6g} is not larger than the JKR "
                    "break separation |delta_f| = {:.6g} of types {} {}; adhesive contacts would "
                    "be lost at a neighbor-list rebuild. Use e.g. 'neighbor {:.3g} bin'",
                    neighbor->skin, gap, i, j, 2.0 * gap);
@@ -433,9 +451,11 @@ void PairThorntonYin::check_timestep_against_rayleigh()
   // no time step resolves a Rayleigh time that is zero, subnormal or NaN (E or the density
   // far out of range)
   if (!(t_rayleigh >= DBL_MIN))
-    error->all(FLERR, "pair thornton/yin: the Rayleigh time pi R sqrt(rho/G)/(0.1631 nu + "
+    error->all(FLERR,
+               "pair thornton/yin: the Rayleigh time pi R sqrt(rho/G)/(0.1631 nu + "
                "0.8766) of the smallest sphere is {:.4g}: no time step can resolve it; check E "
-               "(pair_coeff) and the density or mass of the spheres", t_rayleigh);
+               "(pair_coeff) and the density or mass of the spheres",
+               t_rayleigh);
   // viscous damping, -eta v with eta = 2 beta sqrt(m* k): beta > 1 is overdamped, and the
   // explicit step of the damping force is stable for every contact (angular frequency below
   // 2 pi/dt_R, theory.md §4) only while beta < dt_R/(2 pi dt)
@@ -446,16 +466,24 @@ void PairThorntonYin::check_timestep_against_rayleigh()
   const double beta_stable = t_rayleigh / (2.0 * MY_PI * update->dt);
   if (beta_max > 0.0 && t_rayleigh < BIG && (beta_max > 1.0 || beta_max > beta_stable) &&
       comm->me == 0)
-    error->warning(FLERR, "pair thornton/yin: damping ratio {:.4g} is {}; use a damping ratio "
-                   "below {:.4g}", beta_max,
-                   beta_max > beta_stable ? "too large for the explicit step: a contact's "
-                   "damping force may grow without bound (it is stable for every contact only "
-                   "below dt_R/(2 pi dt))" : "above 1: contacts are overdamped and cannot "
-                   "rebound", MIN(1.0, beta_stable));
+    error->warning(
+        FLERR,
+        "pair thornton/yin: damping ratio {:.4g} is {}; use a damping ratio "
+        "below {:.4g}",
+        beta_max,
+        beta_max > beta_stable
+            ? "too large for the explicit step: a contact's "
+              "damping force may grow without bound (it is stable for every contact only "
+              "below dt_R/(2 pi dt))"
+            : "above 1: contacts are overdamped and cannot "
+              "rebound",
+        MIN(1.0, beta_stable));
   if (t_rayleigh < BIG && update->dt > RAYLEIGH_WARN_FRACTION * t_rayleigh && comm->me == 0)
-    error->warning(FLERR, "pair thornton/yin: timestep {:.4g} exceeds {} x the Rayleigh time "
+    error->warning(FLERR,
+                   "pair thornton/yin: timestep {:.4g} exceeds {} x the Rayleigh time "
                    "{:.4g} of the smallest sphere; reduce the timestep to at most {:.4g} "
-                   "(or scale the density up)", update->dt, RAYLEIGH_WARN_FRACTION, t_rayleigh,
+                   "(or scale the density up)",
+                   update->dt, RAYLEIGH_WARN_FRACTION, t_rayleigh,
                    RAYLEIGH_WARN_FRACTION * t_rayleigh);
 }
 
@@ -479,12 +507,15 @@ double PairThorntonYin::init_one(int i, int j)
   if (setflag[i][j] == 0) mix_pair(i, j);
   // fix adapt changes mu and Gamma through extract() and calls init_one again
   if (!(std::isfinite(friction[i][j]) && friction[i][j] >= 0.0))
-    error->all(FLERR, "pair thornton/yin: friction coefficient mu of types {} {} must be finite "
-               "and >= 0 (got {}; set by pair_coeff or fix adapt)", i, j, friction[i][j]);
+    error->all(FLERR,
+               "pair thornton/yin: friction coefficient mu of types {} {} must be finite "
+               "and >= 0 (got {}; set by pair_coeff or fix adapt)",
+               i, j, friction[i][j]);
   if (!(std::isfinite(surface_energy[i][j]) && surface_energy[i][j] >= 0.0))
-    error->all(FLERR, "pair thornton/yin: interface energy Gamma of types {} {} must be finite "
-               "and >= 0 {} (got {}; set by pair_coeff or fix adapt)", i, j,
-               surface_energy_unit(update->unit_style), surface_energy[i][j]);
+    error->all(FLERR,
+               "pair thornton/yin: interface energy Gamma of types {} {} must be finite "
+               "and >= 0 {} (got {}; set by pair_coeff or fix adapt)",
+               i, j, surface_energy_unit(update->unit_style), surface_energy[i][j]);
   E_star[j][i] = E_star[i][j];
   G_star[j][i] = G_star[i][j];
   friction[j][i] = friction[i][j];
@@ -519,24 +550,27 @@ void PairThorntonYin::check_law_domain(int i, int j, double rad_i, double rad_j,
   const double R = tycore::effective_radius(rad_i, rad_j);
   const double a0_ratio = tycore::zero_load_radius_ratio(c, R);
   if (!(a0_ratio < 1.0))
-    error->all(FLERR, "pair thornton/yin: types {} {}: the JKR zero-load contact radius a0 = "
+    error->all(FLERR,
+               "pair thornton/yin: types {} {}: the JKR zero-load contact radius a0 = "
                "(9 pi Gamma R*^2/E*)^(1/3) = {:.4g} is not smaller than R* = {:.4g}, so the "
                "contact law (small contacts, a << R*) does not apply; Gamma = {:.4g} must be "
-               "below E* R*/(9 pi) = {:.4g} (or E larger)", i, j, a0_ratio * R, R, c.Gamma,
-               c.E_star * R / (9.0 * MY_PI));
+               "below E* R*/(9 pi) = {:.4g} (or E larger)",
+               i, j, a0_ratio * R, R, c.Gamma, c.E_star * R / (9.0 * MY_PI));
   if (warn && a0_ratio > A0_WARN_FRACTION && comm->me == 0)
-    error->warning(FLERR, "pair thornton/yin: types {} {}: the JKR zero-load contact radius a0 "
+    error->warning(FLERR,
+                   "pair thornton/yin: types {} {}: the JKR zero-load contact radius a0 "
                    "= {:.4g} R*: the contact is large before any load and the small-contact "
-                   "law is strained; lower Gamma or raise E if this is not intended", i, j,
-                   a0_ratio);
+                   "law is strained; lower Gamma or raise E if this is not intended",
+                   i, j, a0_ratio);
   const double delta_max = MIN(rad_i, rad_j);
   const tycore::LawDomainFault fault = tycore::law_domain_fault(c, R, delta_max);
   if (fault.quantity)
-    error->all(FLERR, "pair thornton/yin: types {} {}: the {} of the contact law is not finite "
+    error->all(FLERR,
+               "pair thornton/yin: types {} {}: the {} of the contact law is not finite "
                "at overlap {:.4g} (the law's range is delta_f to the smaller radius {:.4g}) with "
                "E* = {:.4g}, G* = {:.4g}, mu = {:.4g}, Gamma = {:.4g}, R* = {:.4g}: these "
-               "coefficients are far outside what the law can represent in 'units {}'", i, j,
-               fault.quantity, fault.delta, delta_max, c.E_star, c.G_star, c.mu, c.Gamma, R,
+               "coefficients are far outside what the law can represent in 'units {}'",
+               i, j, fault.quantity, fault.delta, delta_max, c.E_star, c.G_star, c.mu, c.Gamma, R,
                update->unit_style);
 }
 
@@ -582,11 +616,13 @@ void PairThorntonYin::check_box_rate()
   box_from_setup = update->setupflag;
   if (!update->setupflag && !domain->deform_vremap && !box_rate_warned && comparable) {
     static const char *const component[6] = {"xx", "yy", "zz", "yz", "xz", "xy"};
-    const tycore::BoxChange c = tycore::unexplained_box_change(box_h, h, domain->h_rate, update->dt);
+    const tycore::BoxChange c =
+        tycore::unexplained_box_change(box_h, h, domain->h_rate, update->dt);
     if (c.component >= 0) {
       box_rate_warned = 1;
       if (comm->me == 0)
-        error->warning(FLERR, "pair thornton/yin: box component h_{} changed by {:.4g} in the "
+        error->warning(FLERR,
+                       "pair thornton/yin: box component h_{} changed by {:.4g} in the "
                        "last step but its rate h_rate dt = {:.4g}: a fix changes the box "
                        "without setting domain->h_rate (fix deform 'volume' in this LAMMPS "
                        "version, a barostat), so the affine part of the contact velocity "
@@ -619,23 +655,26 @@ void PairThorntonYin::contact_fault(int i, int j, double delta, bool force)
     if (!std::isfinite(atom->rmass[k])) bad += ", mass" + of;
   }
   if (!bad.empty())
-    error->one(FLERR, "pair thornton/yin: non-finite value at step {} in the contact of atoms "
+    error->one(FLERR,
+               "pair thornton/yin: non-finite value at step {} in the contact of atoms "
                "{} and {} ({}); the run stops here instead of spreading NaN: look for what set "
-               "it (set, velocity, a fix or a variable)", update->ntimestep, ti, tj,
-               bad.substr(2));
+               "it (set, velocity, a fix or a variable)",
+               update->ntimestep, ti, tj, bad.substr(2));
   if (force || !std::isfinite(delta)) {
     const double *vi = atom->v[i], *vj = atom->v[j];
     const double speed = std::hypot(std::hypot(vi[0] - vj[0], vi[1] - vj[1]), vi[2] - vj[2]);
-    error->one(FLERR, "pair thornton/yin: the contact force of atoms {} and {} is not finite at "
+    error->one(FLERR,
+               "pair thornton/yin: the contact force of atoms {} and {} is not finite at "
                "step {} although their positions, velocities and radii are (relative speed "
                "{:.4g}): a pair coefficient too large for this contact (see the warnings at "
-               "init, e.g. the damping ratio) or a non-finite value in its history", ti, tj,
-               update->ntimestep, speed);
+               "init, e.g. the damping ratio) or a non-finite value in its history",
+               ti, tj, update->ntimestep, speed);
   }
-  error->one(FLERR, "pair thornton/yin: overlap {:.4g} of atoms {} and {} exceeds the radius of "
+  error->one(FLERR,
+             "pair thornton/yin: overlap {:.4g} of atoms {} and {} exceeds the radius of "
              "the smaller sphere {:.4g}: the contact law is no longer valid; reduce the timestep "
-             "(see the Rayleigh-time warning) or the impact velocity", delta, ti, tj,
-             MIN(atom->radius[i], atom->radius[j]));
+             "(see the Rayleigh-time warning) or the impact velocity",
+             delta, ti, tj, MIN(atom->radius[i], atom->radius[j]));
 }
 
 /* ---------------------------------------------------------------------- */
@@ -652,11 +691,15 @@ void PairThorntonYin::compute(int eflag, int vflag)
       if (damp_n[i][j] > 0.0 || damp_t[i][j] > 0.0) damped = 1;
     }
   if (adhesive) {
-    if (damped) eval<true, true>(eflag, vflag);
-    else eval<true, false>(eflag, vflag);
+    if (damped)
+      eval<true, true>(eflag, vflag);
+    else
+      eval<true, false>(eflag, vflag);
   } else {
-    if (damped) eval<false, true>(eflag, vflag);
-    else eval<false, false>(eflag, vflag);
+    if (damped)
+      eval<false, true>(eflag, vflag);
+    else
+      eval<false, false>(eflag, vflag);
   }
 }
 
@@ -693,8 +736,10 @@ template <bool ADHESIVE, bool DAMPED> void PairThorntonYin::eval(int eflag, int 
   begin_batches(evflag && eflag_either);
   const bool by_contact = principal_by_contact;
   const auto run = [&](Batch &bt) {
-    if (by_contact) run_batch<ADHESIVE, DAMPED, true>(bt, sweep);
-    else run_batch<ADHESIVE, DAMPED, false>(bt, sweep);
+    if (by_contact)
+      run_batch<ADHESIVE, DAMPED, true>(bt, sweep);
+    else
+      run_batch<ADHESIVE, DAMPED, false>(bt, sweep);
   };
 
   // the neighbour loop: each touching pair's sphere data and history into its lane
@@ -765,8 +810,8 @@ void PairThorntonYin::begin_batches(bool energy)
 // this evaluation's parameters of the batch of types itype, jtype
 tycore::BatchParameters PairThorntonYin::batch_parameters(int itype, int jtype) const
 {
-  return tycore::BatchParameters{dt, damp_n[itype][jtype], damp_t[itype][jtype],
-                                 tally_cell != 0, batch_energy};
+  return tycore::BatchParameters{dt, damp_n[itype][jtype], damp_t[itype][jtype], tally_cell != 0,
+                                 batch_energy};
 }
 
 PairThorntonYin::Batch *PairThorntonYin::make_batch(int itype, int jtype)
@@ -797,8 +842,10 @@ void PairThorntonYin::run_batch(Batch &bt, Sweep &sweep)
   const bool valid = sweep.affine ? tycore::batch_geometry<true, DAMPED>(b, n, g, isa)
                                   : tycore::batch_geometry<false, DAMPED>(b, n, g, isa);
   if (!valid) report_overlap(bt, n);
-  if (sweep.step) tycore::advance_batch<ADHESIVE, DAMPED>(b, n, *bt.constants, bt.p, isa);
-  else tycore::forces_without_step<ADHESIVE, DAMPED>(b, n, *bt.constants, bt.p);
+  if (sweep.step)
+    tycore::advance_batch<ADHESIVE, DAMPED>(b, n, *bt.constants, bt.p, isa);
+  else
+    tycore::forces_without_step<ADHESIVE, DAMPED>(b, n, *bt.constants, bt.p);
   scatter<DAMPED>(bt, n, sweep);
   if (tally_cell) tally_batch<BY_CONTACT>(bt, n);
 }
@@ -869,8 +916,8 @@ template <bool DAMPED> void PairThorntonYin::scatter(const Batch &bt, int n, Swe
     if (virial_inline) {    // the servo's stress every step
       add_pair_virial(vir, newton_pair, i < nlocal, j < nlocal, fx, fy, fz, dx, dy, dz);
     } else {
-      ev_tally_xyz(i, j, nlocal, newton_pair, bt.p.energy ? b.energy[l] : 0.0, 0.0, fx, fy, fz,
-                   dx, dy, dz);
+      ev_tally_xyz(i, j, nlocal, newton_pair, bt.p.energy ? b.energy[l] : 0.0, 0.0, fx, fy, fz, dx,
+                   dy, dz);
     }
   }
   if (virial_inline)
@@ -933,14 +980,19 @@ unsigned PairThorntonYin::request_cell_tallies(unsigned entries)
   tally_cell = 1;
   const unsigned principal = entries & Sums::principal_entries;
   const unsigned shear = (entries & Sums::all_entries) >> Sums::principal_size;
-  const auto single = [](unsigned bits) { return bits != 0 && (bits & (bits - 1)) == 0; };
-  const auto lowest = [](unsigned bits) { return __builtin_ctz(bits); };
+  const auto single = [](unsigned bits) {
+    return bits != 0 && (bits & (bits - 1)) == 0;
+  };
+  const auto lowest = [](unsigned bits) {
+    return __builtin_ctz(bits);
+  };
   lane_shear = shear == 0 ? -1 : single(shear) ? lowest(shear) : ALL_SHEAR;
   principal_by_contact = principal != 0 && !(single(principal) && lane_shear != ALL_SHEAR);
   lane_principal = principal != 0 && !principal_by_contact ? lowest(principal) : -1;
   lane_entries = (lane_principal >= 0 ? 1u << lane_principal : 0u) |
       (lane_shear == ALL_SHEAR ? Sums::all_entries & ~Sums::principal_entries
-       : lane_shear >= 0 ? 1u << (Sums::principal_size + lane_shear) : 0u);
+           : lane_shear >= 0   ? 1u << (Sums::principal_size + lane_shear)
+                               : 0u);
   return (principal_by_contact ? Sums::principal_entries : 0u) | lane_entries;
 }
 
@@ -964,9 +1016,8 @@ template <int K> void PairThorntonYin::tally_shear_lane(const Batch &bt, int n)
   if constexpr (K == ALL_SHEAR) {
     for (int l = 0; l < n; ++l) {
       const double share = bt.share[l];
-      tycore::affine_shear_entries(b.n[0][l], b.n[1][l], b.n[2][l], b.rsq[l],
-                                   b.normal_stiffness[l], b.tangential_stiffness[l],
-                                   [&](int k, double value) {
+      tycore::affine_shear_entries(b.n[0][l], b.n[1][l], b.n[2][l], b.rsq[l], b.normal_stiffness[l],
+                                   b.tangential_stiffness[l], [&](int k, double value) {
                                      stiffness_lanes[P + k][l] += share * value;
                                    });
     }
@@ -977,9 +1028,8 @@ template <int K> void PairThorntonYin::tally_shear_lane(const Batch &bt, int n)
 #pragma GCC ivdep
     for (int l = 0; l < n; ++l) {
       double value = 0.0;
-      tycore::affine_shear_entries(b.n[0][l], b.n[1][l], b.n[2][l], b.rsq[l],
-                                   b.normal_stiffness[l], b.tangential_stiffness[l],
-                                   [&](int k, double entry) {
+      tycore::affine_shear_entries(b.n[0][l], b.n[1][l], b.n[2][l], b.rsq[l], b.normal_stiffness[l],
+                                   b.tangential_stiffness[l], [&](int k, double entry) {
                                      if (k == K) value = entry;
                                    });
       sum[l] += share[l] * value;
@@ -1070,7 +1120,7 @@ bool PairThorntonYin::handles(int i, int j) const
 bool PairThorntonYin::sub_style_of(const char *style) const
 {
   return force->pair && force->pair != this && force->pair_style &&
-         strcmp(force->pair_style, style) == 0;
+      strcmp(force->pair_style, style) == 0;
 }
 
 /* ----------------------------------------------------------------------
@@ -1087,12 +1137,13 @@ void PairThorntonYin::check_hybrid_outputs()
   if (force->pair == this) return;
   for (int k = 0; k < modify->ncompute && single_extra == 0 && comm->me == 0; ++k)
     if (strcmp(modify->compute[k]->style, "pair/local") == 0) {
-      error->warning(FLERR, "pair thornton/yin under pair_style hybrid: compute {} (pair/local) "
+      error->warning(FLERR,
+                     "pair thornton/yin under pair_style hybrid: compute {} (pair/local) "
                      "gets the force and energy of each contact, but not the pair's extra "
                      "values p1..p{} (overlap, contact radius, ...), which LAMMPS's pair hybrid "
                      "cannot pass on without crashing; for them use pair_style hybrid/overlay "
-                     "or compute thornton/yin/contacts", modify->compute[k]->id,
-                     static_cast<int>(N_SVECTOR));
+                     "or compute thornton/yin/contacts",
+                     modify->compute[k]->id, static_cast<int>(N_SVECTOR));
       break;
     }
   if (!utils::strmatch(force->pair_style, "^hybrid/scaled")) return;
@@ -1104,7 +1155,8 @@ void PairThorntonYin::check_hybrid_outputs()
     if (strcmp(modify->fix[k]->style, "cell/servo") == 0)
       reader = fmt::format("fix {} (cell/servo)", modify->fix[k]->id);
   if (!reader.empty())
-    error->all(FLERR, "pair thornton/yin under pair_style {}: the scale factor multiplies the "
+    error->all(FLERR,
+               "pair thornton/yin under pair_style {}: the scale factor multiplies the "
                "forces on the atoms, but {} reads the unscaled contact forces of the pair and "
                "would report them, not the applied ones; scale the material instead (E and "
                "Gamma in pair_coeff), or use pair_style hybrid or hybrid/overlay",
@@ -1117,8 +1169,7 @@ void PairThorntonYin::check_hybrid_outputs()
 
 void PairThorntonYin::transfer_contact_history(const double *source, double *target)
 {
-  for (int k = 0; k < HISTORY_SIZE; ++k)
-    target[k] = tycore::history_transfer_sign[k] * source[k];
+  for (int k = 0; k < HISTORY_SIZE; ++k) target[k] = tycore::history_transfer_sign[k] * source[k];
 }
 
 /* ----------------------------------------------------------------------
@@ -1159,9 +1210,9 @@ double PairThorntonYin::single(int i, int j, int itype, int jtype, double rsq,
   // the law's normal contact, as the last force evaluation computed it (the same Adhesive
   // instantiation, the iteration warm-started from the radius it kept)
   const tycore::PairConstants &k = pair_constants[itype * (atom->ntypes + 1) + jtype];
-  const tycore::KernelResult normal =
-      adhesive ? tycore::normal_contact<true>(k, R, delta, h.radius)
-               : tycore::normal_contact<false>(k, R, delta, h.radius);
+  const tycore::KernelResult normal = adhesive
+      ? tycore::normal_contact<true>(k, R, delta, h.radius)
+      : tycore::normal_contact<false>(k, R, delta, h.radius);
   const double a = normal.contact_radius, P = normal.P;
   fforce = P / r;
   svector[S_NORMAL_FORCE] = P;

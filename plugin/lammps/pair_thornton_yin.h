@@ -52,21 +52,28 @@ class PairThorntonYin : public tylmp_compat::PairWithHistory, public CellTallySo
   enum { DISSIPATION_FRICTION, DISSIPATION_BREAK, DISSIPATION_DAMPING, N_PVECTOR };
   // indices of svector (single(), for compute pair/local p1 ... p8)
   enum {
-    S_NORMAL_FORCE, S_TANGENTIAL_FORCE, S_CONTACT_RADIUS, S_OVERLAP, S_SLIDING, S_PEELING,
-    S_PULL_OFF_FORCE, S_BREAK_OVERLAP, N_SVECTOR
+    S_NORMAL_FORCE,
+    S_TANGENTIAL_FORCE,
+    S_CONTACT_RADIUS,
+    S_OVERLAP,
+    S_SLIDING,
+    S_PEELING,
+    S_PULL_OFF_FORCE,
+    S_BREAK_OVERLAP,
+    N_SVECTOR
   };
 
   // one contact as of the last force evaluation, kept while a compute thornton/yin/... exists
   // (docs/compute_thornton_yin_contacts.md): each contact once over all ranks
   struct ContactRecord {
-    double id_i, id_j;               // atom IDs
-    double normal_force[3];          // P n on atom i, viscous normal damping included
-    double tangential_force[3];      // on atom i, viscous tangential damping included
-    double branch[3];                // x_i - x_j (the virial's branch vector)
-    double P;                        // normal force (repulsive > 0), = n . normal_force
-    double overlap, contact_radius;  // delta, a
-    double sliding, peeling;         // 1 or 0
-    int mask;                        // mask_i & mask_j: both atoms in a group
+    double id_i, id_j;                 // atom IDs
+    double normal_force[3];            // P n on atom i, viscous normal damping included
+    double tangential_force[3];        // on atom i, viscous tangential damping included
+    double branch[3];                  // x_i - x_j (the virial's branch vector)
+    double P;                          // normal force (repulsive > 0), = n . normal_force
+    double overlap, contact_radius;    // delta, a
+    double sliding, peeling;           // 1 or 0
+    int mask;                          // mask_i & mask_j: both atoms in a group
   };
   const std::vector<ContactRecord> &contact_records() const { return records; }
   bigint contact_record_step() const { return record_step; }
@@ -86,10 +93,10 @@ class PairThorntonYin : public tylmp_compat::PairWithHistory, public CellTallySo
   double **cut;
   tycore::PairConstants *pair_constants;    // [i * (ntypes + 1) + j], set by init_one
 
-  double **damp_n, **damp_t;                     // damping ratios beta_n, beta_t; 0 = off
-  int adhesive, damped;                          // chosen once per compute()
-  tycore::Isa isa;                               // build of the batch law (settings)
-  double *maxrad_type;                           // largest radius per type (init_style)
+  double **damp_n, **damp_t;    // damping ratios beta_n, beta_t; 0 = off
+  int adhesive, damped;         // chosen once per compute()
+  tycore::Isa isa;              // build of the batch law (settings)
+  double *maxrad_type;          // largest radius per type (init_style)
 
   class FixNeighHistory *fix_history;
   int neighprev;
@@ -105,7 +112,7 @@ class PairThorntonYin : public tylmp_compat::PairWithHistory, public CellTallySo
   // non-finite quantity (NaN/inf position, velocity, ... of atom i or j, or the contact force)
   __attribute__((noinline, cold)) void contact_fault(int i, int j, double delta, bool force);
 
-  int record_contacts;                  // a compute thornton/yin/... exists (init_style)
+  int record_contacts;    // a compute thornton/yin/... exists (init_style)
   std::vector<ContactRecord> records;
   bigint record_step;
   struct Batch;
@@ -136,7 +143,7 @@ class PairThorntonYin : public tylmp_compat::PairWithHistory, public CellTallySo
 
   void allocate();
   bool sub_style_of(const char *style) const;    // a sub-style of pair_style STYLE
-  bool handles(int i, int j) const;               // type pair computed by this pair
+  bool handles(int i, int j) const;              // type pair computed by this pair
   void check_hybrid_outputs();
   void mix_pair(int, int);
   void check_break_against_skin();

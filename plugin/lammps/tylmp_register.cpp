@@ -39,7 +39,10 @@ extern "C" TYLMP_EXPORT int tylmp_lammps_version()
 
 namespace {
 
-template <typename T> Pair *create_pair(LAMMPS *lmp) { return new T(lmp); }
+template <typename T> Pair *create_pair(LAMMPS *lmp)
+{
+  return new T(lmp);
+}
 template <typename T> Fix *create_fix(LAMMPS *lmp, int narg, char **arg)
 {
   return new T(lmp, narg, arg);
@@ -48,7 +51,10 @@ template <typename T> Compute *create_compute(LAMMPS *lmp, int narg, char **arg)
 {
   return new T(lmp, narg, arg);
 }
-template <typename T> void *plugin_pair(void *lmp) { return new T((LAMMPS *) lmp); }
+template <typename T> void *plugin_pair(void *lmp)
+{
+  return new T((LAMMPS *) lmp);
+}
 template <typename T> void *plugin_with_args(void *lmp, int narg, char **arg)
 {
   return new T((LAMMPS *) lmp, narg, arg);
@@ -62,13 +68,13 @@ extern "C" TYLMP_EXPORT int tylmp_register(void *handle)
   // (num_ver sits at the same place in the LAMMPS class of every supported version)
   if (lmp->num_ver != TYLMP_LAMMPS_VERSION) return -1;
   int count = 0;
-#define TYLMP_PAIR(style_name, Class) \
+#define TYLMP_PAIR(style_name, Class)                        \
   (*lmp->force->pair_map)[style_name] = &create_pair<Class>; \
   ++count;
-#define TYLMP_FIX(style_name, Class) \
+#define TYLMP_FIX(style_name, Class)                        \
   (*lmp->modify->fix_map)[style_name] = &create_fix<Class>; \
   ++count;
-#define TYLMP_COMPUTE(style_name, Class) \
+#define TYLMP_COMPUTE(style_name, Class)                            \
   (*lmp->modify->compute_map)[style_name] = &create_compute<Class>; \
   ++count;
   TYLMP_STYLE_LIST
@@ -83,19 +89,20 @@ extern "C" TYLMP_EXPORT void lammpsplugin_init(void *lmp, void *handle, void *re
   auto reg = (lammpsplugin_regfunc) regfunc;
   auto host = static_cast<LAMMPS *>(lmp);
   if (host->num_ver != TYLMP_LAMMPS_VERSION)
-    host->error->all(FLERR, std::string("plugin load: this tylmp library was built for LAMMPS ") +
-                                LAMMPS_VERSION + " (" TYLMP_STRINGIFY(TYLMP_LAMMPS_VERSION) "), " +
-                                "not for this LAMMPS " + host->version + ": build tylmp " +
-                                "against this LAMMPS (README, Install) and load that build");
+    host->error->all(FLERR,
+                     std::string("plugin load: this tylmp library was built for LAMMPS ") +
+                         LAMMPS_VERSION + " (" TYLMP_STRINGIFY(TYLMP_LAMMPS_VERSION) "), " +
+                         "not for this LAMMPS " + host->version + ": build tylmp " +
+                         "against this LAMMPS (README, Install) and load that build");
   lammpsplugin_t plugin;
   plugin.version = LAMMPS_VERSION;
   plugin.author = "tylmp developers";
   plugin.handle = handle;
 #define TYLMP_PLUGIN(kind, style_name, member, factory_type, factory) \
-  plugin.style = kind; \
-  plugin.name = style_name; \
-  plugin.info = "tylmp " kind " " style_name; \
-  plugin.creator.member = (factory_type *) &factory; \
+  plugin.style = kind;                                                \
+  plugin.name = style_name;                                           \
+  plugin.info = "tylmp " kind " " style_name;                         \
+  plugin.creator.member = (factory_type *) &factory;                  \
   (*reg)(&plugin, lmp);
 #define TYLMP_PAIR(style_name, Class) \
   TYLMP_PLUGIN("pair", style_name, v1, lammpsplugin_factory1, plugin_pair<Class>)

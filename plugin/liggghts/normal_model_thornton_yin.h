@@ -44,265 +44,285 @@ TANGENTIAL_MODEL(TANGENTIAL_THORNTON_YIN, thornton_yin, 31)
 namespace LIGGGHTS {
 namespace ContactModels {
 
-class ContactModelBase;
+  class ContactModelBase;
 
-template <>
-class NormalModel<THORNTON_YIN> : public NormalModelBase {
- public:
-  NormalModel(LAMMPS *lmp, IContactHistorySetup *hsetup, class ContactModelBase *c)
-      : NormalModelBase(lmp, hsetup, c), batch(new tycore::ContactBatch{})
-  {
-    history_offset = hsetup->add_history_value(tyliggghts::history_names[0],
-                                               tyliggghts::history_newton_flag(0));
-    for (int k = 1; k < tyliggghts::history_size; ++k)
-      hsetup->add_history_value(tyliggghts::history_names[k], tyliggghts::history_newton_flag(k));
-    if (c->is_wall())
-      error->all(FLERR, "model thornton_yin: walls (fix wall/gran) are not supported; the law "
-                 "is for sphere-sphere contacts");
-  }
-
-  void registerSettings(Settings &) {}
-  void postSettings(IContactHistorySetup *, ContactModelBase *) {}
-  void beginPass(SurfacesIntersectData &, ForceData &, ForceData &) {}
-  void endPass(SurfacesIntersectData &, ForceData &, ForceData &) {}
-  double stressStrainExponent() { return 1.5; }
-
-  // material pairs from fix property/global, checked; the contact distance for tension
-  void connectToProperties(PropertyRegistry &registry)
-  {
-    const int ntypes = registry.max_type();
-    owned_values.clear();
-    const char *caller = "model thornton_yin";
-    const double *E = values("youngsModulus", "peratomtype", ntypes, 0, caller, true);
-    const double *nu = values("poissonsRatio", "peratomtype", ntypes, 0, caller, true);
-    const double *mu = values("coefficientFriction", "peratomtypepair", ntypes, ntypes, caller, true);
-    const double *Gamma = values("interfaceEnergy", "peratomtypepair", ntypes, ntypes, caller, true);
-    const double *beta_n = values("dampingRatioNormal", "peratomtypepair", ntypes, ntypes, caller, false);
-    const double *beta_t = values("dampingRatioTangential", "peratomtypepair", ntypes, ntypes, caller, false);
-    for (int t = 0; t < ntypes; ++t) {
-      check(E[t], "youngsModulus", t + 1, -1, E[t] > 0.0, "> 0");
-      check(nu[t], "poissonsRatio", t + 1, -1, nu[t] > -1.0 && nu[t] < 0.5, "in (-1, 0.5)");
+  template <> class NormalModel<THORNTON_YIN> : public NormalModelBase {
+   public:
+    NormalModel(LAMMPS *lmp, IContactHistorySetup *hsetup, class ContactModelBase *c) :
+        NormalModelBase(lmp, hsetup, c), batch(new tycore::ContactBatch{})
+    {
+      history_offset = hsetup->add_history_value(tyliggghts::history_names[0],
+                                                 tyliggghts::history_newton_flag(0));
+      for (int k = 1; k < tyliggghts::history_size; ++k)
+        hsetup->add_history_value(tyliggghts::history_names[k], tyliggghts::history_newton_flag(k));
+      if (c->is_wall())
+        error->all(FLERR,
+                   "model thornton_yin: walls (fix wall/gran) are not supported; the law "
+                   "is for sphere-sphere contacts");
     }
-    const auto pair = [&](const double *m, int i, int j) { return m ? m[i * ntypes + j] : 0.0; };
-    ntypes_ = ntypes;
-    constants.assign((ntypes + 1) * (ntypes + 1), tycore::PairConstants{});
-    damping.assign((ntypes + 1) * (ntypes + 1), tycore::BatchParameters{});
-    adhesive = damped = false;
-    for (int i = 0; i < ntypes; ++i)
-      for (int j = 0; j < ntypes; ++j) {
-        struct { const double *m; const char *name; } const table[] = {
-            {mu, "coefficientFriction"}, {Gamma, "interfaceEnergy"},
-            {beta_n, "dampingRatioNormal"}, {beta_t, "dampingRatioTangential"}};
-        for (const auto &entry : table) {
-          if (!entry.m) continue;
-          const double value = pair(entry.m, i, j);
-          check(value, entry.name, i + 1, j + 1, value >= 0.0, ">= 0");
-          if (value != pair(entry.m, j, i))
-            fail(std::string(entry.name) + " must be symmetric: entry " + std::to_string(i + 1) +
-                 " " + std::to_string(j + 1) + " = " + number(value) + ", " +
-                 std::to_string(j + 1) + " " + std::to_string(i + 1) + " = " +
-                 number(pair(entry.m, j, i)));
+
+    void registerSettings(Settings &) {}
+    void postSettings(IContactHistorySetup *, ContactModelBase *) {}
+    void beginPass(SurfacesIntersectData &, ForceData &, ForceData &) {}
+    void endPass(SurfacesIntersectData &, ForceData &, ForceData &) {}
+    double stressStrainExponent() { return 1.5; }
+
+    // material pairs from fix property/global, checked; the contact distance for tension
+    void connectToProperties(PropertyRegistry &registry)
+    {
+      const int ntypes = registry.max_type();
+      owned_values.clear();
+      const char *caller = "model thornton_yin";
+      const double *E = values("youngsModulus", "peratomtype", ntypes, 0, caller, true);
+      const double *nu = values("poissonsRatio", "peratomtype", ntypes, 0, caller, true);
+      const double *mu =
+          values("coefficientFriction", "peratomtypepair", ntypes, ntypes, caller, true);
+      const double *Gamma =
+          values("interfaceEnergy", "peratomtypepair", ntypes, ntypes, caller, true);
+      const double *beta_n =
+          values("dampingRatioNormal", "peratomtypepair", ntypes, ntypes, caller, false);
+      const double *beta_t =
+          values("dampingRatioTangential", "peratomtypepair", ntypes, ntypes, caller, false);
+      for (int t = 0; t < ntypes; ++t) {
+        check(E[t], "youngsModulus", t + 1, -1, E[t] > 0.0, "> 0");
+        check(nu[t], "poissonsRatio", t + 1, -1, nu[t] > -1.0 && nu[t] < 0.5, "in (-1, 0.5)");
+      }
+      const auto pair = [&](const double *m, int i, int j) {
+        return m ? m[i * ntypes + j] : 0.0;
+      };
+      ntypes_ = ntypes;
+      constants.assign((ntypes + 1) * (ntypes + 1), tycore::PairConstants{});
+      damping.assign((ntypes + 1) * (ntypes + 1), tycore::BatchParameters{});
+      adhesive = damped = false;
+      for (int i = 0; i < ntypes; ++i)
+        for (int j = 0; j < ntypes; ++j) {
+          struct {
+            const double *m;
+            const char *name;
+          } const table[] = {{mu, "coefficientFriction"},
+                             {Gamma, "interfaceEnergy"},
+                             {beta_n, "dampingRatioNormal"},
+                             {beta_t, "dampingRatioTangential"}};
+          for (const auto &entry : table) {
+            if (!entry.m) continue;
+            const double value = pair(entry.m, i, j);
+            check(value, entry.name, i + 1, j + 1, value >= 0.0, ">= 0");
+            if (value != pair(entry.m, j, i))
+              fail(std::string(entry.name) + " must be symmetric: entry " + std::to_string(i + 1) +
+                   " " + std::to_string(j + 1) + " = " + number(value) + ", " +
+                   std::to_string(j + 1) + " " + std::to_string(i + 1) + " = " +
+                   number(pair(entry.m, j, i)));
+          }
+          const tycore::PairCoefficients c{
+              tycore::effective_modulus(E[i], nu[i], E[j], nu[j]),
+              tycore::effective_shear_modulus(E[i], nu[i], E[j], nu[j]), pair(mu, i, j),
+              pair(Gamma, i, j)};
+          constants[(i + 1) * (ntypes + 1) + j + 1] = tycore::pair_constants(c);
+          damping[(i + 1) * (ntypes + 1) + j + 1].beta_n = pair(beta_n, i, j);
+          damping[(i + 1) * (ntypes + 1) + j + 1].beta_t = pair(beta_t, i, j);
+          adhesive = adhesive || c.Gamma > 0.0;
+          damped = damped || pair(beta_n, i, j) > 0.0 || pair(beta_t, i, j) > 0.0;
         }
-        const tycore::PairCoefficients c{tycore::effective_modulus(E[i], nu[i], E[j], nu[j]),
-                                         tycore::effective_shear_modulus(E[i], nu[i], E[j], nu[j]),
-                                         pair(mu, i, j), pair(Gamma, i, j)};
-        constants[(i + 1) * (ntypes + 1) + j + 1] = tycore::pair_constants(c);
-        damping[(i + 1) * (ntypes + 1) + j + 1].beta_n = pair(beta_n, i, j);
-        damping[(i + 1) * (ntypes + 1) + j + 1].beta_t = pair(beta_t, i, j);
-        adhesive = adhesive || c.Gamma > 0.0;
-        damped = damped || pair(beta_n, i, j) > 0.0 || pair(beta_t, i, j) > 0.0;
+      check_radii_and_range(ntypes);
+    }
+
+    void surfacesIntersect(SurfacesIntersectData &sidata, ForceData &i_forces, ForceData &j_forces)
+    {
+      if (!sidata.contact_history) return;
+      contact(sidata, i_forces, j_forces);
+    }
+
+    // not overlapping, within the contact distance: a touched contact in tension (delta_f < delta
+    // < 0) keeps its force until it breaks; an untouched one has none (before delta = 0)
+    void surfacesClose(SurfacesCloseData &scdata, ForceData &i_forces, ForceData &j_forces)
+    {
+      if (!scdata.contact_history || !scdata.contact_flags) return;
+      // an untouched pair starts at delta >= 0, as in the LAMMPS pair (rsq <= radsum^2)
+      if (!(*scdata.contact_flags & CONTACT_NORMAL_MODEL) &&
+          scdata.rsq > scdata.radsum * scdata.radsum)
+        return;
+      contact(scdata, i_forces, j_forces);
+      scdata.has_force_update = true;
+    }
+
+   private:
+    int history_offset = 0;
+    int ntypes_ = 0;
+    std::vector<tycore::PairConstants> constants;
+    std::vector<tycore::BatchParameters> damping;    // beta_n, beta_t per type pair
+    bool adhesive = false, damped = false;
+    std::unique_ptr<tycore::ContactBatch> batch;    // one lane: LIGGGHTS hands one contact
+    std::vector<std::vector<double>> owned_values;
+
+    static std::string number(double x)
+    {
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "%.6g", x);
+      return buf;
+    }
+
+    void fail(const std::string &what)
+    {
+      const std::string message = "pair gran model thornton_yin: " + what;    // alive in the call
+      error->all(FLERR, message.c_str());
+    }
+
+    void check(double value, const char *name, int i, int j, bool in_range, const char *range)
+    {
+      if (std::isfinite(value) && in_range) return;
+      fail(std::string(name) + " of type " + std::to_string(i) +
+           (j > 0 ? " " + std::to_string(j) : std::string()) + " must be finite and " + range +
+           " (fix property/global " + name + "), got " + number(value));
+    }
+
+    // the values of fix property/global `name` (row-major for a matrix), or nullptr when an
+    // optional one is absent
+    const double *values(const char *name, const char *kind, int n1, int n2, const char *caller,
+                         bool required)
+    {
+      FixPropertyGlobal *fix = static_cast<FixPropertyGlobal *>(
+          modify->find_fix_property(name, "property/global", kind, n1, n2, caller, false));
+      if (!fix) {
+        if (!required) return nullptr;
+        fail(std::string("needs 'fix ID all property/global ") + name + " " + kind + " ...' (" +
+             std::to_string(n1) + (n2 ? "x" + std::to_string(n2) : std::string()) + " values for " +
+             std::to_string(n1) + " atom types)");
       }
-    check_radii_and_range(ntypes);
-  }
-
-  void surfacesIntersect(SurfacesIntersectData &sidata, ForceData &i_forces, ForceData &j_forces)
-  {
-    if (!sidata.contact_history) return;
-    contact(sidata, i_forces, j_forces);
-  }
-
-  // not overlapping, within the contact distance: a touched contact in tension (delta_f < delta
-  // < 0) keeps its force until it breaks; an untouched one has none (before delta = 0)
-  void surfacesClose(SurfacesCloseData &scdata, ForceData &i_forces, ForceData &j_forces)
-  {
-    if (!scdata.contact_history || !scdata.contact_flags) return;
-    // an untouched pair starts at delta >= 0, as in the LAMMPS pair (rsq <= radsum^2)
-    if (!(*scdata.contact_flags & CONTACT_NORMAL_MODEL) &&
-        scdata.rsq > scdata.radsum * scdata.radsum)
-      return;
-    contact(scdata, i_forces, j_forces);
-    scdata.has_force_update = true;
-  }
-
- private:
-  int history_offset = 0;
-  int ntypes_ = 0;
-  std::vector<tycore::PairConstants> constants;
-  std::vector<tycore::BatchParameters> damping;    // beta_n, beta_t per type pair
-  bool adhesive = false, damped = false;
-  std::unique_ptr<tycore::ContactBatch> batch;     // one lane: LIGGGHTS hands one contact
-  std::vector<std::vector<double>> owned_values;
-
-  static std::string number(double x)
-  {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.6g", x);
-    return buf;
-  }
-
-  void fail(const std::string &what)
-  {
-    const std::string message = "pair gran model thornton_yin: " + what;    // alive in the call
-    error->all(FLERR, message.c_str());
-  }
-
-  void check(double value, const char *name, int i, int j, bool in_range, const char *range)
-  {
-    if (std::isfinite(value) && in_range) return;
-    fail(std::string(name) + " of type " + std::to_string(i) +
-         (j > 0 ? " " + std::to_string(j) : std::string()) + " must be finite and " + range +
-         " (fix property/global " + name + "), got " + number(value));
-  }
-
-  // the values of fix property/global `name` (row-major for a matrix), or nullptr when an
-  // optional one is absent
-  const double *values(const char *name, const char *kind, int n1, int n2, const char *caller,
-                       bool required)
-  {
-    FixPropertyGlobal *fix = static_cast<FixPropertyGlobal *>(
-        modify->find_fix_property(name, "property/global", kind, n1, n2, caller, false));
-    if (!fix) {
-      if (!required) return nullptr;
-      fail(std::string("needs 'fix ID all property/global ") + name + " " + kind + " ...' (" +
-           std::to_string(n1) + (n2 ? "x" + std::to_string(n2) : std::string()) +
-           " values for " + std::to_string(n1) + " atom types)");
+      owned_values.emplace_back();
+      std::vector<double> &v = owned_values.back();
+      for (int i = 0; i < n1; ++i)
+        if (n2 == 0)
+          v.push_back(fix->compute_vector(i));
+        else
+          for (int j = 0; j < n2; ++j) v.push_back(fix->compute_array(i, j));
+      return v.data();
     }
-    owned_values.emplace_back();
-    std::vector<double> &v = owned_values.back();
-    for (int i = 0; i < n1; ++i)
-      if (n2 == 0) v.push_back(fix->compute_vector(i));
-      else
-        for (int j = 0; j < n2; ++j) v.push_back(fix->compute_array(i, j));
-    return v.data();
-  }
 
-  // per type the largest radius; the law's domain for each pair (plugin/core/law_domain.hpp,
-  // as the LAMMPS pair checks it) and the contact distance that keeps a tensile contact's
-  // partner within reach of surfacesClose until the break overlap delta_f (docs/theory.md §1.2)
-  void check_radii_and_range(int ntypes)
-  {
-    std::vector<double> local(ntypes + 1, 0.0), largest(ntypes + 1, 0.0);
-    double smallest_local = 1e300, smallest = 0.0;
-    for (int i = 0; i < atom->nlocal; ++i) {
-      const int t = atom->type[i];
-      if (t >= 1 && t <= ntypes) local[t] = std::max(local[t], atom->radius[i]);
-      smallest_local = std::min(smallest_local, atom->radius[i]);
-    }
-    MPI_Allreduce(local.data(), largest.data(), ntypes + 1, MPI_DOUBLE, MPI_MAX, world);
-    MPI_Allreduce(&smallest_local, &smallest, 1, MPI_DOUBLE, MPI_MIN, world);
-    if (!(smallest > 0.0 && smallest < 1e300))
-      fail("needs the spheres (with radius > 0) before the run: the range of tensile contacts "
-           "(the contact distance) is set from their radii");
-    double factor = 1.0;
-    for (int i = 1; i <= ntypes; ++i)
-      for (int j = 1; j <= ntypes; ++j) {
-        if (largest[i] <= 0.0 || largest[j] <= 0.0) continue;
-        const tycore::PairCoefficients &c = constants[i * (ntypes + 1) + j].c;
-        const double R = tycore::effective_radius(largest[i], largest[j]);
-        if (!(tycore::zero_load_radius_ratio(c, R) < 1.0))
-          fail("types " + std::to_string(i) + " " + std::to_string(j) +
-               ": the JKR zero-load contact radius a0 is not smaller than R* = " + number(R) +
-               ", so the contact law (a << R*) does not apply; interfaceEnergy must be below "
-               "E* R*/(9 pi) = " + number(c.E_star * R / (9.0 * tycore::jkr::pi)));
-        const tycore::LawDomainFault fault =
-            tycore::law_domain_fault(c, R, std::min(largest[i], largest[j]));
-        if (fault.quantity)
-          fail("types " + std::to_string(i) + " " + std::to_string(j) + ": the " +
-               fault.quantity + " of the contact law is not finite at overlap " +
-               number(fault.delta) + ": the material values are far outside what the law can "
-               "represent");
-        // LIGGGHTS evaluates a separated pair only within the contact distance: a touched
-        // pair must not leave it in one step before the law has seen it beyond delta_f (its
-        // flag and history would stay, Gamma = 0 included), so the range is |delta_f| plus the
-        // skin, what no pair moves in a step without a dangerous neighbour build
-        const double delta_f = tycore::jkr::break_overlap(R, c.E_star, c.Gamma);
-        factor = std::max(factor, 1.0 + (neighbor->skin - delta_f) / (2.0 * smallest));
+    // per type the largest radius; the law's domain for each pair (plugin/core/law_domain.hpp,
+    // as the LAMMPS pair checks it) and the contact distance that keeps a tensile contact's
+    // partner within reach of surfacesClose until the break overlap delta_f (docs/theory.md §1.2)
+    void check_radii_and_range(int ntypes)
+    {
+      std::vector<double> local(ntypes + 1, 0.0), largest(ntypes + 1, 0.0);
+      double smallest_local = 1e300, smallest = 0.0;
+      for (int i = 0; i < atom->nlocal; ++i) {
+        const int t = atom->type[i];
+        if (t >= 1 && t <= ntypes) local[t] = std::max(local[t], atom->radius[i]);
+        smallest_local = std::min(smallest_local, atom->radius[i]);
       }
-    neighbor->register_contact_dist_factor(factor);
-  }
-
-  template <bool Adhesive, bool Damped>
-  void evaluate(const tycore::PairConstants &k, const tycore::BatchParameters &p, bool step)
-  {
-    tyliggghts::evaluate_contact<Adhesive, Damped>(*batch, k, p, step);
-  }
-
-  void contact(SurfacesCloseData &d, ForceData &i_forces, ForceData &j_forces)
-  {
-    const int i = d.i, j = d.j;
-    if (!d.computeflag) return;
-    const bool step = d.shearupdate != 0;
-    const bool first_touch = !(*d.contact_flags & CONTACT_NORMAL_MODEL);
-    double *history = &d.contact_history[history_offset];
-    tycore::ContactBatch &b = *batch;
-    const tycore::SphereState si{atom->v[i], atom->omega[i], atom->radius[i], atom->rmass[i]};
-    const tycore::SphereState sj{atom->v[j], atom->omega[j], atom->radius[j], atom->rmass[j]};
-    tycore::gather_contact<true>(b, 0, d.delta, d.rsq, si, sj, first_touch);
-    tycore::contact_geometry<false, true>(b, 0, tycore::AffineGradient{});
-    const double delta = b.delta[0];
-    if (!tycore::overlap_valid(b, 0))
-      fail("atoms " + std::to_string(atom->tag[i]) + " " + std::to_string(atom->tag[j]) +
-           ": overlap " + number(delta) + " is not finite or exceeds the smaller radius (the "
-           "law and the explicit step have failed: the timestep is too large or a position "
-           "is not finite)");
-    tycore::load_history(b, 0, history);
-    const int pair = d.itype * (ntypes_ + 1) + d.jtype;
-    const tycore::PairConstants &k = constants[pair];
-    tycore::BatchParameters p = damping[pair];
-    p.dt = update->dt;
-    if (adhesive) {
-      if (damped) evaluate<true, true>(k, p, step);
-      else evaluate<true, false>(k, p, step);
-    } else {
-      if (damped) evaluate<false, true>(k, p, step);
-      else evaluate<false, false>(k, p, step);
+      MPI_Allreduce(local.data(), largest.data(), ntypes + 1, MPI_DOUBLE, MPI_MAX, world);
+      MPI_Allreduce(&smallest_local, &smallest, 1, MPI_DOUBLE, MPI_MIN, world);
+      if (!(smallest > 0.0 && smallest < 1e300))
+        fail("needs the spheres (with radius > 0) before the run: the range of tensile contacts "
+             "(the contact distance) is set from their radii");
+      double factor = 1.0;
+      for (int i = 1; i <= ntypes; ++i)
+        for (int j = 1; j <= ntypes; ++j) {
+          if (largest[i] <= 0.0 || largest[j] <= 0.0) continue;
+          const tycore::PairCoefficients &c = constants[i * (ntypes + 1) + j].c;
+          const double R = tycore::effective_radius(largest[i], largest[j]);
+          if (!(tycore::zero_load_radius_ratio(c, R) < 1.0))
+            fail("types " + std::to_string(i) + " " + std::to_string(j) +
+                 ": the JKR zero-load contact radius a0 is not smaller than R* = " + number(R) +
+                 ", so the contact law (a << R*) does not apply; interfaceEnergy must be below "
+                 "E* R*/(9 pi) = " +
+                 number(c.E_star * R / (9.0 * tycore::jkr::pi)));
+          const tycore::LawDomainFault fault =
+              tycore::law_domain_fault(c, R, std::min(largest[i], largest[j]));
+          if (fault.quantity)
+            fail("types " + std::to_string(i) + " " + std::to_string(j) + ": the " +
+                 fault.quantity + " of the contact law is not finite at overlap " +
+                 number(fault.delta) +
+                 ": the material values are far outside what the law can "
+                 "represent");
+          // LIGGGHTS evaluates a separated pair only within the contact distance: a touched
+          // pair must not leave it in one step before the law has seen it beyond delta_f (its
+          // flag and history would stay, Gamma = 0 included), so the range is |delta_f| plus the
+          // skin, what no pair moves in a step without a dangerous neighbour build
+          const double delta_f = tycore::jkr::break_overlap(R, c.E_star, c.Gamma);
+          factor = std::max(factor, 1.0 + (neighbor->skin - delta_f) / (2.0 * smallest));
+        }
+      neighbor->register_contact_dist_factor(factor);
     }
-    if (b.broken[0] != 0.0) {    // separated at the break overlap: the contact is forgotten
-      *d.contact_flags &= ~CONTACT_NORMAL_MODEL;
-      for (int m = 0; m < tyliggghts::history_size; ++m) history[m] = 0.0;
-      return;
-    }
-    *d.contact_flags |= CONTACT_NORMAL_MODEL;
-    tycore::store_history(b, 0, history);
-    const double f[3] = {b.force[0][0], b.force[1][0], b.force[2][0]};
-    if (!(std::fabs(f[0] + f[1] + f[2]) <= std::numeric_limits<double>::max()))
-      fail("atoms " + std::to_string(atom->tag[i]) + " " + std::to_string(atom->tag[j]) +
-           ": the contact force is not finite (a velocity, spin or history value is not)");
-    // the tangential force acts at the contact point: levers r - delta/2
-    const double lever_i = si.radius - 0.5 * delta, lever_j = sj.radius - 0.5 * delta;
-    for (int a = 0; a < 3; ++a) {
-      i_forces.delta_F[a] += f[a];
-      j_forces.delta_F[a] -= f[a];
-      i_forces.delta_torque[a] -= lever_i * b.moment[a][0];
-      j_forces.delta_torque[a] -= lever_j * b.moment[a][0];
-    }
-  }
-};
 
-// The pairing's name: the whole law runs in NormalModel<THORNTON_YIN>
-template <>
-class TangentialModel<TANGENTIAL_THORNTON_YIN> : public TangentialModelBase {
- public:
-  TangentialModel(LAMMPS *lmp, IContactHistorySetup *hsetup, class ContactModelBase *c)
-      : TangentialModelBase(lmp, hsetup, c) {}
-  void registerSettings(Settings &) {}
-  void postSettings(IContactHistorySetup *, ContactModelBase *) {}
-  void connectToProperties(PropertyRegistry &) {}
-  void surfacesIntersect(const SurfacesIntersectData &, ForceData &, ForceData &) {}
-  void surfacesClose(SurfacesCloseData &, ForceData &, ForceData &) {}
-  void beginPass(SurfacesIntersectData &, ForceData &, ForceData &) {}
-  void endPass(SurfacesIntersectData &, ForceData &, ForceData &) {}
-};
+    template <bool Adhesive, bool Damped>
+    void evaluate(const tycore::PairConstants &k, const tycore::BatchParameters &p, bool step)
+    {
+      tyliggghts::evaluate_contact<Adhesive, Damped>(*batch, k, p, step);
+    }
+
+    void contact(SurfacesCloseData &d, ForceData &i_forces, ForceData &j_forces)
+    {
+      const int i = d.i, j = d.j;
+      if (!d.computeflag) return;
+      const bool step = d.shearupdate != 0;
+      const bool first_touch = !(*d.contact_flags & CONTACT_NORMAL_MODEL);
+      double *history = &d.contact_history[history_offset];
+      tycore::ContactBatch &b = *batch;
+      const tycore::SphereState si{atom->v[i], atom->omega[i], atom->radius[i], atom->rmass[i]};
+      const tycore::SphereState sj{atom->v[j], atom->omega[j], atom->radius[j], atom->rmass[j]};
+      tycore::gather_contact<true>(b, 0, d.delta, d.rsq, si, sj, first_touch);
+      tycore::contact_geometry<false, true>(b, 0, tycore::AffineGradient{});
+      const double delta = b.delta[0];
+      if (!tycore::overlap_valid(b, 0))
+        fail("atoms " + std::to_string(atom->tag[i]) + " " + std::to_string(atom->tag[j]) +
+             ": overlap " + number(delta) +
+             " is not finite or exceeds the smaller radius (the "
+             "law and the explicit step have failed: the timestep is too large or a position "
+             "is not finite)");
+      tycore::load_history(b, 0, history);
+      const int pair = d.itype * (ntypes_ + 1) + d.jtype;
+      const tycore::PairConstants &k = constants[pair];
+      tycore::BatchParameters p = damping[pair];
+      p.dt = update->dt;
+      if (adhesive) {
+        if (damped)
+          evaluate<true, true>(k, p, step);
+        else
+          evaluate<true, false>(k, p, step);
+      } else {
+        if (damped)
+          evaluate<false, true>(k, p, step);
+        else
+          evaluate<false, false>(k, p, step);
+      }
+      if (b.broken[0] != 0.0) {    // separated at the break overlap: the contact is forgotten
+        *d.contact_flags &= ~CONTACT_NORMAL_MODEL;
+        for (int m = 0; m < tyliggghts::history_size; ++m) history[m] = 0.0;
+        return;
+      }
+      *d.contact_flags |= CONTACT_NORMAL_MODEL;
+      tycore::store_history(b, 0, history);
+      const double f[3] = {b.force[0][0], b.force[1][0], b.force[2][0]};
+      if (!(std::fabs(f[0] + f[1] + f[2]) <= std::numeric_limits<double>::max()))
+        fail("atoms " + std::to_string(atom->tag[i]) + " " + std::to_string(atom->tag[j]) +
+             ": the contact force is not finite (a velocity, spin or history value is not)");
+      // the tangential force acts at the contact point: levers r - delta/2
+      const double lever_i = si.radius - 0.5 * delta, lever_j = sj.radius - 0.5 * delta;
+      for (int a = 0; a < 3; ++a) {
+        i_forces.delta_F[a] += f[a];
+        j_forces.delta_F[a] -= f[a];
+        i_forces.delta_torque[a] -= lever_i * b.moment[a][0];
+        j_forces.delta_torque[a] -= lever_j * b.moment[a][0];
+      }
+    }
+  };
+
+  // The pairing's name: the whole law runs in NormalModel<THORNTON_YIN>
+  template <> class TangentialModel<TANGENTIAL_THORNTON_YIN> : public TangentialModelBase {
+   public:
+    TangentialModel(LAMMPS *lmp, IContactHistorySetup *hsetup, class ContactModelBase *c) :
+        TangentialModelBase(lmp, hsetup, c)
+    {
+    }
+    void registerSettings(Settings &) {}
+    void postSettings(IContactHistorySetup *, ContactModelBase *) {}
+    void connectToProperties(PropertyRegistry &) {}
+    void surfacesIntersect(const SurfacesIntersectData &, ForceData &, ForceData &) {}
+    void surfacesClose(SurfacesCloseData &, ForceData &, ForceData &) {}
+    void beginPass(SurfacesIntersectData &, ForceData &, ForceData &) {}
+    void endPass(SurfacesIntersectData &, ForceData &, ForceData &) {}
+  };
 
 }    // namespace ContactModels
 }    // namespace LIGGGHTS

@@ -26,18 +26,19 @@ namespace tyliggghts {
 constexpr int history_size = tycore::history_size;
 #define TYLIGGGHTS_HISTORY_NAMES_1(name) "ty_" #name,
 #define TYLIGGGHTS_HISTORY_NAMES_3(name) "ty_" #name "_x", "ty_" #name "_y", "ty_" #name "_z",
-#define TYLIGGGHTS_HISTORY_NAMES_6(name) \
-  "ty_" #name "_0", "ty_" #name "_1", "ty_" #name "_2", "ty_" #name "_3", "ty_" #name "_4", "ty_" #name "_5",
+#define TYLIGGGHTS_HISTORY_NAMES_6(name)                                                    \
+  "ty_" #name "_0", "ty_" #name "_1", "ty_" #name "_2", "ty_" #name "_3", "ty_" #name "_4", \
+      "ty_" #name "_5",
 #define TYLIGGGHTS_HISTORY_NAMES(name, values, carried, from_j, meaning) \
   TYLIGGGHTS_HISTORY_NAMES_##values(name)
-constexpr const char* history_names[history_size] = {
+constexpr const char *history_names[history_size] = {
     TYCORE_HISTORY_FIELDS(TYLIGGGHTS_HISTORY_NAMES)};
 #undef TYLIGGGHTS_HISTORY_NAMES
 #undef TYLIGGGHTS_HISTORY_NAMES_1
 #undef TYLIGGGHTS_HISTORY_NAMES_3
 #undef TYLIGGGHTS_HISTORY_NAMES_6
 // LIGGGHTS's newtonflag of value k: "1" if it changes sign seen from the other sphere
-inline const char* history_newton_flag(int k)
+inline const char *history_newton_flag(int k)
 {
   return tycore::history_transfer_sign[k] < 0.0 ? "1" : "0";
 }
@@ -47,11 +48,13 @@ inline const char* history_newton_flag(int k)
 // simulation, Damped: any damping ratio > 0, as the LAMMPS pair chooses them. The scalar build:
 // one contact at a time, bit for bit what the vector builds give (contact_batch.hpp).
 template <bool Adhesive, bool Damped>
-inline void evaluate_contact(tycore::ContactBatch& b, const tycore::PairConstants& k,
-                             const tycore::BatchParameters& p, bool step)
+inline void evaluate_contact(tycore::ContactBatch &b, const tycore::PairConstants &k,
+                             const tycore::BatchParameters &p, bool step)
 {
-  if (step) tycore::advance_batch<Adhesive, Damped>(b, 1, k, p, tycore::Isa::scalar);
-  else tycore::forces_without_step<Adhesive, Damped>(b, 1, k, p);
+  if (step)
+    tycore::advance_batch<Adhesive, Damped>(b, 1, k, p, tycore::Isa::scalar);
+  else
+    tycore::forces_without_step<Adhesive, Damped>(b, 1, k, p);
 }
 
 }    // namespace tyliggghts

@@ -33,7 +33,8 @@ PairStyles::IGranularPairStyle *create_pair(LAMMPS_NS::LAMMPS *lmp, LAMMPS_NS::P
 PairStyles::IGranularPairStyle *refuse_pairing(LAMMPS_NS::LAMMPS *lmp, LAMMPS_NS::PairGran *,
                                                int64_t)
 {
-  lmp->error->all(FLERR, "pair gran: thornton_yin is one law, normal and tangential together, "
+  lmp->error->all(FLERR,
+                  "pair gran: thornton_yin is one law, normal and tangential together, "
                   "with no cohesion or rolling_friction model: write 'pair_style gran model "
                   "thornton_yin tangential thornton_yin' (adhesion is the law's own, "
                   "fix property/global interfaceEnergy)");
@@ -56,7 +57,8 @@ struct RegisterThorntonYin {
     // the hash has 6 bits per model: every other pairing that names thornton_yin
     for (int id = 0; id < 64; ++id) {
       if (id != TANGENTIAL_THORNTON_YIN)
-        pairs.addStyle("gran", hash_of(THORNTON_YIN, id, COHESION_OFF, ROLLING_OFF), &refuse_pairing);
+        pairs.addStyle("gran", hash_of(THORNTON_YIN, id, COHESION_OFF, ROLLING_OFF),
+                       &refuse_pairing);
       if (id != THORNTON_YIN)
         pairs.addStyle("gran", hash_of(id, TANGENTIAL_THORNTON_YIN, COHESION_OFF, ROLLING_OFF),
                        &refuse_pairing);
