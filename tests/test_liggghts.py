@@ -427,7 +427,8 @@ def test_batched_contacts_give_the_bits_of_one_contact_at_a_time(tmp_path, dampi
         with open(d / "state.dump") as fh:
             dumps[per_contact] = fh.read()
     assert dumps[False] == dumps[True]
-    rows = [l.split() for l in dumps[False].splitlines() if l[:1].isdigit() and len(l.split()) == 16]
+    rows = [l.split() for l in dumps[False].splitlines()
+            if l[:1].isdigit() and len(l.split()) == 16]
     assert len(rows) == 4 * 3620
     torques = np.array([[float(v) for v in r[10:13]] for r in rows[-3620:]])
     assert np.count_nonzero(np.abs(torques).sum(axis=1)) > 1000    # tangential forces act
