@@ -152,7 +152,15 @@ for _label, _gamma in (("G=0.6", GAMMA), ("G=0", 0.0)):
     CASES[f"liggghts thornton_yin {_label}"] = (
         _LIGGGHTS_MATERIAL + f"fix m5 all property/global interfaceEnergy peratomtypepair 1 {_gamma}\n"
         "pair_style gran model thornton_yin tangential thornton_yin\npair_coeff * *\n")
-TYLIGGGHTS_CASES = {"liggghts thornton_yin G=0.6", "liggghts thornton_yin G=0"}
+# the same with LIGGGHTS's pair/gran/local compute defined (never invoked): its loop then reads
+# each contact's force as the model returns it, so the model runs the contacts one at a time in
+# the scalar build instead of in batches (plugin/liggghts/normal_model_thornton_yin.h)
+for _label in ("G=0.6", "G=0"):
+    CASES[f"liggghts thornton_yin {_label} one at a time"] = (
+        CASES[f"liggghts thornton_yin {_label}"]
+        + "compute one_at_a_time all pair/gran/local id force\n")
+TYLIGGGHTS_CASES = {f"liggghts thornton_yin {g}{w}" for g in ("G=0.6", "G=0")
+                    for w in ("", " one at a time")}
 TYLIGGGHTS = os.path.join(REPO, "build", "bin", "tyliggghts")
 LIGGGHTS_CASES = {"liggghts hertz+history", "liggghts hertz+history+sjkr"} | TYLIGGGHTS_CASES
 LMP2025_SUFFIX = " @4Feb2025"       # label of a case run with the lmp of --lmp2025

@@ -376,3 +376,63 @@ def test_axisymmetric_deck_holds_the_lateral_stress_and_reads_as_a_cell_record(t
     written = read_servo_csv(out)
     for name in ("eps1", "sig2", "void_ratio", "Z"):
         assert np.array_equal(written[name], rec[name]), name
+
+
+# ---- contacts in batches: the same bits as one contact at a time ----
+
+def specimen_deck(damping, per_contact):
+    """The committed dense specimen (3620 spheres at 100 kPa), Gamma = 0.6 J/m^2, plain NVE for
+    300 steps with positions, velocities, forces, torques and spins dumped to 17 digits every
+    100 steps. per_contact: a `compute pair/gran/local`, whose pair/gran/local output reads each
+    contact's force inside LIGGGHTS's pair loop, so that the model evaluates the contacts one at
+    a time (normal_model_thornton_yin.h) instead of in batches."""
+    data = os.path.join(REPO, "bench", "data", "dense_paper_100kPa.data")
+    damped = ("fix m6 all property/global dampingRatioNormal peratomtypepair 1 0.2\n"
+              "fix m7 all property/global dampingRatioTangential peratomtypepair 1 0.1\n"
+              if damping else "")
+    fmt = " ".join(["%d"] + ["%.17g"] * 15)
+    return f"""atom_style granular
+hard_particles yes
+units si
+boundary p p p
+newton off
+communicate single vel yes
+read_data {data}
+fix m1 all property/global youngsModulus peratomtype 70e9
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 1 1.0
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.3
+fix m5 all property/global interfaceEnergy peratomtypepair 1 0.6
+{damped}pair_style gran model thornton_yin tangential thornton_yin
+pair_coeff * *
+neighbor 1.35e-5 bin
+neigh_modify every 1 delay 0 check yes
+timestep 1.4e-8
+fix integrate all nve/sphere
+{"compute local all pair/gran/local id force" if per_contact else ""}
+dump d all custom 100 state.dump id x y z vx vy vz fx fy fz tqx tqy tqz omegax omegay omegaz
+dump_modify d format "{fmt}" sort id
+thermo 100
+run 300
+"""
+
+
+@pytest.mark.parametrize("damping", [False, True])
+def test_batched_contacts_give_the_bits_of_one_contact_at_a_time(tmp_path, damping):
+    # the model gathers LIGGGHTS's contacts into batches and runs the law in SIMD lanes; where
+    # the pair loop reads each contact's force it runs them one at a time in the scalar build.
+    # Both must give the same trajectory to the bit (one atom type: the batches keep the
+    # order in which the forces are summed)
+    dumps = {}
+    for per_contact in (False, True):
+        d = tmp_path / ("one_at_a_time" if per_contact else "batched")
+        d.mkdir()
+        liggghts_ok(None, d, text=specimen_deck(damping, per_contact))
+        with open(d / "state.dump") as fh:
+            dumps[per_contact] = fh.read()
+    assert dumps[False] == dumps[True]
+    rows = [l.split() for l in dumps[False].splitlines()
+            if l[:1].isdigit() and len(l.split()) == 16]
+    assert len(rows) == 4 * 3620
+    torques = np.array([[float(v) for v in r[10:13]] for r in rows[-3620:]])
+    assert np.count_nonzero(np.abs(torques).sum(axis=1)) > 1000    # tangential forces act

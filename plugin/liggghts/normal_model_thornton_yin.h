@@ -2,8 +2,10 @@
 // Thornton-Yin law of plugin/core (docs/theory.md) in LIGGGHTS's model framework. The normal
 // model evaluates the whole contact (JKR normal force and Thornton's tangential law are one law:
 // the tangential stiffness and the sliding limit follow P + 2Pc), through the adapter
-// thornton_yin_contact.h; the tangential model only names the pairing, and any other pairing is
-// refused (thornton_yin_register.cpp). Material data as LIGGGHTS reads them, from
+// thornton_yin_contact.h: the contacts LIGGGHTS's pair loop hands it gathered into batches and
+// run in SIMD lanes as in the LAMMPS pair, or one at a time where the loop reads each
+// contact's force (beginPass; the same bits either way); the tangential model only names the
+// pairing, and any other pairing is refused (thornton_yin_register.cpp). Material data as LIGGGHTS reads them, from
 // fix property/global: youngsModulus and poissonsRatio (peratomtype), coefficientFriction and
 // interfaceEnergy (Gamma per surface, J/m^2; peratomtypepair), optional dampingRatioNormal and
 // dampingRatioTangential (peratomtypepair, default 0). docs/pair_thornton_yin.md, "LIGGGHTS".
@@ -26,8 +28,10 @@ TANGENTIAL_MODEL(TANGENTIAL_THORNTON_YIN, thornton_yin, 31)
 #include "comm.h"
 #include "error.h"
 #include "fix_property_global.h"
+#include "force.h"
 #include "modify.h"
 #include "neighbor.h"
+#include "pair_gran.h"
 #include "update.h"
 
 #include "law_domain.hpp"
@@ -49,7 +53,8 @@ namespace ContactModels {
   template <> class NormalModel<THORNTON_YIN> : public NormalModelBase {
    public:
     NormalModel(LAMMPS *lmp, IContactHistorySetup *hsetup, class ContactModelBase *c) :
-        NormalModelBase(lmp, hsetup, c), batch(new tycore::ContactBatch{})
+        NormalModelBase(lmp, hsetup, c), batch(new tycore::ContactBatch{}),
+        pair_gran(dynamic_cast<PairGran *>(hsetup))
     {
       history_offset = hsetup->add_history_value(tyliggghts::history_names[0],
                                                  tyliggghts::history_newton_flag(0));
@@ -63,9 +68,27 @@ namespace ContactModels {
 
     void registerSettings(Settings &) {}
     void postSettings(IContactHistorySetup *, ContactModelBase *) {}
-    void beginPass(SurfacesIntersectData &, ForceData &, ForceData &) {}
-    void endPass(SurfacesIntersectData &, ForceData &, ForceData &) {}
     double stressStrainExponent() { return 1.5; }
+
+    // LIGGGHTS's pair loop (PairStyles::Granular::compute_force) hands the model one contact at a
+    // time and adds the contact's ForceData to f and torque right after the call. Where nothing
+    // else of the loop reads a contact's force then (contact force storage, the pair/gran/local
+    // compute, the sum of normal forces), the model gathers the contacts instead, one batch per
+    // type pair, runs the law on a full batch in SIMD lanes as the LAMMPS pair does, and adds
+    // each contact's forces as the loop would have (endPass: the last, partial batches)
+    void beginPass(SurfacesIntersectData &sidata, ForceData &, ForceData &)
+    {
+      batching = pair_gran && !pair_gran->storeContactForces() &&
+          !pair_gran->storeContactForcesStress() && !pair_gran->store_sum_normal_force() &&
+          !pair_gran->cpl();
+      step = sidata.shearupdate != 0;
+      if (batches.size() != constants.size()) batches.resize(constants.size());
+    }
+    void endPass(SurfacesIntersectData &, ForceData &, ForceData &)
+    {
+      for (auto &bt : batches)
+        if (bt && bt->n) run_batch(*bt);
+    }
 
     // material pairs from fix property/global, checked; the contact distance for tension
     void connectToProperties(PropertyRegistry &registry)
@@ -129,7 +152,10 @@ namespace ContactModels {
     void surfacesIntersect(SurfacesIntersectData &sidata, ForceData &i_forces, ForceData &j_forces)
     {
       if (!sidata.contact_history) return;
-      contact(sidata, i_forces, j_forces);
+      if (batching)
+        gather(sidata);    // the loop adds the (zero) ForceData; run_batch the force
+      else
+        contact(sidata, i_forces, j_forces);
     }
 
     // not overlapping, within the contact distance: a touched contact in tension (delta_f < delta
@@ -141,8 +167,13 @@ namespace ContactModels {
       if (!(*scdata.contact_flags & CONTACT_NORMAL_MODEL) &&
           scdata.rsq > scdata.radsum * scdata.radsum)
         return;
-      contact(scdata, i_forces, j_forces);
-      scdata.has_force_update = true;
+      if (batching) {
+        gather(scdata);
+        scdata.has_force_update = false;    // run_batch adds the force
+      } else {
+        contact(scdata, i_forces, j_forces);
+        scdata.has_force_update = true;
+      }
     }
 
    private:
@@ -151,8 +182,23 @@ namespace ContactModels {
     std::vector<tycore::PairConstants> constants;
     std::vector<tycore::BatchParameters> damping;    // beta_n, beta_t per type pair
     bool adhesive = false, damped = false;
-    std::unique_ptr<tycore::ContactBatch> batch;    // one lane: LIGGGHTS hands one contact
+    std::unique_ptr<tycore::ContactBatch> batch;    // one lane: a contact at a time
     std::vector<std::vector<double>> owned_values;
+
+    // the gathered contacts of one type pair: lanes of the core's batch, and where each lane's
+    // results go
+    struct Batch {
+      tycore::ContactBatch b;
+      int n = 0;
+      int pair = 0;    // index of the type pair in constants, damping
+      int i[tycore::batch_lanes], j[tycore::batch_lanes];
+      int *flags[tycore::batch_lanes];
+      double *history[tycore::batch_lanes];
+    };
+    PairGran *pair_gran;    // the pair style whose loop calls the model
+    bool batching = false, step = true;
+    std::vector<std::unique_ptr<Batch>> batches;    // per type pair, made at its first contact
+    const tycore::Isa isa = tycore::best_isa();
 
     static std::string number(double x)
     {
@@ -245,17 +291,134 @@ namespace ContactModels {
       neighbor->register_contact_dist_factor(factor);
     }
 
-    template <bool Adhesive, bool Damped>
-    void evaluate(const tycore::PairConstants &k, const tycore::BatchParameters &p, bool step)
+    // the law on lanes 0 .. n-1 of b, its geometry computed
+    void evaluate(tycore::ContactBatch &b, int n, int pair, bool step, tycore::Isa law_isa)
     {
-      tyliggghts::evaluate_contact<Adhesive, Damped>(*batch, k, p, step);
+      const tycore::PairConstants &k = constants[pair];
+      tycore::BatchParameters p = damping[pair];
+      p.dt = update->dt;
+      if (adhesive) {
+        if (damped)
+          tyliggghts::evaluate_contacts<true, true>(b, n, k, p, step, law_isa);
+        else
+          tyliggghts::evaluate_contacts<true, false>(b, n, k, p, step, law_isa);
+      } else {
+        if (damped)
+          tyliggghts::evaluate_contacts<false, true>(b, n, k, p, step, law_isa);
+        else
+          tyliggghts::evaluate_contacts<false, false>(b, n, k, p, step, law_isa);
+      }
     }
 
+    void overlap_fault(int i, int j, double delta)
+    {
+      fail("atoms " + std::to_string(atom->tag[i]) + " " + std::to_string(atom->tag[j]) +
+           ": overlap " + number(delta) +
+           " is not finite or exceeds the smaller radius (the "
+           "law and the explicit step have failed: the timestep is too large or a position "
+           "is not finite)");
+    }
+
+    // lane l after the law: a broken contact is forgotten (false); otherwise its flag and history
+    // are stored and its force and torques written into i_forces, j_forces (zeroed by the caller)
+    bool lane_result(const tycore::ContactBatch &b, int l, int i, int j, int *flags,
+                     double *history, ForceData &i_forces, ForceData &j_forces)
+    {
+      if (b.broken[l] != 0.0) {    // separated at the break overlap: the contact is forgotten
+        *flags &= ~CONTACT_NORMAL_MODEL;
+        for (int m = 0; m < tyliggghts::history_size; ++m) history[m] = 0.0;
+        return false;
+      }
+      *flags |= CONTACT_NORMAL_MODEL;
+      tycore::store_history(b, l, history);
+      const double f[3] = {b.force[0][l], b.force[1][l], b.force[2][l]};
+      if (!(std::fabs(f[0] + f[1] + f[2]) <= std::numeric_limits<double>::max()))
+        fail("atoms " + std::to_string(atom->tag[i]) + " " + std::to_string(atom->tag[j]) +
+             ": the contact force is not finite (a velocity, spin or history value is not)");
+      // the tangential force acts at the contact point: levers r - delta/2
+      const double delta = b.delta[l];
+      const double lever_i = b.r_i[l] - 0.5 * delta, lever_j = b.r_j[l] - 0.5 * delta;
+      for (int a = 0; a < 3; ++a) {
+        i_forces.delta_F[a] += f[a];
+        j_forces.delta_F[a] -= f[a];
+        i_forces.delta_torque[a] -= lever_i * b.moment[a][l];
+        j_forces.delta_torque[a] -= lever_j * b.moment[a][l];
+      }
+      return true;
+    }
+
+    // a contact into the batch of its type pair; the batch runs when full
+    void gather(SurfacesCloseData &d)
+    {
+      if (!d.computeflag) return;
+      const int i = d.i, j = d.j;
+      const int pair = d.itype * (ntypes_ + 1) + d.jtype;
+      std::unique_ptr<Batch> &slot = batches[pair];
+      if (!slot) {
+        slot.reset(new Batch{});
+        slot->pair = pair;
+      }
+      Batch &bt = *slot;
+      const int l = bt.n;
+      const tycore::SphereState si{atom->v[i], atom->omega[i], atom->radius[i], atom->rmass[i]};
+      const tycore::SphereState sj{atom->v[j], atom->omega[j], atom->radius[j], atom->rmass[j]};
+      const bool first_touch = !(*d.contact_flags & CONTACT_NORMAL_MODEL);
+      tycore::gather_contact<true>(bt.b, l, d.delta, d.rsq, si, sj, first_touch);
+      bt.history[l] = &d.contact_history[history_offset];
+      tycore::load_history(bt.b, l, bt.history[l]);
+      bt.i[l] = i, bt.j[l] = j;
+      bt.flags[l] = d.contact_flags;
+      if (++bt.n == tycore::batch_lanes) run_batch(bt);
+    }
+
+    // the law on a batch, then each contact's forces added as LIGGGHTS's loop adds a contact's
+    // ForceData (Granular::force_update with the relaxation factor; newton off: j's share only
+    // when j is owned) and tallied as its virial (ev_tally_xyz), contact after contact
+    void run_batch(Batch &bt)
+    {
+      const int n = bt.n;
+      bt.n = 0;
+      tycore::ContactBatch &b = bt.b;
+      const tycore::AffineGradient none{};
+      const bool valid = damped ? tycore::batch_geometry<false, true>(b, n, none, isa)
+                                : tycore::batch_geometry<false, false>(b, n, none, isa);
+      if (!valid)
+        for (int l = 0; l < n; ++l)
+          if (!tycore::overlap_valid(b, l)) overlap_fault(bt.i[l], bt.j[l], b.delta[l]);
+      evaluate(b, n, bt.pair, step, isa);
+      double **f = atom->f, **torque = atom->torque;
+      const int nlocal = atom->nlocal;
+      const int newton_pair = force->newton_pair;
+      ForceData i_forces, j_forces;
+      for (int l = 0; l < n; ++l) {
+        const int i = bt.i[l], j = bt.j[l];
+        i_forces.reset();
+        j_forces.reset();
+        if (!lane_result(b, l, i, j, bt.flags[l], bt.history[l], i_forces, j_forces)) continue;
+        const double relax_i = pair_gran->relax(i);
+        for (int a = 0; a < 3; ++a) {
+          f[i][a] += relax_i * i_forces.delta_F[a];
+          torque[i][a] += relax_i * i_forces.delta_torque[a];
+        }
+        if (newton_pair || j < nlocal) {
+          const double relax_j = pair_gran->relax(j);
+          for (int a = 0; a < 3; ++a) {
+            f[j][a] += relax_j * j_forces.delta_F[a];
+            torque[j][a] += relax_j * j_forces.delta_torque[a];
+          }
+        }
+        if (pair_gran->evflag)
+          pair_gran->ev_tally_xyz(i, j, nlocal, newton_pair, 0.0, 0.0, i_forces.delta_F[0],
+                                  i_forces.delta_F[1], i_forces.delta_F[2], b.del[0][l],
+                                  b.del[1][l], b.del[2][l]);
+      }
+    }
+
+    // one contact, in the scalar build, its forces into i_forces and j_forces for the loop
     void contact(SurfacesCloseData &d, ForceData &i_forces, ForceData &j_forces)
     {
       const int i = d.i, j = d.j;
       if (!d.computeflag) return;
-      const bool step = d.shearupdate != 0;
       const bool first_touch = !(*d.contact_flags & CONTACT_NORMAL_MODEL);
       double *history = &d.contact_history[history_offset];
       tycore::ContactBatch &b = *batch;
@@ -263,48 +426,10 @@ namespace ContactModels {
       const tycore::SphereState sj{atom->v[j], atom->omega[j], atom->radius[j], atom->rmass[j]};
       tycore::gather_contact<true>(b, 0, d.delta, d.rsq, si, sj, first_touch);
       tycore::contact_geometry<false, true>(b, 0, tycore::AffineGradient{});
-      const double delta = b.delta[0];
-      if (!tycore::overlap_valid(b, 0))
-        fail("atoms " + std::to_string(atom->tag[i]) + " " + std::to_string(atom->tag[j]) +
-             ": overlap " + number(delta) +
-             " is not finite or exceeds the smaller radius (the "
-             "law and the explicit step have failed: the timestep is too large or a position "
-             "is not finite)");
+      if (!tycore::overlap_valid(b, 0)) overlap_fault(i, j, b.delta[0]);
       tycore::load_history(b, 0, history);
-      const int pair = d.itype * (ntypes_ + 1) + d.jtype;
-      const tycore::PairConstants &k = constants[pair];
-      tycore::BatchParameters p = damping[pair];
-      p.dt = update->dt;
-      if (adhesive) {
-        if (damped)
-          evaluate<true, true>(k, p, step);
-        else
-          evaluate<true, false>(k, p, step);
-      } else {
-        if (damped)
-          evaluate<false, true>(k, p, step);
-        else
-          evaluate<false, false>(k, p, step);
-      }
-      if (b.broken[0] != 0.0) {    // separated at the break overlap: the contact is forgotten
-        *d.contact_flags &= ~CONTACT_NORMAL_MODEL;
-        for (int m = 0; m < tyliggghts::history_size; ++m) history[m] = 0.0;
-        return;
-      }
-      *d.contact_flags |= CONTACT_NORMAL_MODEL;
-      tycore::store_history(b, 0, history);
-      const double f[3] = {b.force[0][0], b.force[1][0], b.force[2][0]};
-      if (!(std::fabs(f[0] + f[1] + f[2]) <= std::numeric_limits<double>::max()))
-        fail("atoms " + std::to_string(atom->tag[i]) + " " + std::to_string(atom->tag[j]) +
-             ": the contact force is not finite (a velocity, spin or history value is not)");
-      // the tangential force acts at the contact point: levers r - delta/2
-      const double lever_i = si.radius - 0.5 * delta, lever_j = sj.radius - 0.5 * delta;
-      for (int a = 0; a < 3; ++a) {
-        i_forces.delta_F[a] += f[a];
-        j_forces.delta_F[a] -= f[a];
-        i_forces.delta_torque[a] -= lever_i * b.moment[a][0];
-        j_forces.delta_torque[a] -= lever_j * b.moment[a][0];
-      }
+      evaluate(b, 1, d.itype * (ntypes_ + 1) + d.jtype, d.shearupdate != 0, tycore::Isa::scalar);
+      lane_result(b, 0, i, j, d.contact_flags, history, i_forces, j_forces);
     }
   };
 

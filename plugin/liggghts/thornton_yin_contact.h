@@ -1,10 +1,10 @@
 // The Thornton-Yin law for LIGGGHTS: what the LIGGGHTS contact model (normal_model_thornton_yin.h)
-// needs from plugin/core, and nothing from LIGGGHTS. The law itself is not here: one contact is
+// needs from plugin/core, and nothing from LIGGGHTS. The law itself is not here: a contact is
 // one lane of the core's batch entry, tycore::advance_batch (a step) or
 // tycore::forces_without_step (LIGGGHTS's setup pass), the entry the LAMMPS pair runs
 // (plugin/lammps/pair_thornton_yin.cpp), so that both engines evaluate the same code.
 //  * the per-contact inputs of the batch come from tycore::contact_geometry, as in the pair;
-//  * evaluate_contact: the ONE call into the core;
+//  * evaluate_contacts: the ONE call into the core;
 //  * the history layout: LIGGGHTS keeps named per-contact values (add_history_value) with a
 //    newton flag (1: the value changes sign seen from j); ours are tycore::ContactHistory
 //    verbatim, the flags from tycore::history_transfer_sign.
@@ -43,18 +43,19 @@ inline const char *history_newton_flag(int k)
   return tycore::history_transfer_sign[k] < 0.0 ? "1" : "0";
 }
 
-// THE call into the core: contact 0 of batch b, with its history loaded, one step of the law
-// (step) or its forces without a step (a setup pass). Adhesive: any Gamma > 0 in the
-// simulation, Damped: any damping ratio > 0, as the LAMMPS pair chooses them. The scalar build:
-// one contact at a time, bit for bit what the vector builds give (contact_batch.hpp).
+// THE call into the core: contacts 0 .. n-1 of batch b, with their history loaded and their
+// geometry computed, one step of the law (step) or their forces without a step (a setup pass).
+// Adhesive: any Gamma > 0 in the simulation, Damped: any damping ratio > 0, as the LAMMPS pair
+// chooses them. isa: the build of the law (contact_batch.hpp: every build gives the same bits);
+// a single contact runs in the scalar build.
 template <bool Adhesive, bool Damped>
-inline void evaluate_contact(tycore::ContactBatch &b, const tycore::PairConstants &k,
-                             const tycore::BatchParameters &p, bool step)
+inline void evaluate_contacts(tycore::ContactBatch &b, int n, const tycore::PairConstants &k,
+                              const tycore::BatchParameters &p, bool step, tycore::Isa isa)
 {
   if (step)
-    tycore::advance_batch<Adhesive, Damped>(b, 1, k, p, tycore::Isa::scalar);
+    tycore::advance_batch<Adhesive, Damped>(b, n, k, p, isa);
   else
-    tycore::forces_without_step<Adhesive, Damped>(b, 1, k, p);
+    tycore::forces_without_step<Adhesive, Damped>(b, n, k, p);
 }
 
 }    // namespace tyliggghts
