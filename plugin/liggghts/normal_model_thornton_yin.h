@@ -8,7 +8,8 @@
 // pairing, and any other pairing is refused (thornton_yin_register.cpp). Material data as
 // LIGGGHTS reads them, from fix property/global: youngsModulus and poissonsRatio (peratomtype),
 // coefficientFriction and interfaceEnergy (Gamma per surface, J/m^2; peratomtypepair), optional
-// dampingRatioNormal and dampingRatioTangential (peratomtypepair, default 0). docs/pair_thornton_yin.md, "LIGGGHTS".
+// dampingRatioNormal and dampingRatioTangential (peratomtypepair, default 0).
+// docs/pair_thornton_yin.md, "LIGGGHTS".
 //
 // Included from the style_*_model.h files CMake writes (cmake/Liggghts.cmake), as LIGGGHTS's
 // Make.sh includes its own models: with NORMAL_MODEL defined it declares the model's id.
