@@ -50,6 +50,7 @@ def rigid_arm(oblique):
 
 
 # ---------------------------------------------------------------- the reference itself
+@pytest.mark.no_lammps    # the reference alone: no LAMMPS
 @pytest.mark.parametrize("psi1", [6.0, 12.0])
 def test_reference_slides_throughout_above_the_elastic_threshold(oblique, rigid_arm, psi1):
     # Psi1 >= 4 chi - 1 = 4.765: Psi2 = Psi1 - 4 chi and Omega = 5k (rigid-body impulse,
@@ -63,6 +64,7 @@ def test_reference_slides_throughout_above_the_elastic_threshold(oblique, rigid_
     assert r["Omega"] == pytest.approx(closed["Omega"], abs=1e-6)
 
 
+@pytest.mark.no_lammps    # the reference alone: no LAMMPS
 def test_reference_sticks_part_of_the_impact_below_the_threshold(oblique, rigid_arm):
     # below 4 chi - 1 the sliding branch no longer holds: at Psi1 = 2.75 (45 degrees) the
     # contact point's velocity reverses (Psi2 < 0, Maw et al.'s result) but by less than
@@ -73,6 +75,7 @@ def test_reference_sticks_part_of_the_impact_below_the_threshold(oblique, rigid_
     assert r["Omega"] < closed["Omega"] - 1.0
 
 
+@pytest.mark.no_lammps    # the reference alone: no LAMMPS
 def test_reference_tends_to_the_no_slip_solution_as_psi1_vanishes(oblique, rigid_arm):
     # e_t(Psi1) -> e_t of the impact without slip (the annuli each keep the displacement taken
     # since they entered: computed without the spring row), linearly in Psi1 (the slip band
@@ -83,6 +86,7 @@ def test_reference_tends_to_the_no_slip_solution_as_psi1_vanishes(oblique, rigid
     assert 2 * small[0] - small[1] == pytest.approx(e0, abs=1e-4)
 
 
+@pytest.mark.no_lammps    # the reference alone: no LAMMPS
 @pytest.mark.parametrize("psi1", [0.5, 2.75])
 def test_reference_conserves_energy(rigid_arm, psi1):
     r = rigid_arm(psi1)
@@ -91,6 +95,7 @@ def test_reference_conserves_energy(rigid_arm, psi1):
 
 
 # ---------------------------------------------------------------- the law and the pair
+@pytest.mark.no_lammps    # the reference and build/law_path (the 29 Sep 2021 build): no LAMMPS
 @pytest.mark.parametrize("angle, tolerance", [(45, 1e-5), (10, 5e-4), (20, 5e-4)])
 def test_law_along_the_impact_path_carries_the_oracle_force(oblique, angle, tolerance):
     mat = oblique.MAT
