@@ -459,7 +459,8 @@ namespace law {
     for (int d = 0; d < 3; ++d) t[d] = lane_select(has_axis, t[d] * inv_t, t[d]);
     const V s = dot3(ds, t);
     bands::advance(p, overlap, s, kappa);
-    const V along = limit * bands::force_ratio(p, overlap);
+    const auto weights = bands::band_weights(p, overlap);
+    const V along = limit * bands::force_ratio(p, weights);
     V across[3], Tv[3];
     for (int d = 0; d < 3; ++d) across[d] = k_T * (ds[d] - s * t[d]);
     for (int d = 0; d < 3; ++d) Tv[d] = along * t[d] + across[d];
@@ -471,7 +472,7 @@ namespace law {
       p.outer[j] = lane_clamp(p.outer[j] + raised, V(-1.0), V(1.0));
       p.inner[j] = lane_clamp(p.inner[j] + raised, V(-1.0), V(1.0));
     }
-    const V turned = limit * bands::force_ratio(p, overlap);
+    const V turned = limit * bands::force_ratio(p, weights);
     const V inv = sense / magnitude;
     const auto turns = magnitude > 0.0;
     for (int d = 0; d < 3; ++d) {

@@ -234,11 +234,19 @@ namespace bands {
   // its outer and inner slopes, D = x0^(3/2) - x1^(3/2) = e (x0 + s0 s1 + x1)/(s0 + s1) with
   // e = x0 - x1, s = sqrt(x), Q = 0.6 x0^2 + 0.6 x0 s0 s1 - 0.4 x0 x1 - 0.4 x1 s0 s1 - 0.4 x1^2
   // (derived here: the differences of powers factored, so that a thin band loses no digits).
-  // A profile at m = 1 everywhere carries exactly 1.
-  template <class V> [[gnu::always_inline]] inline V force_ratio(const Profile<V> &p, V overlap)
+  // The weights D, Q and s0 + s1 depend on the depths alone: a step that changes only the
+  // slopes (the turn of micro_slip) weighs them again without recomputing them. A band below the
+  // overlap (s0 + s1 = 0) weighs nothing.
+  template <class V> struct BandWeights {
+    V D[memory_bands], Q[memory_bands], roots[memory_bands];
+  };
+
+  template <class V>
+  [[gnu::always_inline]] inline BandWeights<V> band_weights(const Profile<V> &p, V overlap)
   {
+    BandWeights<V> w;
     const V inv = 1.0 / overlap;
-    V begins = V(0.0), x0 = V(1.0), s0 = V(1.0), sum = V(0.0);
+    V begins = V(0.0), x0 = V(1.0), s0 = V(1.0);
     TYCORE_UNROLLED
     for (int j = 0; j < memory_bands; ++j) {
       const V e = p.depth[j] * inv;
@@ -246,13 +254,26 @@ namespace bands {
       const V x1 = lane_max(1.0 - begins * inv, V(0.0));
       const V s1 = std::sqrt(x1);
       const V roots = s0 + s1, ss = s0 * s1;
-      const V safe = lane_select(roots > 0.0, roots, V(1.0));
+      const auto weighs = roots > 0.0;
+      const V safe = lane_select(weighs, roots, V(1.0));
       const V D = e * (x0 + ss + x1) / safe;
       const V Q = 0.6 * x0 * x0 + 0.6 * x0 * ss - 0.4 * x0 * x1 - 0.4 * x1 * ss - 0.4 * x1 * x1;
-      const V band = p.inner[j] * D + (p.outer[j] - p.inner[j]) * Q / safe;
-      sum = sum + lane_select(roots > 0.0, band, V(0.0));
+      w.D[j] = lane_select(weighs, D, V(0.0));
+      w.Q[j] = lane_select(weighs, Q, V(0.0));
+      w.roots[j] = safe;
       x0 = x1, s0 = s1;
     }
+    return w;
+  }
+
+  // A profile at m = 1 everywhere carries exactly 1.
+  template <class V>
+  [[gnu::always_inline]] inline V force_ratio(const Profile<V> &p, const BandWeights<V> &w)
+  {
+    V sum = V(0.0);
+    TYCORE_UNROLLED
+    for (int j = 0; j < memory_bands; ++j)
+      sum = sum + (p.inner[j] * w.D[j] + (p.outer[j] - p.inner[j]) * w.Q[j] / w.roots[j]);
     return sum;
   }
 
