@@ -29,6 +29,7 @@
 #include "update.h"
 #include "variable.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
