@@ -23,6 +23,8 @@ struct UntilTarget {
   int output = -1;    // out::Output; -1 without `until`
   double value = 0.0;
   std::string name;
+  // the log line of a test ended at `step`, its measure now `now`
+  std::string reached_message(double now, long long step) const;
 };
 
 struct CellCommand {
@@ -344,6 +346,18 @@ inline std::string unresolvable_rate(const NamedRate &r, double dt)
                      MAX_STRAIN_PER_STEP / dt, MIN_STRAIN_PER_STEP, MAX_STRAIN_PER_STEP);
 }
 
+// the servo's rates of a step that strain the cell by more than it can follow in one step
+// (MAX_STRAIN_PER_STEP; a variable rate, or a cap not given)
+inline std::string step_strain_error(const Vector6d &rate, double dt, long long step)
+{
+  const double fastest = rate.cwiseAbs().maxCoeff();
+  if (!(fastest * dt > MAX_STRAIN_PER_STEP)) return "";
+  return printf_text("at step %lld the strain rate %.4g 1/s strains the cell by %.3g in one step; "
+                     "the cell cannot follow more than %g per step: use rates <= %.4g 1/s (or a "
+                     "smaller timestep)",
+                     step, fastest, fastest * dt, MAX_STRAIN_PER_STEP, MAX_STRAIN_PER_STEP / dt);
+}
+
 // the default cap of the servo part: the strain rate at inertial number `inertial` at the held
 // p, and at least four times the largest prescribed rate (the minor axis of a constant-b path
 // extends at about the major rate, plus dilatancy); a programme that holds no p takes the level
@@ -366,6 +380,42 @@ inline std::string inertial_number_warning(double rate, double level, double ine
                      "stress %.4g (mean diameter %.4g, density %.4g), above the quasi-static "
                      "limit max_inertial = %g: use a rate <= %.4g 1/s",
                      rate, inertial * rate / limit, level, diameter, density, inertial, limit);
+}
+
+// The rates at a run's setup: the servo's cap, when not given, chosen (at the first run, after
+// the first measurement: targets may read the fix's outputs) and checked (throws); what the fix
+// is to say: a warning when the cap is below the prescribed rate (the free axes cannot follow
+// the prescribed ones), an error for a constant rate (or a given cap) the cell cannot resolve
+// or follow, a warning when the largest prescribed rate is not quasi-static
+struct RateReport {
+  std::string slow_cap, unresolvable, inertial;
+};
+inline RateReport settle_rates(CellCommand &c, double mean_stress, double dt, double diameter,
+                               double density)
+{
+  const CellProgramme &p = *c.programme;
+  const double rate = p.largest_rate(), level = p.stress_level();
+  double &cap = c.settings.max_strain_rate;
+  if (cap == 0.0)
+    cap = default_rate_cap(mean_stress, level, rate, c.inertial_cap, diameter, density);
+  require_valid(c.settings);
+  RateReport r;
+  if (rate > 0.0 && cap < rate)
+    r.slow_cap = printf_text("max_rate %.3g is below the prescribed strain rate %.3g; the servo "
+                             "cannot keep up and the stress will drift (raise max_rate)",
+                             cap, rate);
+  std::vector<NamedRate> rates = p.constant_rates();
+  if (c.max_rate_given) rates.push_back({"max_rate", cap});
+  for (std::size_t k = 0; k < rates.size() && r.unresolvable.empty(); ++k)
+    r.unresolvable = unresolvable_rate(rates[k], dt);
+  r.inertial = inertial_number_warning(rate, level, c.inertial_cap, diameter, density);
+  return r;
+}
+
+inline std::string UntilTarget::reached_message(double now, long long step) const
+{
+  return printf_text("%s = %.6g reached the target %.6g at step %lld: the run stops", name.c_str(),
+                     now, value, step);
 }
 
 // 'until NAME VALUE' while NAME moves away from VALUE: the run would not stop by it. Judged

@@ -123,6 +123,22 @@ enum Output {
     return c;
   }
 
+  // the header line of a record with these columns (without the extra ones)
+  inline std::string record_header(const std::vector<int> &columns)
+  {
+    std::string header = "step";
+    for (int k : columns) header += std::string(",") + name(k);
+    return header;
+  }
+
+  // a record's row: the outputs o of these columns
+  inline std::vector<double> record_row(const std::vector<int> &columns, const double *o)
+  {
+    std::vector<double> row;
+    for (int k : columns) row.push_back(o[k]);
+    return row;
+  }
+
   inline const std::vector<int> &plane_columns()
   {
     static const std::vector<int> c{GAMMA,        TAU,        SIG_N,        TAU_RATIO,
@@ -237,6 +253,20 @@ inline void particle_outputs(const ParticleStatistics &st, double *o)
   o[out::KINETIC_RATIO] = st.kinetic_ratio;
 }
 
+// the quasi-equilibrium sample of a preparation holding `mean_stress` on its axes, from the
+// step's outputs (docs/theory.md §6.4)
+inline EquilibriumSample equilibrium_sample(const Vector6d &stress, double mean_stress,
+                                            const double *o)
+{
+  EquilibriumSample sample;
+  sample.stress = stress.head<3>();
+  sample.target_stress = Eigen::Vector3d::Constant(mean_stress);
+  sample.unbalanced_force_ratio = o[out::UNBALANCED];
+  sample.kinetic_energy_ratio = o[out::KINETIC_RATIO];
+  sample.coordination = o[out::Z];
+  return sample;
+}
+
 // the quasi-equilibrium outputs of a check (docs/theory.md §6.4)
 inline void equilibrium_outputs(const EquilibriumCheck &check, double *o)
 {
@@ -261,6 +291,20 @@ inline std::string box_changes(const double before[6], const double now[6])
       text += item;
     }
   return text;
+}
+
+// the error of a box changed between runs by another command (change_box): the test's strains
+// and shears would not count the change ("" if the box is as the test left it, or the test has
+// not set it yet: NaN)
+inline std::string box_changed_error(const double left[6], const double now[6])
+{
+  if (std::isnan(left[0])) return "";
+  const std::string changed = box_changes(left, now);
+  if (changed.empty()) return "";
+  return "the box was changed between runs (" + changed +
+      ") by another command (change_box?): the test's strains and shears would not count the "
+      "change; start a new test from the changed box ('continue no', or unfix the fix first) or "
+      "leave the box to the fix";
 }
 
 }    // namespace tycore

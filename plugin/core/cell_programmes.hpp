@@ -74,6 +74,48 @@ namespace programme_detail {
 }    // namespace programme_detail
 
 // ---------------------------------------------------------------------------------------------
+// RATE CSR and the liquefaction criteria (keywords ru_limit, da_limit) of the cyclic tests,
+// cyclic_shear and cyclic_triaxial: one parser, so that both read and check them alike
+
+struct CyclicArguments {
+  // below this CSR the amplitude (CSR sigma_n0 or 2 CSR p0) is a strain of about CSR sigma/G,
+  // a few 1e-9 on the specimens of the tests: the cycles would be round-off of the cell
+  static constexpr double MIN_CSR = 1e-6;
+  LiquefactionCriteria criteria;
+  double rate = 0.0, csr = 0.0;
+  std::string rate_name;    // as messages name it ("cyclic_shear shear rate gamma_dot")
+
+  explicit CyclicArguments(const LiquefactionCriteria &defaults = {}) : criteria(defaults) {}
+
+  // RATE CSR of `mode`: `rate_word` names the rate in messages, `first_half` says what the
+  // first half cycle does (the rate must be positive: each reversal turns its sign)
+  void read(ArgList &a, const std::string &mode, const std::string &rate_word,
+            const std::string &first_half)
+  {
+    rate_name = mode + " " + rate_word;
+    rate = a.number(rate_name);
+    if (!(rate > 0.0))
+      throw std::invalid_argument(rate_name + " = " + number_text(rate) +
+                                  " must be positive (the first half cycle " + first_half +
+                                  "; each reversal turns its sign)");
+    csr = a.number_in(mode + " CSR", MIN_CSR, 10.0, false,
+                      " (below, the cyclic amplitude is lost in round-off)");
+  }
+  // ru_limit or da_limit (true), else false; `strain` names the double amplitude's strain
+  bool keyword(const std::string &key, ArgList &a, const std::string &strain)
+  {
+    if (key == "ru_limit")
+      criteria.pore_pressure_ratio = a.number_in(key, 0.0, 1.0, true);
+    else if (key == "da_limit")
+      criteria.double_amplitude_strain =
+          a.number_in(key, 0.0, 1.0, true, " (a double-amplitude " + strain + " strain)");
+    else
+      return false;
+    return true;
+  }
+};
+
+// ---------------------------------------------------------------------------------------------
 // iso P: isotropic compression to sigma_i = P (preparation), with the quasi-equilibrium check
 // (docs/theory.md §6.4) of keyword `equilibrium N` and its criteria
 
@@ -669,31 +711,15 @@ class SimpleShear : public PlaneProgramme {
 // reversed each time tau reaches +-CSR sigma_n0; cycles and N_L (cell_control.hpp)
 class CyclicShear : public PlaneProgramme {
  public:
-  // below this CSR the amplitude CSR sigma_n0 is a shear strain of about CSR sigma_n0/G of a
-  // few 1e-9 on the specimens of the tests: the cycles would be round-off of the cell
-  static constexpr double MIN_CSR = 1e-6;
   explicit CyclicShear(ArgList &a)
   {
     a.need(3, "cyclic_shear PLANE GDOT CSR");
     plane_ = programme_detail::plane_of(a, "cyclic_shear");
-    rate_ = a.number("cyclic_shear shear rate gamma_dot");
-    if (!(rate_ > 0.0))
-      throw std::invalid_argument("cyclic_shear shear rate gamma_dot = " + number_text(rate_) +
-                                  " must be positive (the first half cycle shears towards "
-                                  "+tau; each reversal turns its sign)");
-    csr_ = a.number_in("cyclic_shear CSR", MIN_CSR, 10.0, false,
-                       " (below, the cyclic amplitude is lost in round-off)");
+    args_.read(a, "cyclic_shear", "shear rate gamma_dot", "shears towards +tau");
   }
   bool keyword(const std::string &key, ArgList &a) override
   {
-    if (key == "ru_limit")
-      criteria_.pore_pressure_ratio = a.number_in(key, 0.0, 1.0, true);
-    else if (key == "da_limit")
-      criteria_.double_amplitude_strain =
-          a.number_in(key, 0.0, 1.0, true, " (a double-amplitude shear strain)");
-    else
-      return false;
-    return true;
+    return args_.keyword(key, a, "shear");
   }
   ProgrammeProfile profile() const override
   {
@@ -701,11 +727,8 @@ class CyclicShear : public PlaneProgramme {
     p.columns.insert(p.columns.end(), {out::R_U, out::CYCLES, out::N_L_RU, out::N_L_GAMMA});
     return p;
   }
-  double largest_rate() const override { return rate_; }
-  std::vector<NamedRate> constant_rates() const override
-  {
-    return {{"cyclic_shear shear rate gamma_dot", rate_}};
-  }
+  double largest_rate() const override { return args_.rate; }
+  std::vector<NamedRate> constant_rates() const override { return {{args_.rate_name, args_.rate}}; }
   std::string held_targets(const Vector6d &) const override { return ""; }
   std::string begin_run(const CellState &state, SettingValues &values) override
   {
@@ -757,10 +780,9 @@ class CyclicShear : public PlaneProgramme {
  private:
   CyclicSimpleShear cyclic() const
   {
-    return {plane_, rate_, csr_, initial_normal_stress_, criteria_};
+    return {plane_, args_.rate, args_.csr, initial_normal_stress_, args_.criteria};
   }
-  double rate_, csr_;
-  LiquefactionCriteria criteria_;
+  CyclicArguments args_;
   CyclicSimpleShear::State state_;
 };
 
@@ -1005,30 +1027,16 @@ class OedometerTest : public AxialTest {
 // +2 CSR p0 and -2 CSR p0 (keyword one_way yes: 0); r_u = 1 - p/p0, cycles and N_L
 class CyclicTriaxial : public AxialTest {
  public:
-  static constexpr double MIN_CSR = 1e-6;    // as cyclic_shear's: below, round-off
   explicit CyclicTriaxial(ArgList &a)
   {
     a.need(3, "cyclic_triaxial AXIS RATE CSR");
     axis_ = programme_detail::axis_of(a, "cyclic_triaxial");
-    rate_ = a.number("cyclic_triaxial axial strain rate");
-    if (!(rate_ > 0.0))
-      throw std::invalid_argument("cyclic_triaxial axial strain rate = " + number_text(rate_) +
-                                  " must be positive (the first half cycle compresses the "
-                                  "axis; each reversal turns its sign)");
-    csr_ = a.number_in("cyclic_triaxial CSR", MIN_CSR, 10.0, false,
-                       " (below, the cyclic amplitude is lost in round-off)");
+    args_.read(a, "cyclic_triaxial", "axial strain rate", "compresses the axis");
   }
   bool keyword(const std::string &key, ArgList &a) override
   {
-    if (key == "ru_limit")
-      criteria_.pore_pressure_ratio = a.number_in(key, 0.0, 1.0, true);
-    else if (key == "da_limit")
-      criteria_.double_amplitude_strain =
-          a.number_in(key, 0.0, 1.0, true, " (a double-amplitude axial strain)");
-    else if (key == "one_way")
-      one_way_ = a.yes_no(key);
-    else
-      return false;
+    if (key != "one_way") return args_.keyword(key, a, "axial");
+    one_way_ = a.yes_no(key);
     return true;
   }
   ProgrammeProfile profile() const override
@@ -1038,11 +1046,8 @@ class CyclicTriaxial : public AxialTest {
     p.columns.insert(p.columns.end(), {out::R_U, out::CYCLES, out::N_L_RU, out::N_L_EPS});
     return p;
   }
-  double largest_rate() const override { return rate_; }
-  std::vector<NamedRate> constant_rates() const override
-  {
-    return {{"cyclic_triaxial axial strain rate", rate_}};
-  }
+  double largest_rate() const override { return args_.rate; }
+  std::vector<NamedRate> constant_rates() const override { return {{args_.rate_name, args_.rate}}; }
   std::string held_targets(const Vector6d &s) const override
   {
     return "sig2 - sig3 = " + programme_detail::g4(s((axis_ + 1) % 3) - s((axis_ + 2) % 3)) +
@@ -1100,11 +1105,13 @@ class CyclicTriaxial : public AxialTest {
 
  private:
   static constexpr double CARRY_TAG = 100.0;    // (a plane programme carries its component)
-  CyclicUndrainedTriaxial cyclic() const { return {axis_, rate_, csr_, p0_, one_way_, criteria_}; }
-  double rate_, csr_;
+  CyclicUndrainedTriaxial cyclic() const
+  {
+    return {axis_, args_.rate, args_.csr, p0_, one_way_, args_.criteria};
+  }
+  CyclicArguments args_{LiquefactionCriteria{0.95, 0.05}};
   double p0_ = std::numeric_limits<double>::quiet_NaN();
   bool one_way_ = false;
-  LiquefactionCriteria criteria_{0.95, 0.05};
   CycleCount count_;
 };
 
@@ -1181,6 +1188,15 @@ inline std::string renamed(const std::string &word)
   return "";
 }
 
+// the MODE words, separated by `separator`
+inline std::string mode_names(const std::string &separator)
+{
+  std::string names;
+  for (const ProgrammeKind &kind : programme_kinds())
+    names += (names.empty() ? "" : separator) + std::string(kind.name);
+  return names;
+}
+
 // the programme of `MODE args` at the front of a (the MODE word read)
 inline std::unique_ptr<CellProgramme> parse_programme(ArgList &a)
 {
@@ -1193,10 +1209,7 @@ inline std::unique_ptr<CellProgramme> parse_programme(ArgList &a)
     }
   const std::string old = renamed(mode);
   if (!old.empty()) throw std::invalid_argument(old);
-  std::string names;
-  for (const ProgrammeKind &kind : programme_kinds())
-    names += (names.empty() ? "" : ", ") + std::string(kind.name);
-  throw std::invalid_argument("unknown mode '" + mode + "' (expected " + names + ")");
+  throw std::invalid_argument("unknown mode '" + mode + "' (expected " + mode_names(", ") + ")");
 }
 
 // the programmes a keyword belongs to ("" if none): for the message of a keyword given to

@@ -28,6 +28,21 @@ struct CellTestState {
   double elapsed_time = 0.0;     // simulated time since the test began [s]
   long long clock_step = 0;      // the step up to which elapsed_time is counted
   double until_start = std::numeric_limits<double>::quiet_NaN();    // the until measure then
+
+  // the simulated time up to `step` (a step before clock_step, of an earlier run: none)
+  void advance_clock(long long step, double dt)
+  {
+    if (step > clock_step) elapsed_time += double(step - clock_step) * dt;
+    clock_step = step;
+  }
+  // the boundary work V sigma : deps of a step at `rate` (docs/theory.md §5.3; Voigt6 with
+  // engineering shears, so that sigma : deps = sum_I sigma_I deps_I over the cell's
+  // `components`: 3 orthogonal, 6 triclinic)
+  void add_boundary_work(double volume, const Vector6d &stress, const Vector6d &rate, double dt,
+                         int components)
+  {
+    for (int k = 0; k < components; ++k) boundary_work += volume * stress(k) * rate(k) * dt;
+  }
 };
 
 constexpr double RESTART_TAG = 8462.0;
@@ -121,6 +136,25 @@ inline std::map<std::string, TestCarry> &test_carries()
 {
   static std::map<std::string, TestCarry> carries;
   return carries;
+}
+
+// the error of a redefinition with 'continue no' whose record (`path`) is the one of the test
+// it replaces, by file identity (./a.csv, a symbolic link or d/../a.csv name a.csv too)
+inline std::string overwritten_record_error(const std::string &path, const TestCarry &c)
+{
+  if (!(file_identity(path) == c.record)) return "";
+  return "'continue no' starts a new test, whose record " + path + " would overwrite " +
+      c.record_path + ", the record of the test it replaces: name another file";
+}
+
+// a redefinition continuing the test takes over its state; the servo's integral starts afresh
+// with the new programme, and so does the measure of its `until`
+inline void continue_test(const TestCarry &c, CellTestState &t, CellProgramme &p)
+{
+  t = c.test;
+  t.memory.integral.setZero();
+  t.until_start = std::numeric_limits<double>::quiet_NaN();
+  p.take_carried(c.programme);
 }
 
 }    // namespace tycore

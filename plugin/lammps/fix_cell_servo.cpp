@@ -2,11 +2,9 @@
    fix ID all cell/servo MODE args [keyword value ...]      (docs/fix_cell_servo.md)
 
    Each step, after the forces (end_of_step): the contact (Love-Weber) stress from the pair
-   virial and the affine stiffness from the pair's contact tallies; the programme's control of
-   the step (plugin/core/cell_programmes.hpp) and the servo's strain rates (cell_servo.hpp),
-   which deform the cell at the next step's post_integrate (docs/theory.md §5.1, §10.1-10.3):
-   h <- exp(L dt) h about the fixed box centre, atoms remapped affinely, tilts flipped past half
-   a box length, and domain->h_rate = L h for the pair's affine contact velocity.
+   virial, the affine stiffness from the pair's contact tallies, the programme's control and
+   the servo's strain rates, which deform the cell at the next step's post_integrate
+   (docs/theory.md §5.1, §10.1-10.3).
 ------------------------------------------------------------------------- */
 
 #include "fix_cell_servo.h"
@@ -31,6 +29,7 @@
 #include "update.h"
 #include "variable.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -53,13 +52,11 @@ std::string carry_key(LAMMPS *lmp, const char *id)
 FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg)
 {
   tylmp::cite(lmp, tylmp::cite_thornton_2000);
-  std::string modes;
-  for (const auto &kind : tycore::programme_kinds()) modes += std::string(" ") + kind.name;
   if (narg < 5)
     error->all(FLERR,
                "Illegal fix cell/servo command: expected 'fix ID all cell/servo MODE "
-               "...' (modes:{})",
-               modes);
+               "...' (modes: {})",
+               tycore::mode_names(" "));
   if (strcmp(arg[1], "all") != 0)
     error->all(FLERR,
                "fix cell/servo: group must be 'all' (every particle follows the "
@@ -77,10 +74,9 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, a
   extvector = extarray = 0;
   force_reneighbor = 1;    // a tilt flip (pre_exchange) needs a neighbor list rebuild
   next_reneighbor = -1;
-  stress.setZero();
   std::fill(std::begin(output), std::end(output), NaN);
-  std::fill(std::begin(origin), std::end(origin), NaN);
-  std::fill(std::begin(box_left), std::end(box_left), NaN);
+  origin.fill(NaN);
+  box_left.fill(NaN);
   for (int i = 0; i < 3; ++i) test.strain.reference_length(i) = domain->prd[i];
   test.clock_step = update->ntimestep;
 
@@ -95,6 +91,7 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, a
   for (const std::string &w : command.warnings)
     if (comm->me == 0) error->warning(FLERR, "fix cell/servo {}: {}", id, w);
   profile = programme().profile();
+  cell.plane = profile.plane;
   if (!command.csv_path.empty())
     record =
         std::make_unique<CellRecord>(lmp, id, command.csv_path, command.csv_every, command.extra);
@@ -115,28 +112,20 @@ FixCellServo::FixCellServo(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, a
 // of the fix it replaces, unless 'continue no'
 void FixCellServo::take_over_replaced_fix()
 {
-  bool replacing = false;
-  for (int i = 0; i < modify->nfix; ++i)
-    if (modify->fix[i] == nullptr) replacing = true;
+  const bool replacing = std::count(modify->fix, modify->fix + modify->nfix, nullptr) > 0;
   auto &carries = tycore::test_carries();
   const auto previous = carries.find(carry_key(lmp, id));
   if (replacing && previous != carries.end()) {
     const tycore::TestCarry &c = previous->second;
     if (command.continue_previous) {
-      test = c.test;
-      test.memory.integral.setZero();    // the servo starts afresh with the new programme
-      test.until_start = NaN;
-      programme().take_carried(c.programme);
+      tycore::continue_test(c, test, programme());
       continued = true;
       continued_csv = c.record;
-      std::copy(c.origin.begin(), c.origin.end(), origin);
-      std::copy(c.box.begin(), c.box.end(), box_left);
-    } else if (record && tycore::file_identity(record->path()) == c.record) {
-      // by file identity: ./a.csv, a symbolic link or d/../a.csv name a.csv too
-      error->all(FLERR,
-                 "fix cell/servo: 'continue no' starts a new test, whose record {} would "
-                 "overwrite {}, the record of the test it replaces: name another file",
-                 record->path(), c.record_path);
+      origin = c.origin;
+      box_left = c.box;
+    } else if (record) {
+      const std::string overwrite = tycore::overwritten_record_error(record->path(), c);
+      if (!overwrite.empty()) error->all(FLERR, "fix cell/servo: {}", overwrite);
     }
   }
   if (previous != carries.end()) carries.erase(previous);
@@ -144,36 +133,32 @@ void FixCellServo::take_over_replaced_fix()
 
 // `variables yes`: an equal-style variable ID_NAME = f_ID[i] for every output, so that a deck
 // reads the outputs by name; one that exists already is an error, never overwritten
-std::string FixCellServo::variable_name(int i) const
-{
-  return fmt::format("{}_{}", id, out::name(i));
-}
-
 void FixCellServo::define_named_variables(bool define)
 {
+  const auto name = [this](int i) {
+    return fmt::format("{}_{}", id, out::name(i));
+  };
   for (int i = 0; define && i < out::COUNT; ++i)
-    if (input->variable->find(variable_name(i).c_str()) >= 0)
+    if (input->variable->find(name(i).c_str()) >= 0)
       error->all(FLERR,
                  "fix cell/servo: 'variables yes' defines the variable {} (output {} "
                  "of fix {}), which exists already: delete it or give the fix another ID",
-                 variable_name(i), i + 1, id);
+                 name(i), i + 1, id);
   for (int i = 0; i < out::COUNT; ++i) {
     if (define)
-      input->variable->set(fmt::format("{} equal f_{}[{}]", variable_name(i), id, i + 1));
-    else if (input->variable->find(variable_name(i).c_str()) >= 0)
-      input->variable->set(variable_name(i) + " delete");
+      input->variable->set(fmt::format("{} equal f_{}[{}]", name(i), id, i + 1));
+    else if (input->variable->find(name(i).c_str()) >= 0)
+      input->variable->set(name(i) + " delete");
   }
 }
 
 FixCellServo::~FixCellServo()
 {
-  // left for a fix that redefines this one (take_over_replaced_fix)
-  tycore::TestCarry c{test, programme().carried(), {}, "", {}, {}};
+  // left for a fix that redefines this one (take_over_replaced_fix), with the box as this fix
+  // left it (a change since is a change behind the test's back)
+  tycore::TestCarry c{test, programme().carried(), {}, "", box_left, origin};
   if (record) c.record_path = record->path(), c.record = tycore::file_identity(c.record_path);
-  // the box as the fix left it (a change since is a change behind the test's back)
-  std::copy(domain->h, domain->h + 6, c.box.begin());
-  if (!std::isnan(box_left[0])) std::copy(box_left, box_left + 6, c.box.begin());
-  std::copy(origin, origin + out::COUNT, c.origin.begin());
+  if (std::isnan(box_left[0])) std::copy(domain->h, domain->h + 6, c.box.begin());
   tycore::test_carries()[carry_key(lmp, id)] = c;
 
   if (modify->find_compute(pressure_id) >= 0) modify->delete_compute(pressure_id);
@@ -249,9 +234,9 @@ void FixCellServo::init()
   for (int i = 0; i < atom->nlocal; ++i) local.add(atom->radius[i], atom->rmass[i]);
   MPI_Allreduce(local.sum, total.sum, total.size, MPI_DOUBLE, MPI_SUM, world);
   if (total.sum[0] == 0.0) error->all(FLERR, "fix cell/servo: the cell holds no particles");
-  mean_diameter = total.mean_diameter();
-  mean_density = total.mean_density();
-  solid_volume = total.solid_volume();
+  cell.mean_diameter = total.mean_diameter();
+  cell.mean_density = total.mean_density();
+  cell.solid_volume = total.solid_volume();
   if (record) record->resolve_extra();
   cap_watch = {};
 }
@@ -272,19 +257,20 @@ double FixCellServo::operator()(tycore::Setting &s)
 
 tycore::CellState FixCellServo::cell_state() const
 {
-  return {test.elapsed_time, update->dt, stress, test.strain.voigt(cell_matrix())};
+  return {test.elapsed_time, update->dt, cell.stress, test.strain.voigt(cell_matrix())};
 }
 
 void FixCellServo::setup(int)
 {
-  require_box_unchanged();
-  std::copy(domain->h, domain->h + 6, box_left);
+  // the box as this test left it (this fix's last move, or the fix it continues)
+  const std::string changed = tycore::box_changed_error(box_left.data(), domain->h);
+  if (!changed.empty()) error->all(FLERR, "fix cell/servo {}: {}", id, changed);
+  std::copy(domain->h, domain->h + 6, box_left.begin());
   // the rate of the last step carries on across runs and restarts
   set_box_rate(test.memory.last_strain_rate, cell_matrix());
-  if (update->ntimestep > test.clock_step)
-    test.elapsed_time += double(update->ntimestep - test.clock_step) * update->dt;
-  test.clock_step = update->ntimestep;
+  test.advance_clock(update->ntimestep, update->dt);
   measure();
+  run = {update->beginstep, update->endstep, update->ntimestep, run.progress_at_setup};
   try {
     const std::string warning = programme().begin_run(cell_state(), *this);
     if (!warning.empty() && comm->me == 0)
@@ -294,48 +280,24 @@ void FixCellServo::setup(int)
   }
   compute_outputs();
   compute_particle_outputs();
-  choose_rate_cap();
   check_rates();
-  progress_at_setup = output[out::PROGRESS];
+  run.progress_at_setup = output[out::PROGRESS];
   const int until = command.until.output;
   until_run_start = until >= 0 ? output[until] : NaN;
   until_direction_checked = false;
   wall_start = MPI_Wtime();
-  step_start = update->ntimestep;
   if (!record) return;
   // a new test starts its record, a continued one appends to it; the row of the run's start
   // is written unless the record holds this step already
   const bool resume = restored ||
       (continued && tycore::file_identity(record->path()) == continued_csv);
-  std::string header = "step";
-  for (int k : out::record_columns(domain->triclinic, profile.columns))
-    header += std::string(",") + out::name(k);
-  record->open(header + record->extra_header(), resume, update->ntimestep);
-  if (!record->holds(update->ntimestep)) write_row();
+  record_columns = out::record_columns(domain->triclinic, profile.columns);
+  if (!record->open(out::record_header(record_columns), resume, update->ntimestep)) write_row();
 }
-
-// the box as this test left it (this fix's last move, or the fix it continues): a change since
-// (change_box between runs) would be counted by neither the strains nor gamma
-void FixCellServo::require_box_unchanged()
-{
-  if (std::isnan(box_left[0])) return;
-  const std::string changed = tycore::box_changes(box_left, domain->h);
-  if (!changed.empty())
-    error->all(FLERR,
-               "fix cell/servo {}: the box was changed between runs ({}) by another "
-               "command (change_box?): the test's strains and shears would not count the "
-               "change; start a new test from the changed box ('continue no', or unfix the fix "
-               "first) or leave the box to the fix",
-               id, changed);
-}
-
-/* ---------------------------------------------------------------------- */
 
 void FixCellServo::end_of_step()
 {
-  if (update->ntimestep > test.clock_step)
-    test.elapsed_time += double(update->ntimestep - test.clock_step) * update->dt;
-  test.clock_step = update->ntimestep;
+  test.advance_clock(update->ntimestep, update->dt);
   measure();
   compute_outputs();
   check_until();
@@ -350,26 +312,16 @@ void FixCellServo::end_of_step()
   }
   check_equilibrium();
   // a servo at its cap whose stress error grows (tycore::CapWatch), once per run
-  if (cap_watch.due(next, command.cap_warning, contacts > 0.0) && comm->me == 0)
+  if (cap_watch.due(next, command.cap_warning, cell.contacts > 0.0) && comm->me == 0)
     error->warning(FLERR, "fix cell/servo: {}",
                    cap_watch.message(command.settings.max_strain_rate, next.stress_error,
-                                     programme().held_targets(stress), programme().largest_rate()));
-  const double fastest = next.strain_rate.cwiseAbs().maxCoeff();
-  if (fastest * update->dt > tycore::MAX_STRAIN_PER_STEP)
-    error->all(FLERR,
-               "fix cell/servo: at step {} the strain rate {:.4g} 1/s strains the cell by "
-               "{:.3g} in one step; the cell cannot follow more than {} per step: use rates "
-               "<= {:.4g} 1/s (or a smaller timestep)",
-               update->ntimestep, fastest, fastest * update->dt, tycore::MAX_STRAIN_PER_STEP,
-               tycore::MAX_STRAIN_PER_STEP / update->dt);
-  // boundary work V sigma : deps over this step (docs/theory.md §5.3; Voigt6 with engineering
-  // shears, so that sigma : deps = sum_I sigma_I deps_I)
-  const double volume = domain->xprd * domain->yprd * domain->zprd;
-  for (int k = 0; k < (domain->triclinic ? 6 : 3); ++k)
-    test.boundary_work += volume * stress(k) * next.strain_rate(k) * update->dt;
-  // the cell deforms at the next step's post_integrate, before its forces: the positions
-  // written at the end of a step are those its forces were computed at, so a restart (or a
-  // new run) recomputes the same forces in setup and continues the trajectory exactly
+                                     programme().held_targets(cell.stress),
+                                     programme().largest_rate()));
+  const std::string too_fast =
+      tycore::step_strain_error(next.strain_rate, update->dt, update->ntimestep);
+  if (!too_fast.empty()) error->all(FLERR, "fix cell/servo: {}", too_fast);
+  test.add_boundary_work(domain->xprd * domain->yprd * domain->zprd, cell.stress, next.strain_rate,
+                         update->dt, domain->triclinic ? 6 : 3);
 }
 
 // the record's row of this step, and the end of the test once 'until' is met: the last row,
@@ -382,10 +334,8 @@ void FixCellServo::check_until()
   if (due || met) write_row();
   if (met && !until_met) {
     if (comm->me == 0)
-      utils::logmesg(lmp,
-                     "fix cell/servo: {} = {:.6g} reached the target {:.6g} at step {}: "
-                     "the run stops\n",
-                     out::name(k), output[k], command.until.value, update->ntimestep);
+      utils::logmesg(lmp, "fix cell/servo: {}\n",
+                     command.until.reached_message(output[k], update->ntimestep));
     timer->force_timeout();
     until_met = true;
   }
@@ -405,51 +355,25 @@ void FixCellServo::check_equilibrium()
   const int every = profile.equilibrium_every;
   if (!(every > 0 && update->ntimestep % every == 0)) return;
   compute_particle_outputs();
-  tycore::EquilibriumSample sample;
-  sample.stress = stress.head<3>();
-  sample.target_stress = Eigen::Vector3d::Constant(profile.mean_stress);
-  sample.unbalanced_force_ratio = output[out::UNBALANCED];
-  sample.kinetic_energy_ratio = output[out::KINETIC_RATIO];
-  sample.coordination = output[out::Z];
+  const tycore::EquilibriumSample sample =
+      tycore::equilibrium_sample(cell.stress, profile.mean_stress, output);
   tycore::equilibrium_outputs(programme().check_equilibrium(sample), output);
 }
 
-// the default cap of the servo part (tycore::default_rate_cap), chosen at the first run's
-// setup, after the first measurement: targets may read the fix's outputs
-void FixCellServo::choose_rate_cap()
+// the servo's cap and the prescribed rates (tycore::settle_rates)
+void FixCellServo::check_rates()
 {
-  const double rate = programme().largest_rate();
-  if (command.settings.max_strain_rate == 0.0)
-    command.settings.max_strain_rate =
-        tycore::default_rate_cap(profile.mean_stress, programme().stress_level(), rate,
-                                 command.inertial_cap, mean_diameter, mean_density);
+  tycore::RateReport r;
   try {
-    tycore::require_valid(command.settings);
+    r = tycore::settle_rates(command, profile.mean_stress, update->dt, cell.mean_diameter,
+                             cell.mean_density);
   } catch (std::exception &e) {
     error->all(FLERR, "fix cell/servo: {}", e.what());
   }
-  // the free axes must be able to follow the prescribed ones
-  if (rate > 0.0 && command.settings.max_strain_rate < rate && comm->me == 0)
-    error->warning(FLERR,
-                   "fix cell/servo: max_rate {:.3g} is below the prescribed strain rate "
-                   "{:.3g}; the servo cannot keep up and the stress will drift (raise max_rate)",
-                   command.settings.max_strain_rate, rate);
-}
-
-// every constant prescribed rate (and a given cap) must be resolved and followed by the cell;
-// the largest must be quasi-static
-void FixCellServo::check_rates()
-{
-  std::vector<tycore::NamedRate> rates = programme().constant_rates();
-  if (command.max_rate_given) rates.push_back({"max_rate", command.settings.max_strain_rate});
-  for (const tycore::NamedRate &r : rates) {
-    const std::string refused = tycore::unresolvable_rate(r, update->dt);
-    if (!refused.empty()) error->all(FLERR, "fix cell/servo {}: {}", id, refused);
-  }
-  const std::string fast =
-      tycore::inertial_number_warning(programme().largest_rate(), programme().stress_level(),
-                                      command.inertial_cap, mean_diameter, mean_density);
-  if (!fast.empty() && comm->me == 0) error->warning(FLERR, "fix cell/servo {}: {}", id, fast);
+  if (!r.slow_cap.empty() && comm->me == 0) error->warning(FLERR, "fix cell/servo: {}", r.slow_cap);
+  if (!r.unresolvable.empty()) error->all(FLERR, "fix cell/servo {}: {}", id, r.unresolvable);
+  if (!r.inertial.empty() && comm->me == 0)
+    error->warning(FLERR, "fix cell/servo {}: {}", id, r.inertial);
 }
 
 /* ----------------------------------------------------------------------
@@ -463,15 +387,15 @@ void FixCellServo::measure()
   pressure->compute_vector();
   pressure->addstep(update->ntimestep + 1);
   // LAMMPS's pressure tensor xx yy zz xy xz yz is the compression-positive stress (Voigt6)
-  for (int k = 0; k < 6; ++k) stress(k) = pressure->vector[k];
+  for (int k = 0; k < 6; ++k) cell.stress(k) = pressure->vector[k];
   pair->refresh_cell_tallies();
   CellTallies total;
   MPI_Allreduce(const_cast<double *>(pair->cell_tallies().sum), total.sum, CellTallies::SIZE,
                 MPI_DOUBLE, MPI_SUM, world);
   std::copy(total.sum + CellTallies::STIFFNESS,
             total.sum + CellTallies::STIFFNESS + stiffness_sums.size, stiffness_sums.sum.begin());
-  contacts = total.sum[CellTallies::CONTACTS];
-  sliding = total.sum[CellTallies::SLIDING];
+  cell.contacts = total.sum[CellTallies::CONTACTS];
+  cell.sliding = total.sum[CellTallies::SLIDING];
   force_sum = total.sum[CellTallies::FORCE];
   measured_step = update->ntimestep;
 }
@@ -484,20 +408,17 @@ Eigen::Matrix3d FixCellServo::cell_matrix() const
 // the stiffness entries the tallies do not make read 0 here (the servo uses none of them)
 tycore::CellMeasurementOf<6> FixCellServo::cell_measurement() const
 {
-  return {stress, stiffness_sums.stiffness(domain->xprd * domain->yprd * domain->zprd),
+  return {cell.stress, stiffness_sums.stiffness(domain->xprd * domain->yprd * domain->zprd),
           test.strain.voigt(cell_matrix())};
 }
 
 /* ----------------------------------------------------------------------
-   the cell deforms at the next step's post_integrate, before its forces (see end_of_step):
-   h <- exp(L dt) h about the fixed box centre, atoms remapped affinely; a tilt past half its
-   box length is flipped in pre_exchange of this step (a neighbor list rebuild is forced)
+   the cell deforms at the next step's post_integrate, before its forces: the positions written
+   at the end of a step are those its forces were computed at, so that a restart (or a new run)
+   recomputes the same forces in setup and continues the trajectory exactly. h <- exp(L dt) h
+   about the fixed box centre, atoms remapped affinely; a tilt past half its box length is
+   flipped in pre_exchange of this step (a neighbor list rebuild is forced)
 ------------------------------------------------------------------------- */
-
-void FixCellServo::post_integrate()
-{
-  change_box(test.memory.last_strain_rate);
-}
 
 // domain->h_rate = L h, with which the pair reads L back as h_rate h^-1 (docs/theory.md §5.1,
 // §10.1); an orthogonal cell has only the diagonal, h_rate_k = -eps_dot_k l_k
@@ -512,8 +433,9 @@ void FixCellServo::set_box_rate(const tycore::Vector6d &rate, const Eigen::Matri
   for (int k = 0; k < 3; ++k) domain->h_ratelo[k] = -0.5 * domain->h_rate[k];
 }
 
-void FixCellServo::change_box(const tycore::Vector6d &rate)
+void FixCellServo::post_integrate()
 {
+  const tycore::Vector6d &rate = test.memory.last_strain_rate;
   domain->x2lamda(atom->nlocal);
   const double dt = update->dt;
   const Eigen::Matrix3d L = tycore::velocity_gradient(rate);
@@ -540,7 +462,7 @@ void FixCellServo::change_box(const tycore::Vector6d &rate)
   domain->set_local_box();
   domain->lamda2x(atom->nlocal);
   set_box_rate(rate, next);    // (next, not boxhi - boxlo, which differs by round-off)
-  std::copy(domain->h, domain->h + 6, box_left);
+  std::copy(domain->h, domain->h + 6, box_left.begin());
   if (domain->triclinic) {
     pending_flip = tycore::tilt_flip_of(cell_matrix());
     if (pending_flip.any()) next_reneighbor = update->ntimestep;
@@ -566,7 +488,7 @@ void FixCellServo::pre_exchange()
   irregular->migrate_atoms();
   domain->lamda2x(atom->nlocal);
   set_box_rate(test.memory.last_strain_rate, flipped);
-  std::copy(domain->h, domain->h + 6, box_left);
+  std::copy(domain->h, domain->h + 6, box_left.begin());
   pending_flip = {};
 }
 
@@ -576,53 +498,24 @@ void FixCellServo::pre_exchange()
 
 void FixCellServo::compute_outputs()
 {
-  tycore::CellSnapshot s;
-  s.stress = stress;
-  s.strain = test.strain.axial(cell_matrix());
-  s.shear = test.strain.shear;
-  s.last_strain_rate = test.memory.last_strain_rate;
-  s.volume = domain->xprd * domain->yprd * domain->zprd;
-  s.solid_volume = solid_volume;
-  s.contacts = contacts, s.sliding = sliding;
-  s.mean_diameter = mean_diameter, s.mean_density = mean_density;
-  s.plane = profile.plane;
-  tycore::principal_outputs(s, output);
-  // progress: to the 'until' target, else along the programme's course, else through the
-  // current run; ETA in wall-clock seconds
-  const bigint done_steps = update->ntimestep - step_start;
-  const double wall = MPI_Wtime() - wall_start;
-  const double wall_per_step = done_steps > 0 ? wall / done_steps : NaN;
+  cell.strain = test.strain.axial(cell_matrix());
+  cell.shear = test.strain.shear;
+  cell.last_strain_rate = test.memory.last_strain_rate;
+  cell.volume = domain->xprd * domain->yprd * domain->zprd;
+  tycore::principal_outputs(cell, output);
   output[out::TIME] = test.elapsed_time;
   output[out::BOUNDARY_WORK] = test.boundary_work;
-  tycore::cell_outputs(s, output);
+  tycore::cell_outputs(cell, output);
   programme().outputs(cell_state(), output);
-  // the wall time left at the pace of the progress made in this run (NaN until there is some)
-  const auto eta_from_progress = [&](double progress) {
-    const double gained = progress - progress_at_setup;
-    return gained > 0.0 ? wall / gained * (1.0 - progress) : NaN;
-  };
   const int k = command.until.output;
-  if (k >= 0) {
-    if (std::isnan(test.until_start)) test.until_start = output[k];
-    output[out::PROGRESS] =
-        tycore::progress_towards(test.until_start, output[k], command.until.value);
-    output[out::ETA_SECONDS] = eta_from_progress(output[out::PROGRESS]);
-  } else if (!std::isnan(programme().progress())) {
-    // a programme that knows its course's time left (a strain path) is timed by it, one that
-    // knows only its progress (k0: towards a stress) by the pace of that progress
-    output[out::PROGRESS] = programme().progress();
-    const double left = programme().remaining_time();
-    output[out::ETA_SECONDS] = std::isnan(left) ? eta_from_progress(output[out::PROGRESS])
-                                                : left / update->dt * wall_per_step;
-  } else {
-    const bigint span = update->endstep - update->beginstep;
-    output[out::PROGRESS] = span > 0 ? double(update->ntimestep - update->beginstep) / span : 1.0;
-    output[out::ETA_SECONDS] = double(update->endstep - update->ntimestep) * wall_per_step;
-  }
+  if (k >= 0 && std::isnan(test.until_start)) test.until_start = output[k];
+  run.outputs(command.until, test.until_start, programme().progress(), programme().remaining_time(),
+              update->ntimestep, MPI_Wtime() - wall_start, update->dt, output);
   output[out::EQUILIBRIUM] = programme().equilibrium_reached();
   output_step = update->ntimestep;
   // the state the test began in (a test restored from a restart file does not know it)
-  if (std::isnan(origin[out::TIME]) && !restored) std::copy(output, output + out::COUNT, origin);
+  if (std::isnan(origin[out::TIME]) && !restored)
+    std::copy(output, output + out::COUNT, origin.begin());
 }
 
 // Z, Zm, unbalanced force, kinetic stress and the kinetic energy of the load-bearing
@@ -637,7 +530,7 @@ void FixCellServo::compute_particle_outputs()
   MPI_Allreduce(local.sum, total.sum, tycore::ParticleSums::size, MPI_DOUBLE, MPI_SUM, world);
   // the kinetic ratio relative to the held p, else to the measured one
   const double p = profile.mean_stress;
-  tycore::particle_outputs(tycore::particle_statistics(total, contacts, force_sum,
+  tycore::particle_outputs(tycore::particle_statistics(total, cell.contacts, force_sum,
                                                        domain->xprd * domain->yprd * domain->zprd,
                                                        p > 0.0 ? p : output[out::P]),
                            output);
@@ -648,9 +541,7 @@ void FixCellServo::write_row()
 {
   if (!record) return;
   compute_particle_outputs();
-  std::vector<double> row;
-  for (int k : out::record_columns(domain->triclinic, profile.columns)) row.push_back(output[k]);
-  record->write(update->ntimestep, row);
+  record->write(update->ntimestep, out::record_row(record_columns, output));
 }
 
 double FixCellServo::compute_vector(int n)

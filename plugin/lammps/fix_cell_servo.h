@@ -1,10 +1,8 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   fix cell/servo: a stress-controlled, deformable periodic cell (paper sections 2-5;
-   docs/theory.md §5, §6, §10-13; docs/fix_cell_servo.md). Each step the fix measures the cell
-   (contact stress, affine stiffness, contact counts), asks its test programme for the control
-   of the step (plugin/core/cell_programmes.hpp), steps the six-component servo
-   (plugin/core/cell_servo.hpp) and moves the box (h <- exp(L dt) h, tilt flips). The physics
-   and the parsing are plugin/core's; the record of the test is fix_cell_servo_record.h.
+   fix cell/servo: a stress-controlled, deformable periodic cell (docs/fix_cell_servo.md;
+   docs/theory.md §5, §6, §10-13). Each step it measures the cell, asks its test programme for
+   the control (plugin/core/cell_programmes.hpp), steps the servo (cell_servo.hpp) and moves
+   the box; its record is fix_cell_servo_record.h.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_FIX_CELL_SERVO_H
@@ -12,10 +10,10 @@
 
 #include "fix.h"
 
-#include "cell_command.hpp"
+#include "cell_progress.hpp"
 #include "cell_restart.hpp"
-#include "csv_record.hpp"
 
+#include <array>
 #include <map>
 #include <memory>
 #include <string>
@@ -45,27 +43,29 @@ class FixCellServo : public Fix, private tycore::SettingValues {
   tycore::CellTestState test;
   bool restored = false, continued = false;
   tycore::FileIdentity continued_csv;
-  double origin[tycore::out::COUNT];    // the outputs when the test began (NaN: not known)
-  double box_left[6];                   // the box as this test last set it (NaN: not yet)
+  // the outputs when the test began (NaN: not known), the box as this test last set it (NaN:
+  // not yet)
+  std::array<double, tycore::out::COUNT> origin;
+  std::array<double, 6> box_left;
 
-  // measurements of the last step
-  tycore::Vector6d stress;
+  // the cell the outputs are computed from (the stress and contacts of the last measurement,
+  // the particles' sizes of init), the last measurement's stiffness and force sum
+  tycore::CellSnapshot cell;
   tycore::AffineStiffnessSums stiffness_sums;
   unsigned tallied_entries = 0;
-  double contacts = 0.0, sliding = 0.0, force_sum = 0.0;
+  double force_sum = 0.0;
   bigint measured_step = -1, output_step = -1, particle_step = -1;
   double output[tycore::out::COUNT];
-  double mean_diameter = 0.0, mean_density = 0.0, solid_volume = 0.0;
   class Compute *pressure = nullptr;
   std::string pressure_id, tally_id;
   class CellTallySource *pair = nullptr;
   std::unique_ptr<class CellRecord> record;
+  std::vector<int> record_columns;              // the fix's columns of the record (setup)
   std::map<std::string, int> variable_index;    // the programme's variables (init)
 
-  // the end of the test ('until'), progress, the cap watch
-  double wall_start = 0.0, progress_at_setup = 0.0;
-  double until_run_start = 0.0;
-  bigint step_start = 0;
+  // this run: progress, the end of the test ('until'), the cap watch
+  tycore::RunProgress run;
+  double wall_start = 0.0, until_run_start = 0.0;
   bool until_met = false, until_direction_checked = false;
   tycore::CapWatch cap_watch;
   tycore::TiltFlip pending_flip;
@@ -75,20 +75,16 @@ class FixCellServo : public Fix, private tycore::SettingValues {
   tycore::CellState cell_state() const;
   void take_over_replaced_fix();
   void define_named_variables(bool define);
-  std::string variable_name(int i) const;
 
   void measure();
   tycore::CellMeasurementOf<6> cell_measurement() const;
   Eigen::Matrix3d cell_matrix() const;
-  void change_box(const tycore::Vector6d &strain_rate);
   void set_box_rate(const tycore::Vector6d &strain_rate, const Eigen::Matrix3d &h);
-  void require_box_unchanged();
   void compute_outputs();
   void compute_particle_outputs();
   void write_row();
   void check_until();
   void check_equilibrium();
-  void choose_rate_cap();
   void check_rates();
 };
 

@@ -26,9 +26,9 @@ using namespace LAMMPS_NS;
 namespace {
 
 // the records of this process's fixes cell/servo, to refuse a second one on the same file
-std::vector<std::pair<const LAMMPS *, const CellRecord *>> &live_records()
+std::vector<const CellRecord *> &live_records()
 {
-  static std::vector<std::pair<const LAMMPS *, const CellRecord *>> records;
+  static std::vector<const CellRecord *> records;
   return records;
 }
 
@@ -39,16 +39,13 @@ CellRecord::CellRecord(LAMMPS *lmp, const std::string &fix_id, const std::string
     Pointers(lmp),
     fix_id_(fix_id), path_(path), every_(every), requests_(extra)
 {
-  live_records().emplace_back(lmp, this);
+  live_records().push_back(this);
 }
 
 CellRecord::~CellRecord()
 {
   auto &records = live_records();
-  records.erase(std::remove(records.begin(), records.end(),
-                            std::make_pair(static_cast<const LAMMPS *>(lmp),
-                                           static_cast<const CellRecord *>(this))),
-                records.end());
+  records.erase(std::remove(records.begin(), records.end(), this), records.end());
 }
 
 // what each request names (tycore::extra_columns_of): the columns it gives, checked
@@ -87,36 +84,28 @@ void CellRecord::resolve_extra()
   }
 }
 
-std::string CellRecord::extra_header() const
-{
-  std::string header;
-  for (const auto &e : columns_) header += "," + e.first;
-  return header;
-}
-
 // a new test starts its record; a continued one appends to it (tycore::CsvRecord: superseded
-// rows of a crashed run dropped)
-void CellRecord::open(const std::string &header, bool resume, bigint step)
+// rows of a crashed run dropped). Rank 0 alone writes
+bool CellRecord::open(const std::string &header, bool resume, bigint step)
 {
-  if (comm->me != 0 || csv_.is_open()) return;
-  refuse_aliases();
-  try {
-    if (resume)
-      csv_.resume(path_, header, step);
-    else
-      csv_.start(path_, header);
-  } catch (std::exception &e) {
-    error->one(FLERR, "fix cell/servo: {}", e.what());
+  if (comm->me == 0 && !csv_.is_open()) {
+    refuse_aliases();
+    std::string line = header;
+    for (const auto &e : columns_) line += "," + e.first;
+    try {
+      if (resume)
+        csv_.resume(path_, line, step);
+      else
+        csv_.start(path_, line);
+    } catch (std::exception &e) {
+      error->one(FLERR, "fix cell/servo: {}", e.what());
+    }
+    if (csv_.dropped_rows() > 0)
+      utils::logmesg(lmp,
+                     "fix cell/servo: {} continues at step {}: dropped {} row(s) written "
+                     "after that step by an earlier run\n",
+                     path_, step, csv_.dropped_rows());
   }
-  if (csv_.dropped_rows() > 0)
-    utils::logmesg(lmp,
-                   "fix cell/servo: {} continues at step {}: dropped {} row(s) written "
-                   "after that step by an earlier run\n",
-                   path_, step, csv_.dropped_rows());
-}
-
-bool CellRecord::holds(bigint step) const
-{
   int held = comm->me == 0 && csv_.last_step() >= step;
   MPI_Bcast(&held, 1, MPI_INT, 0, world);
   return held;
@@ -165,9 +154,7 @@ void CellRecord::refuse_aliases() const
   for (const char *restart : {out->restart1, out->restart2a, out->restart2b})
     if (restart && tycore::names_file_of(path_, restart))
       refuse("a restart file this run writes ('restart' command)");
-  for (const auto &other : live_records())
-    if (other.first == lmp && other.second != this &&
-        tycore::file_identity(other.second->path_) == record)
-      refuse(
-          fmt::format("the record of fix {} (csv {})", other.second->fix_id_, other.second->path_));
+  for (const CellRecord *other : live_records())
+    if (other->lmp == lmp && other != this && tycore::file_identity(other->path_) == record)
+      refuse(fmt::format("the record of fix {} (csv {})", other->fix_id_, other->path_));
 }

@@ -1,10 +1,8 @@
 /* -*- c++ -*- ----------------------------------------------------------
    The record of a fix cell/servo test (keywords csv and extra; docs/fix_cell_servo.md, "The
-   record"): a CSV file written and flushed row by row (tycore::CsvRecord), whose extra columns
-   are global scalars and vectors of computes and fixes and equal-style variables. It may not be
-   a file LAMMPS itself writes or reads (log and screen files, the input script, dump and restart
-   files) nor the record of another fix cell/servo, compared by file identity, so that ./c.csv,
-   a symbolic link and ../d/c.csv are seen to be c.csv.
+   record"): a CSV file written and flushed row by row (tycore::CsvRecord), with extra columns
+   of computes, fixes and variables. It may not be a file LAMMPS writes or reads, nor the record
+   of another fix cell/servo, compared by file identity (./c.csv, a link, ../d/c.csv).
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_FIX_CELL_SERVO_RECORD_H
@@ -32,11 +30,9 @@ class CellRecord : protected Pointers {
   bool due(bigint step) const { return step % every_ == 0; }
   // init: the extra columns' references, now that the computes, fixes and variables exist
   void resolve_extra();
-  // setup (rank 0): start the record, or continue it (superseded rows dropped, logged)
-  void open(const std::string &header, bool resume, bigint step);
-  // whether the record holds a row of `step` already (every rank agrees)
-  bool holds(bigint step) const;
-  std::string extra_header() const;
+  // setup: start the record (`header`: the fix's columns), or continue it (superseded rows
+  // dropped, logged); whether it holds a row of `step` already (every rank agrees)
+  bool open(const std::string &header, bool resume, bigint step);
   // a row: the extra columns are evaluated on every rank, rank 0 writes
   void write(bigint step, const std::vector<double> &values);
 

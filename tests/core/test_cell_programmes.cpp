@@ -286,6 +286,44 @@ TEST(CellProgrammes, LaboratoryTestsAlongAnAxisRefuseBadInput)
     EXPECT_EQ(refusal(fine, false), "") << fine;
 }
 
+// the two cyclic tests read RATE, CSR and the liquefaction criteria alike (one parser): the
+// same checks (docs/fix_cell_servo.md), each message naming its own test, rate and strain
+TEST(CellProgrammes, CyclicTestsShareTheirArguments)
+{
+  const std::pair<const char*, const char*> cases[] = {
+      {"cyclic_shear xz 0 0.2", "cyclic_shear shear rate gamma_dot = 0 must be positive (the "
+                                "first half cycle shears towards +tau; each reversal turns its "
+                                "sign)"},
+      {"cyclic_triaxial z 0 0.2", "cyclic_triaxial axial strain rate = 0 must be positive (the "
+                                  "first half cycle compresses the axis; each reversal turns "
+                                  "its sign)"},
+      {"cyclic_shear xz 1e-4 11", "cyclic_shear CSR = 11 is outside the accepted range [1e-06, "
+                                  "10] (below, the cyclic amplitude is lost in round-off)"},
+      {"cyclic_triaxial z 1e-4 11", "cyclic_triaxial CSR = 11 is outside the accepted range "
+                                    "[1e-06, 10] (below, the cyclic amplitude is lost in "
+                                    "round-off)"},
+      {"cyclic_shear xz 1e-4 0.2 ru_limit 1.5", "ru_limit = 1.5 is outside the accepted range "
+                                                "(0, 1]"},
+      {"cyclic_triaxial z 1e-4 0.2 ru_limit 0", "ru_limit = 0 is outside the accepted range "
+                                                "(0, 1]"},
+      {"cyclic_shear xz 1e-4 0.2 da_limit 2", "da_limit = 2 is outside the accepted range (0, "
+                                              "1] (a double-amplitude shear strain)"},
+      {"cyclic_triaxial z 1e-4 0.2 da_limit 2", "da_limit = 2 is outside the accepted range (0, "
+                                                "1] (a double-amplitude axial strain)"},
+      {"cyclic_shear xz 1e-4 0.2 one_way yes", "keyword 'one_way' applies only to "
+                                               "cyclic_triaxial"},
+  };
+  for (const auto& c : cases)
+    EXPECT_NE(refusal(c.first).find(c.second), std::string::npos)
+        << c.first << ": " << refusal(c.first);
+  // the rates the cell must resolve carry the same names
+  EXPECT_EQ(parse("cyclic_shear xz 2e-4 0.2").programme->constant_rates()[0].what,
+            "cyclic_shear shear rate gamma_dot");
+  EXPECT_EQ(parse("cyclic_triaxial z 3e-4 0.2").programme->constant_rates()[0].what,
+            "cyclic_triaxial axial strain rate");
+  EXPECT_EQ(parse("cyclic_triaxial z 3e-4 0.2").programme->constant_rates()[0].rate, 3e-4);
+}
+
 // k0 strains every component at a prescribed rate (no stiffness entries); cyclic_triaxial's
 // servo holds sigma_b - sigma_c by the traceless actuator e_b - e_c and strains the three axes:
 // C_IJ of the rows I = b, c and the columns J = x, y, z
