@@ -378,14 +378,27 @@ def test_axisymmetric_deck_holds_the_lateral_stress_and_reads_as_a_cell_record(t
         assert np.array_equal(written[name], rec[name]), name
 
 
-# ---- contacts in batches: the same bits as one contact at a time ----
+# ---- the model's own pair loop: the same bits as LIGGGHTS's loop, one contact at a time ----
 
-def specimen_deck(damping, per_contact):
+# what makes LIGGGHTS's own pair loop run the model (liggghts_loop_feature in
+# plugin/liggghts/normal_model_thornton_yin.h), and the words of the log line that names it
+LIGGGHTS_LOOP_FEATURES = {
+    # its pair/gran/local output reads each contact's force inside LIGGGHTS's loop
+    "compute pair/gran/local": "compute local all pair/gran/local id force\n",
+    # LIGGGHTS's loop adds each contact's normal force to this per-atom property
+    "the sum of normal forces (fix property/atom sum_normal_force_)":
+        "fix snf all property/atom sum_normal_force_ scalar no no no 0.\n",
+}
+OWN_LOOP_NOTE = "pair gran model thornton_yin: LIGGGHTS's pair loop evaluates the contacts, for "
+
+
+def specimen_deck(damping, extra="", steps=300):
     """The committed dense specimen (3620 spheres at 100 kPa), Gamma = 0.6 J/m^2, plain NVE for
-    300 steps with positions, velocities, forces, torques and spins dumped to 17 digits every
-    100 steps. per_contact: a `compute pair/gran/local`, whose pair/gran/local output reads each
-    contact's force inside LIGGGHTS's pair loop, so that the model evaluates the contacts one at
-    a time (normal_model_thornton_yin.h) instead of in batches."""
+    `steps` steps with positions, velocities, forces, torques and spins dumped to 17 digits every
+    100 steps, and every 50 steps to 17 digits the kinetic and rotational energies, the virial
+    stress tensor (from the pair's global virial), the number of contacts and the sum of the
+    per-atom virials (compute stress/atom: the pair's per-atom tallies). extra: lines before the run (a feature that makes
+    LIGGGHTS's loop run the model, LIGGGHTS_LOOP_FEATURES)."""
     data = os.path.join(REPO, "bench", "data", "dense_paper_100kPa.data")
     damped = ("fix m6 all property/global dampingRatioNormal peratomtypepair 1 0.2\n"
               "fix m7 all property/global dampingRatioTangential peratomtypepair 1 0.1\n"
@@ -409,30 +422,73 @@ neighbor 1.35e-5 bin
 neigh_modify every 1 delay 0 check yes
 timestep 1.4e-8
 fix integrate all nve/sphere
-{"compute local all pair/gran/local id force" if per_contact else ""}
+{extra}compute rke all erotate/sphere
+compute cn all contact/atom
+compute contacts all reduce sum c_cn
+compute p all pressure thermo_temp virial
+compute s all stress/atom
+compute stress_sum all reduce sum c_s[1] c_s[2] c_s[3] c_s[4] c_s[5] c_s[6]
 dump d all custom 100 state.dump id x y z vx vy vz fx fy fz tqx tqy tqz omegax omegay omegaz
 dump_modify d format "{fmt}" sort id
-thermo 100
-run 300
+thermo_style custom step ke c_rke c_p[1] c_p[2] c_p[3] c_p[4] c_p[5] c_p[6] c_contacts &
+    c_stress_sum[1] c_stress_sum[2] c_stress_sum[3] c_stress_sum[4] c_stress_sum[5] &
+    c_stress_sum[6]
+thermo_modify norm no format float %.17g
+thermo 50
+run {steps}
 """
 
 
+def thermo_rows(out):
+    """The thermo rows of a LIGGGHTS run's output (step first)."""
+    lines = out.splitlines()
+    start = next(k for k, l in enumerate(lines) if l.split()[:2] == ["Step", "KinEng"]) + 1
+    rows = []
+    for line in lines[start:]:
+        if not line.split() or not line.split()[0].isdigit():
+            break
+        rows.append([float(v) for v in line.split()])
+    return np.array(rows)
+
+
+@pytest.mark.no_lammps          # LIGGGHTS only
+@pytest.mark.parametrize("feature", sorted(LIGGGHTS_LOOP_FEATURES))
 @pytest.mark.parametrize("damping", [False, True])
-def test_batched_contacts_give_the_bits_of_one_contact_at_a_time(tmp_path, damping):
-    # the model gathers LIGGGHTS's contacts into batches and runs the law in SIMD lanes; where
-    # the pair loop reads each contact's force it runs them one at a time in the scalar build.
-    # Both must give the same trajectory to the bit (one atom type: the batches keep the
-    # order in which the forces are summed)
-    dumps = {}
-    for per_contact in (False, True):
-        d = tmp_path / ("one_at_a_time" if per_contact else "batched")
+def test_own_pair_loop_gives_the_bits_of_liggghts_loop(tmp_path, damping, feature):
+    # the model's own pair loop gathers the contacts into batches and runs the law in SIMD lanes;
+    # where the run needs LIGGGHTS's loop (here: `feature`), that loop hands the model one
+    # contact at a time and the law runs in the scalar build. Both must give the same trajectory,
+    # energies, virial stress and contacts to the bit (one atom type: one batch, the forces
+    # summed in the loop's order), and the log says which loop ran
+    dumps, thermo = {}, {}
+    for liggghts_loop in (False, True):
+        d = tmp_path / ("liggghts_loop" if liggghts_loop else "own_loop")
         d.mkdir()
-        liggghts_ok(None, d, text=specimen_deck(damping, per_contact))
+        extra = LIGGGHTS_LOOP_FEATURES[feature] if liggghts_loop else ""
+        out = liggghts_ok(None, d, text=specimen_deck(damping, extra))
+        notes = [l for l in out.splitlines() if l.startswith(OWN_LOOP_NOTE)]
+        assert notes == ([OWN_LOOP_NOTE + feature + " (the model's own loop is faster)"]
+                         if liggghts_loop else []), out[-2000:]
         with open(d / "state.dump") as fh:
-            dumps[per_contact] = fh.read()
+            dumps[liggghts_loop] = fh.read()
+        thermo[liggghts_loop] = thermo_rows(out)
     assert dumps[False] == dumps[True]
+    assert np.array_equal(thermo[False], thermo[True])
     rows = [l.split() for l in dumps[False].splitlines()
             if l[:1].isdigit() and len(l.split()) == 16]
     assert len(rows) == 4 * 3620
     torques = np.array([[float(v) for v in r[10:13]] for r in rows[-3620:]])
     assert np.count_nonzero(np.abs(torques).sum(axis=1)) > 1000    # tangential forces act
+    # the tallies are there: 7 rows; a compressive stress near the specimen's 100 kPa; about 5.3
+    # contacts per sphere (its coordination number, as LAMMPS reads it:
+    # test_axisymmetric_deck_...); the per-atom virials sum to -V times the global virial stress
+    # (LIGGGHTS's stress/atom is stress times volume, with the kinetic part, here 2e-6 of it)
+    t = thermo[False]
+    assert len(t) == 7
+    assert np.all(np.abs(t[:, 3:6] / 1e5 - 1.0) < 0.1)
+    assert np.all(np.abs(t[:, 9] / 3620 - 5.336) < 0.05 * 5.336)
+    with open(os.path.join(REPO, "bench", "data", "dense_paper_100kPa.data")) as fh:
+        box = [[float(v) for v in l.split()[:2]] for l in fh.read(4096).splitlines()
+               if l.endswith(("xlo xhi", "ylo yhi", "zlo zhi"))]
+    volume = np.prod([hi - lo for lo, hi in box])
+    np.testing.assert_allclose(-t[:, 10:16] / volume, t[:, 3:9], rtol=0, atol=1e-4 * 1e5)

@@ -2,13 +2,15 @@
 // Thornton-Yin law of plugin/core (docs/theory.md) in LIGGGHTS's model framework. The normal
 // model evaluates the whole contact (JKR normal force and Thornton's tangential law are one law:
 // the tangential stiffness and the sliding limit follow P + 2Pc), through the adapter
-// thornton_yin_contact.h: the contacts LIGGGHTS's pair loop hands it gathered into batches and
-// run in SIMD lanes as in the LAMMPS pair, or one at a time where the loop reads each
-// contact's force (beginPass; the same bits either way); the tangential model only names the
-// pairing, and any other pairing is refused (thornton_yin_register.cpp). Material data as
-// LIGGGHTS reads them, from fix property/global: youngsModulus and poissonsRatio (peratomtype),
-// coefficientFriction and interfaceEnergy (Gamma per surface, J/m^2; peratomtypepair), optional
-// dampingRatioNormal and dampingRatioTangential (peratomtypepair, default 0).
+// thornton_yin_contact.h: in its own pair loop (pair_loop, run by the pair style of
+// thornton_yin_register.cpp in place of LIGGGHTS's) the contacts gathered into batches and run in
+// SIMD lanes as in the LAMMPS pair; where the run needs LIGGGHTS's loop (liggghts_loop_feature),
+// one at a time as that loop hands them over (the same bits either way, one atom type). The
+// tangential model only names the pairing, and any other pairing is refused
+// (thornton_yin_register.cpp). Material data as LIGGGHTS reads them, from fix property/global:
+// youngsModulus and poissonsRatio (peratomtype), coefficientFriction and interfaceEnergy (Gamma
+// per surface, J/m^2; peratomtypepair), optional dampingRatioNormal and dampingRatioTangential
+// (peratomtypepair, default 0).
 // docs/pair_thornton_yin.md, "LIGGGHTS".
 //
 // Included from the style_*_model.h files CMake writes (cmake/Liggghts.cmake), as LIGGGHTS's
@@ -85,25 +87,11 @@ namespace ContactModels {
     void postSettings(IContactHistorySetup *, ContactModelBase *) {}
     double stressStrainExponent() { return 1.5; }
 
-    // LIGGGHTS's pair loop (PairStyles::Granular::compute_force) hands the model one contact at a
-    // time and adds the contact's ForceData to f and torque right after the call. Where nothing
-    // else of the loop reads a contact's force then (contact force storage, the pair/gran/local
-    // compute, the sum of normal forces), the model gathers the contacts instead, one batch per
-    // type pair, runs the law on a full batch in SIMD lanes as the LAMMPS pair does, and adds
-    // each contact's forces as the loop would have (endPass: the last, partial batches)
-    void beginPass(SurfacesIntersectData &sidata, ForceData &, ForceData &)
-    {
-      batching = pair_gran && !pair_gran->storeContactForces() &&
-          !pair_gran->storeContactForcesStress() && !pair_gran->store_sum_normal_force() &&
-          !pair_gran->cpl();
-      step = sidata.shearupdate != 0;
-      if (batches.size() != constants.size()) batches.resize(constants.size());
-    }
-    void endPass(SurfacesIntersectData &, ForceData &, ForceData &)
-    {
-      for (auto &bt : batches)
-        if (bt && bt->n) run_batch(*bt);
-    }
+    // LIGGGHTS's pair loop (PairStyles::Granular::compute_force), where it runs, hands the model
+    // one contact at a time (surfacesIntersect, surfacesClose) and reads the contact's ForceData
+    // right after the call
+    void beginPass(SurfacesIntersectData &, ForceData &, ForceData &) {}
+    void endPass(SurfacesIntersectData &, ForceData &, ForceData &) {}
 
     // material pairs from fix property/global, checked; the contact distance for tension
     void connectToProperties(PropertyRegistry &registry)
@@ -167,10 +155,7 @@ namespace ContactModels {
     void surfacesIntersect(SurfacesIntersectData &sidata, ForceData &i_forces, ForceData &j_forces)
     {
       if (!sidata.contact_history) return;
-      if (batching)
-        gather(sidata);    // the loop adds the (zero) ForceData; run_batch the force
-      else
-        contact(sidata, i_forces, j_forces);
+      contact(sidata, i_forces, j_forces);
     }
 
     // not overlapping, within the contact distance: a touched contact in tension (delta_f < delta
@@ -182,13 +167,8 @@ namespace ContactModels {
       if (!(*scdata.contact_flags & CONTACT_NORMAL_MODEL) &&
           scdata.rsq > scdata.radsum * scdata.radsum)
         return;
-      if (batching) {
-        gather(scdata);
-        scdata.has_force_update = false;    // run_batch adds the force
-      } else {
-        contact(scdata, i_forces, j_forces);
-        scdata.has_force_update = true;
-      }
+      contact(scdata, i_forces, j_forces);
+      scdata.has_force_update = true;
     }
 
     // What in this force evaluation needs LIGGGHTS's own pair loop (Granular::compute_force)
@@ -211,13 +191,14 @@ namespace ContactModels {
     }
 
     // LIGGGHTS's pair loop for this law alone, in place of Granular::compute_force where
-    // liggghts_loop_feature finds nothing (ThorntonYinPair, thornton_yin_register.cpp): the same
-    // pairs as that loop hands the model, in its order, each gathered into the batch of its type
-    // pair as gather() does, the batches run by run_batch as from that loop, so that the forces
-    // are summed in the same order (the same bits), without that loop's per-pair contact record
-    // and calls. A pair is the law's when it overlaps (rsq < radsum^2: LIGGGHTS's
-    // surfacesIntersect) or, within the contact distance (surfacesClose), was touched before or
-    // touches (delta = 0)
+    // liggghts_loop_feature finds nothing (ThorntonYinPair, thornton_yin_register.cpp): the pairs
+    // that loop hands the model, in its order, gathered into batches (one per type pair) that run
+    // in SIMD lanes as in the LAMMPS pair, each contact's force and torques then added as that
+    // loop adds them (run_batch), without its per-pair contact record and calls. A pair is the
+    // law's when it overlaps (rsq < radsum^2: LIGGGHTS's surfacesIntersect) or, within the
+    // contact distance (surfacesClose), was touched before or touches (delta = 0). With one atom
+    // type the forces are summed in LIGGGHTS's order, the same bits; with several, the batches
+    // of the type pairs interleave, the sums in another order (round-off)
     void pair_loop(PairGran &pg)
     {
       step = pg.shearupdate() != 0;
@@ -249,8 +230,8 @@ namespace ContactModels {
       int *flags[tycore::batch_lanes];
       double *history[tycore::batch_lanes];
     };
-    PairGran *pair_gran;    // the pair style whose loop calls the model
-    bool batching = false, step = true;
+    PairGran *pair_gran;    // the pair style: its virial and energy tallies
+    bool step = true;       // this pass advances the contacts (not the setup pass)
     std::vector<std::unique_ptr<Batch>> batches;    // per type pair, made at its first contact
     const tycore::Isa isa = tycore::best_isa();
 
@@ -417,21 +398,12 @@ namespace ContactModels {
       const int l = bt.n;
       const tycore::SphereState si{atom->v[i], atom->omega[i], atom->radius[i], atom->rmass[i]};
       const tycore::SphereState sj{atom->v[j], atom->omega[j], atom->radius[j], atom->rmass[j]};
-      tycore::gather_contact<Damped>(bt.b, l, del, rsq, si, sj,
-                                     !(*flags & CONTACT_NORMAL_MODEL));
+      tycore::gather_contact<Damped>(bt.b, l, del, rsq, si, sj, !(*flags & CONTACT_NORMAL_MODEL));
       tycore::load_history(bt.b, l, history);
       bt.history[l] = history;
       bt.i[l] = i, bt.j[l] = j;
       bt.flags[l] = flags;
       if (++bt.n == tycore::batch_lanes) run_batch(bt);
-    }
-
-    // a contact from LIGGGHTS's loop into the batch of its type pair
-    void gather(SurfacesCloseData &d)
-    {
-      if (!d.computeflag) return;
-      gather_into<true>(batch_of(d.itype * (ntypes_ + 1) + d.jtype), d.i, d.j, d.delta, d.rsq,
-                        d.contact_flags, &d.contact_history[history_offset]);
     }
 
     // pair_loop's walk over LIGGGHTS's neighbour list and its contact history (fix

@@ -1,7 +1,8 @@
 // Registers `pair_style gran model thornton_yin tangential thornton_yin` into Debian's unmodified
 // libliggghts.so.3 when this library is loaded (a static initialiser, as LIGGGHTS's own
 // granular_styles.h registers its models): the model names into the contact model factory, the
-// pair style of the pairing into the granular pair style factory. Any other pairing with
+// pair style of the pairing (ThorntonYinPair: LIGGGHTS's Granular with the model's own pair
+// loop) into the granular pair style factory. Any other pairing with
 // thornton_yin (another tangential, normal, cohesion or rolling model) is registered as an
 // error that names what to write instead.
 // the include order of LIGGGHTS's granular_styles.h: contact_models.h defines our model classes
@@ -65,12 +66,12 @@ class ThorntonYinPair : public LiggghtsLoop {
   {
     noted = feature;
     if (lmp_->comm->me != 0) return;
-    const std::string line =
-        feature ? std::string("pair gran model thornton_yin: LIGGGHTS's pair loop evaluates the "
-                              "contacts, for ") +
-                feature + " (the model's own loop is faster)\n"
-                : std::string("pair gran model thornton_yin: the model's own pair loop "
-                              "evaluates the contacts\n");
+    const std::string line = feature
+        ? std::string("pair gran model thornton_yin: LIGGGHTS's pair loop evaluates the "
+                      "contacts, for ") +
+            feature + " (the model's own loop is faster)\n"
+        : std::string("pair gran model thornton_yin: the model's own pair loop "
+                      "evaluates the contacts\n");
     for (FILE *out : {lmp_->screen, lmp_->logfile})
       if (out) std::fputs(line.c_str(), out);
   }
