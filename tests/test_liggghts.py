@@ -337,6 +337,18 @@ def test_bad_input_stops_with_a_named_error(tmp_path, change, pair, message):
 
 
 @pytest.mark.no_lammps          # LIGGGHTS only
+def test_multicontact_radii_stop_with_liggghts_error(tmp_path):
+    # the one feature of LIGGGHTS's loop with no test of its own below: fix multicontact/halfspace
+    # needs the multicontact surface model, which thornton_yin does not pair with
+    text = (TWO_SPHERES_HEAD + "".join(f"fix p{k} all property/global {name} {value}\n"
+                                       for k, (name, value) in enumerate(GOOD.items()))
+            + "pair_style gran model thornton_yin tangential thornton_yin\npair_coeff * *\n"
+            "fix mc all multicontact/halfspace\nrun 10\n")
+    rc, out = run_liggghts(None, tmp_path, text=text)
+    assert "ERROR" in out and "Surface model is not multicontact" in out, out[-2000:]
+
+
+@pytest.mark.no_lammps          # LIGGGHTS only
 def test_axisymmetric_deck_holds_the_lateral_stress_and_reads_as_a_cell_record(tmp_path):
     # inputs/liggghts/axisym.in on the committed 3620-sphere dense specimen to 0.2 % axial
     # strain: LIGGGHTS's fix deform shortens x at the true rate 5e-5 1/s while its lateral edges
@@ -388,6 +400,9 @@ LIGGGHTS_LOOP_FEATURES = {
     # LIGGGHTS's loop adds each contact's normal force to this per-atom property
     "the sum of normal forces (fix property/atom sum_normal_force_)":
         "fix snf all property/atom sum_normal_force_ scalar no no no 0.\n",
+    # LIGGGHTS's loop stores each contact's force for this fix's coarse-grained stress
+    "contact forces stored for a stress (fix continuum/weighted)":
+        "fix cw all continuum/weighted kernel_radius 1e-4 compute stress\n",
 }
 OWN_LOOP_NOTE = "pair gran model thornton_yin: LIGGGHTS's pair loop evaluates the contacts, for "
 

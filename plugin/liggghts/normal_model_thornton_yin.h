@@ -182,7 +182,7 @@ namespace ContactModels {
       if (pg.storeContactForces())
         return "contact forces stored per contact (requested by a fix, e.g. multisphere)";
       if (pg.storeContactForcesStress())
-        return "contact forces stored for a stress (fix ave/euler/stress, continuum/weighted)";
+        return "contact forces stored for a stress (fix continuum/weighted)";
       if (pg.store_sum_normal_force())
         return "the sum of normal forces (fix property/atom sum_normal_force_)";
       if (pg.storeSumDelta()) return "multi-contact radii (fix multicontact/halfspace)";
