@@ -1,7 +1,9 @@
 """The Thornton-Yin model in Debian's LIGGGHTS 3.8 (plugin/liggghts/, launcher build/bin/tyliggghts)
 against pair thornton/yin in LAMMPS (same steps, same integrator settings) and the closed-form
 JKR values of tests/jkr_reference.py; history through neighbour rebuilds, 1 vs 2 ranks and a
-restart; bad input named. Skipped when the launcher was not built (no LIGGGHTS found by CMake).
+restart; bad input named; the model's own pair loop against LIGGGHTS's loop (which runs the
+model where a feature needs it). Skipped when the launcher was not built (no LIGGGHTS found by
+CMake).
 """
 import math
 import os
@@ -507,3 +509,51 @@ def test_own_pair_loop_gives_the_bits_of_liggghts_loop(tmp_path, damping, featur
                if l.endswith(("xlo xhi", "ylo yhi", "zlo zhi"))]
     volume = np.prod([hi - lo for lo, hi in box])
     np.testing.assert_allclose(-t[:, 10:16] / volume, t[:, 3:9], rtol=0, atol=1e-4 * 1e5)
+
+
+def two_type_lattice_deck(extra):
+    """lattice_deck with two materials (half the spheres, at random, of type 2: stiffer, more
+    friction, less adhesion; the unlike pairs in between) for 300 steps, the final state dumped
+    to 17 digits; extra: lines before the runs."""
+    deck = lattice_deck(300).replace("create_box 1 box", "create_box 2 box").replace(
+        "set atom * diameter 2.0e-4 density 2650\n",
+        "set atom * diameter 2.0e-4 density 2650\nset group all type/fraction 2 0.5 4321\n")
+    materials = """fix m1 all property/global youngsModulus peratomtype 70e9
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientFriction peratomtypepair 1 0.3
+fix m4 all property/global interfaceEnergy peratomtypepair 1 0.3
+"""
+    assert materials in deck
+    deck = deck.replace(materials, """fix m1 all property/global youngsModulus peratomtype 70e9 200e9
+fix m2 all property/global poissonsRatio peratomtype 0.3 0.29
+fix m3 all property/global coefficientFriction peratomtypepair 2 0.3 0.346 0.346 0.4
+fix m4 all property/global interfaceEnergy peratomtypepair 2 0.3 0.212 0.212 0.15
+""")
+    fmt = " ".join(["%d"] + ["%.17g"] * 9)
+    deck = deck.replace("fix integrate all nve/sphere\n", "fix integrate all nve/sphere\n" + extra)
+    return deck.replace("dump_modify forces sort id\n",
+                        f'dump_modify forces sort id format "{fmt}"\n')
+
+
+@pytest.mark.no_lammps          # LIGGGHTS only
+def test_own_pair_loop_with_two_types_agrees_with_liggghts_loop_to_round_off(tmp_path):
+    # with several atom types the model's loop sums each sphere's contact forces in another order
+    # than LIGGGHTS's loop (its batches of the type pairs interleave): the same trajectory to
+    # round-off. Bound: 1e-12 of each quantity's scale over 300 steps of this sheared lattice, a
+    # thousand times the 1e-15 of one reordered sum (observed: 6e-15 for forces and spins), as
+    # the two engines' virial stresses on the dense specimen, summed in different orders, agree
+    # to 2e-12 of |p| over 2000 steps (bench/results/liggghts_loop_assembly.json)
+    states = {}
+    for liggghts_loop in (False, True):
+        d = tmp_path / ("liggghts_loop" if liggghts_loop else "own_loop")
+        d.mkdir()
+        extra = LIGGGHTS_LOOP_FEATURES["compute pair/gran/local"] if liggghts_loop else ""
+        out = liggghts_ok(None, d, text=two_type_lattice_deck(extra))
+        assert any(l.startswith(OWN_LOOP_NOTE) for l in out.splitlines()) == liggghts_loop
+        states[liggghts_loop] = final_state(d)
+    a, b = states[False], states[True]
+    assert a.shape == (512, 10) and np.array_equal(a[:, 0], b[:, 0])
+    for cols in (slice(1, 4), slice(4, 7), slice(7, 10)):    # positions, forces, spins
+        scale = np.abs(b[:, cols]).max() if cols.start > 1 else 2e-4
+        assert scale > 0
+        assert np.abs(a[:, cols] - b[:, cols]).max() <= 1e-12 * scale, cols
