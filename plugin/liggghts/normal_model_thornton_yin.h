@@ -179,8 +179,7 @@ namespace ContactModels {
     const char *liggghts_loop_feature(PairGran &pg) const
     {
       if (pg.cpl() || !pg.computeflag()) return "compute pair/gran/local";
-      if (pg.storeContactForces())
-        return "contact forces stored per contact (requested by a fix, e.g. multisphere)";
+      if (pg.storeContactForces()) return "contact forces stored per contact (requested by a fix)";
       if (pg.storeContactForcesStress())
         return "contact forces stored for a stress (fix continuum/weighted)";
       if (pg.store_sum_normal_force())
