@@ -152,9 +152,10 @@ for _label, _gamma in (("G=0.6", GAMMA), ("G=0", 0.0)):
     CASES[f"liggghts thornton_yin {_label}"] = (
         _LIGGGHTS_MATERIAL + f"fix m5 all property/global interfaceEnergy peratomtypepair 1 {_gamma}\n"
         "pair_style gran model thornton_yin tangential thornton_yin\npair_coeff * *\n")
-# the same with LIGGGHTS's pair/gran/local compute defined (never invoked): its loop then reads
-# each contact's force as the model returns it, so the model runs the contacts one at a time in
-# the scalar build instead of in batches (plugin/liggghts/normal_model_thornton_yin.h)
+# the same with LIGGGHTS's pair/gran/local compute defined (never invoked): LIGGGHTS's own pair
+# loop then runs, reading each contact's force as the model returns it, so the model runs the
+# contacts one at a time in the scalar build instead of in batches in its own pair loop
+# (plugin/liggghts/normal_model_thornton_yin.h, liggghts_loop_feature)
 for _label in ("G=0.6", "G=0"):
     CASES[f"liggghts thornton_yin {_label} one at a time"] = (
         CASES[f"liggghts thornton_yin {_label}"]

@@ -1,7 +1,9 @@
 """The Thornton-Yin model in Debian's LIGGGHTS 3.8 (plugin/liggghts/, launcher build/bin/tyliggghts)
 against pair thornton/yin in LAMMPS (same steps, same integrator settings) and the closed-form
 JKR values of tests/jkr_reference.py; history through neighbour rebuilds, 1 vs 2 ranks and a
-restart; bad input named. Skipped when the launcher was not built (no LIGGGHTS found by CMake).
+restart; bad input named; the model's own pair loop against LIGGGHTS's loop (which runs the
+model where a feature needs it). Skipped when the launcher was not built (no LIGGGHTS found by
+CMake).
 """
 import math
 import os
@@ -337,6 +339,18 @@ def test_bad_input_stops_with_a_named_error(tmp_path, change, pair, message):
 
 
 @pytest.mark.no_lammps          # LIGGGHTS only
+def test_multicontact_radii_stop_with_liggghts_error(tmp_path):
+    # the one feature of LIGGGHTS's loop with no test of its own below: fix multicontact/halfspace
+    # needs the multicontact surface model, which thornton_yin does not pair with
+    text = (TWO_SPHERES_HEAD + "".join(f"fix p{k} all property/global {name} {value}\n"
+                                       for k, (name, value) in enumerate(GOOD.items()))
+            + "pair_style gran model thornton_yin tangential thornton_yin\npair_coeff * *\n"
+            "fix mc all multicontact/halfspace\nrun 10\n")
+    rc, out = run_liggghts(None, tmp_path, text=text)
+    assert "ERROR" in out and "Surface model is not multicontact" in out, out[-2000:]
+
+
+@pytest.mark.no_lammps          # LIGGGHTS only
 def test_axisymmetric_deck_holds_the_lateral_stress_and_reads_as_a_cell_record(tmp_path):
     # inputs/liggghts/axisym.in on the committed 3620-sphere dense specimen to 0.2 % axial
     # strain: LIGGGHTS's fix deform shortens x at the true rate 5e-5 1/s while its lateral edges
@@ -378,14 +392,30 @@ def test_axisymmetric_deck_holds_the_lateral_stress_and_reads_as_a_cell_record(t
         assert np.array_equal(written[name], rec[name]), name
 
 
-# ---- contacts in batches: the same bits as one contact at a time ----
+# ---- the model's own pair loop: the same bits as LIGGGHTS's loop, one contact at a time ----
 
-def specimen_deck(damping, per_contact):
+# what makes LIGGGHTS's own pair loop run the model (liggghts_loop_feature in
+# plugin/liggghts/normal_model_thornton_yin.h), and the words of the log line that names it
+LIGGGHTS_LOOP_FEATURES = {
+    # its pair/gran/local output reads each contact's force inside LIGGGHTS's loop
+    "compute pair/gran/local": "compute local all pair/gran/local id force\n",
+    # LIGGGHTS's loop adds each contact's normal force to this per-atom property
+    "the sum of normal forces (fix property/atom sum_normal_force_)":
+        "fix snf all property/atom sum_normal_force_ scalar no no no 0.\n",
+    # LIGGGHTS's loop stores each contact's force for this fix's coarse-grained stress
+    "contact forces stored for a stress (fix continuum/weighted)":
+        "fix cw all continuum/weighted kernel_radius 1e-4 compute stress\n",
+}
+OWN_LOOP_NOTE = "pair gran model thornton_yin: LIGGGHTS's pair loop evaluates the contacts, for "
+
+
+def specimen_deck(damping, extra="", steps=300):
     """The committed dense specimen (3620 spheres at 100 kPa), Gamma = 0.6 J/m^2, plain NVE for
-    300 steps with positions, velocities, forces, torques and spins dumped to 17 digits every
-    100 steps. per_contact: a `compute pair/gran/local`, whose pair/gran/local output reads each
-    contact's force inside LIGGGHTS's pair loop, so that the model evaluates the contacts one at
-    a time (normal_model_thornton_yin.h) instead of in batches."""
+    `steps` steps with positions, velocities, forces, torques and spins dumped to 17 digits every
+    100 steps, and every 50 steps to 17 digits the kinetic and rotational energies, the virial
+    stress tensor (from the pair's global virial), the number of contacts and the sum of the
+    per-atom virials (compute stress/atom: the pair's per-atom tallies). extra: lines before the run (a feature that makes
+    LIGGGHTS's loop run the model, LIGGGHTS_LOOP_FEATURES)."""
     data = os.path.join(REPO, "bench", "data", "dense_paper_100kPa.data")
     damped = ("fix m6 all property/global dampingRatioNormal peratomtypepair 1 0.2\n"
               "fix m7 all property/global dampingRatioTangential peratomtypepair 1 0.1\n"
@@ -409,30 +439,121 @@ neighbor 1.35e-5 bin
 neigh_modify every 1 delay 0 check yes
 timestep 1.4e-8
 fix integrate all nve/sphere
-{"compute local all pair/gran/local id force" if per_contact else ""}
+{extra}compute rke all erotate/sphere
+compute cn all contact/atom
+compute contacts all reduce sum c_cn
+compute p all pressure thermo_temp virial
+compute s all stress/atom
+compute stress_sum all reduce sum c_s[1] c_s[2] c_s[3] c_s[4] c_s[5] c_s[6]
 dump d all custom 100 state.dump id x y z vx vy vz fx fy fz tqx tqy tqz omegax omegay omegaz
 dump_modify d format "{fmt}" sort id
-thermo 100
-run 300
+thermo_style custom step ke c_rke c_p[1] c_p[2] c_p[3] c_p[4] c_p[5] c_p[6] c_contacts &
+    c_stress_sum[1] c_stress_sum[2] c_stress_sum[3] c_stress_sum[4] c_stress_sum[5] &
+    c_stress_sum[6]
+thermo_modify norm no format float %.17g
+thermo 50
+run {steps}
 """
 
 
+def thermo_rows(out):
+    """The thermo rows of a LIGGGHTS run's output (step first)."""
+    lines = out.splitlines()
+    start = next(k for k, l in enumerate(lines) if l.split()[:2] == ["Step", "KinEng"]) + 1
+    rows = []
+    for line in lines[start:]:
+        if not line.split() or not line.split()[0].isdigit():
+            break
+        rows.append([float(v) for v in line.split()])
+    return np.array(rows)
+
+
+@pytest.mark.no_lammps          # LIGGGHTS only
+@pytest.mark.parametrize("feature", sorted(LIGGGHTS_LOOP_FEATURES))
 @pytest.mark.parametrize("damping", [False, True])
-def test_batched_contacts_give_the_bits_of_one_contact_at_a_time(tmp_path, damping):
-    # the model gathers LIGGGHTS's contacts into batches and runs the law in SIMD lanes; where
-    # the pair loop reads each contact's force it runs them one at a time in the scalar build.
-    # Both must give the same trajectory to the bit (one atom type: the batches keep the
-    # order in which the forces are summed)
-    dumps = {}
-    for per_contact in (False, True):
-        d = tmp_path / ("one_at_a_time" if per_contact else "batched")
+def test_own_pair_loop_gives_the_bits_of_liggghts_loop(tmp_path, damping, feature):
+    # the model's own pair loop gathers the contacts into batches and runs the law in SIMD lanes;
+    # where the run needs LIGGGHTS's loop (here: `feature`), that loop hands the model one
+    # contact at a time and the law runs in the scalar build. Both must give the same trajectory,
+    # energies, virial stress and contacts to the bit (one atom type: one batch, the forces
+    # summed in the loop's order), and the log says which loop ran
+    dumps, thermo = {}, {}
+    for liggghts_loop in (False, True):
+        d = tmp_path / ("liggghts_loop" if liggghts_loop else "own_loop")
         d.mkdir()
-        liggghts_ok(None, d, text=specimen_deck(damping, per_contact))
+        extra = LIGGGHTS_LOOP_FEATURES[feature] if liggghts_loop else ""
+        out = liggghts_ok(None, d, text=specimen_deck(damping, extra))
+        notes = [l for l in out.splitlines() if l.startswith(OWN_LOOP_NOTE)]
+        assert notes == ([OWN_LOOP_NOTE + feature + " (the model's own loop is faster)"]
+                         if liggghts_loop else []), out[-2000:]
         with open(d / "state.dump") as fh:
-            dumps[per_contact] = fh.read()
+            dumps[liggghts_loop] = fh.read()
+        thermo[liggghts_loop] = thermo_rows(out)
     assert dumps[False] == dumps[True]
+    assert np.array_equal(thermo[False], thermo[True])
     rows = [l.split() for l in dumps[False].splitlines()
             if l[:1].isdigit() and len(l.split()) == 16]
     assert len(rows) == 4 * 3620
     torques = np.array([[float(v) for v in r[10:13]] for r in rows[-3620:]])
     assert np.count_nonzero(np.abs(torques).sum(axis=1)) > 1000    # tangential forces act
+    # the tallies are there: 7 rows; a compressive stress near the specimen's 100 kPa; about 5.3
+    # contacts per sphere (its coordination number, as LAMMPS reads it:
+    # test_axisymmetric_deck_...); the per-atom virials sum to -V times the global virial stress
+    # (LIGGGHTS's stress/atom is stress times volume, with the kinetic part, here 2e-6 of it)
+    t = thermo[False]
+    assert len(t) == 7
+    assert np.all(np.abs(t[:, 3:6] / 1e5 - 1.0) < 0.1)
+    assert np.all(np.abs(t[:, 9] / 3620 - 5.336) < 0.05 * 5.336)
+    with open(os.path.join(REPO, "bench", "data", "dense_paper_100kPa.data")) as fh:
+        box = [[float(v) for v in l.split()[:2]] for l in fh.read(4096).splitlines()
+               if l.endswith(("xlo xhi", "ylo yhi", "zlo zhi"))]
+    volume = np.prod([hi - lo for lo, hi in box])
+    np.testing.assert_allclose(-t[:, 10:16] / volume, t[:, 3:9], rtol=0, atol=1e-4 * 1e5)
+
+
+def two_type_lattice_deck(extra):
+    """lattice_deck with two materials (half the spheres, at random, of type 2: stiffer, more
+    friction, less adhesion; the unlike pairs in between) for 300 steps, the final state dumped
+    to 17 digits; extra: lines before the runs."""
+    deck = lattice_deck(300).replace("create_box 1 box", "create_box 2 box").replace(
+        "set atom * diameter 2.0e-4 density 2650\n",
+        "set atom * diameter 2.0e-4 density 2650\nset group all type/fraction 2 0.5 4321\n")
+    materials = """fix m1 all property/global youngsModulus peratomtype 70e9
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientFriction peratomtypepair 1 0.3
+fix m4 all property/global interfaceEnergy peratomtypepair 1 0.3
+"""
+    assert materials in deck
+    deck = deck.replace(materials, """fix m1 all property/global youngsModulus peratomtype 70e9 200e9
+fix m2 all property/global poissonsRatio peratomtype 0.3 0.29
+fix m3 all property/global coefficientFriction peratomtypepair 2 0.3 0.346 0.346 0.4
+fix m4 all property/global interfaceEnergy peratomtypepair 2 0.3 0.212 0.212 0.15
+""")
+    fmt = " ".join(["%d"] + ["%.17g"] * 9)
+    deck = deck.replace("fix integrate all nve/sphere\n", "fix integrate all nve/sphere\n" + extra)
+    return deck.replace("dump_modify forces sort id\n",
+                        f'dump_modify forces sort id format "{fmt}"\n')
+
+
+@pytest.mark.no_lammps          # LIGGGHTS only
+def test_own_pair_loop_with_two_types_agrees_with_liggghts_loop_to_round_off(tmp_path):
+    # with several atom types the model's loop sums each sphere's contact forces in another order
+    # than LIGGGHTS's loop (its batches of the type pairs interleave): the same trajectory to
+    # round-off. Bound: 1e-12 of each quantity's scale over 300 steps of this sheared lattice, a
+    # thousand times the 1e-15 of one reordered sum (observed: 6e-15 for forces and spins), as
+    # the two engines' virial stresses on the dense specimen, summed in different orders, agree
+    # to 2e-12 of |p| over 2000 steps (bench/results/liggghts_loop_assembly.json)
+    states = {}
+    for liggghts_loop in (False, True):
+        d = tmp_path / ("liggghts_loop" if liggghts_loop else "own_loop")
+        d.mkdir()
+        extra = LIGGGHTS_LOOP_FEATURES["compute pair/gran/local"] if liggghts_loop else ""
+        out = liggghts_ok(None, d, text=two_type_lattice_deck(extra))
+        assert any(l.startswith(OWN_LOOP_NOTE) for l in out.splitlines()) == liggghts_loop
+        states[liggghts_loop] = final_state(d)
+    a, b = states[False], states[True]
+    assert a.shape == (512, 10) and np.array_equal(a[:, 0], b[:, 0])
+    for cols in (slice(1, 4), slice(4, 7), slice(7, 10)):    # positions, forces, spins
+        scale = np.abs(b[:, cols]).max() if cols.start > 1 else 2e-4
+        assert scale > 0
+        assert np.abs(a[:, cols] - b[:, cols]).max() <= 1e-12 * scale, cols

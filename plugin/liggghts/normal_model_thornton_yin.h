@@ -2,13 +2,15 @@
 // Thornton-Yin law of plugin/core (docs/theory.md) in LIGGGHTS's model framework. The normal
 // model evaluates the whole contact (JKR normal force and Thornton's tangential law are one law:
 // the tangential stiffness and the sliding limit follow P + 2Pc), through the adapter
-// thornton_yin_contact.h: the contacts LIGGGHTS's pair loop hands it gathered into batches and
-// run in SIMD lanes as in the LAMMPS pair, or one at a time where the loop reads each
-// contact's force (beginPass; the same bits either way); the tangential model only names the
-// pairing, and any other pairing is refused (thornton_yin_register.cpp). Material data as
-// LIGGGHTS reads them, from fix property/global: youngsModulus and poissonsRatio (peratomtype),
-// coefficientFriction and interfaceEnergy (Gamma per surface, J/m^2; peratomtypepair), optional
-// dampingRatioNormal and dampingRatioTangential (peratomtypepair, default 0).
+// thornton_yin_contact.h: in its own pair loop (pair_loop, run by the pair style of
+// thornton_yin_register.cpp in place of LIGGGHTS's) the contacts gathered into batches and run in
+// SIMD lanes as in the LAMMPS pair; where the run needs LIGGGHTS's loop (liggghts_loop_feature),
+// one at a time as that loop hands them over (the same bits either way, one atom type). The
+// tangential model only names the pairing, and any other pairing is refused
+// (thornton_yin_register.cpp). Material data as LIGGGHTS reads them, from fix property/global:
+// youngsModulus and poissonsRatio (peratomtype), coefficientFriction and interfaceEnergy (Gamma
+// per surface, J/m^2; peratomtypepair), optional dampingRatioNormal and dampingRatioTangential
+// (peratomtypepair, default 0).
 // docs/pair_thornton_yin.md, "LIGGGHTS".
 //
 // Included from the style_*_model.h files CMake writes (cmake/Liggghts.cmake), as LIGGGHTS's
@@ -31,6 +33,7 @@ TANGENTIAL_MODEL(TANGENTIAL_THORNTON_YIN, thornton_yin, 31)
 #include "fix_property_global.h"
 #include "force.h"
 #include "modify.h"
+#include "neigh_list.h"
 #include "neighbor.h"
 #include "pair_gran.h"
 #include "update.h"
@@ -65,31 +68,30 @@ namespace ContactModels {
         error->all(FLERR,
                    "model thornton_yin: walls (fix wall/gran) are not supported; the law "
                    "is for sphere-sphere contacts");
+      constructed() = this;
+    }
+    ~NormalModel()
+    {
+      if (constructed() == this) constructed() = nullptr;
+    }
+
+    // the model last constructed: the pair style of this law (ThorntonYinPair,
+    // thornton_yin_register.cpp) constructs it with its ContactModel and takes it from here
+    static NormalModel *&constructed()
+    {
+      static NormalModel *model = nullptr;
+      return model;
     }
 
     void registerSettings(Settings &) {}
     void postSettings(IContactHistorySetup *, ContactModelBase *) {}
     double stressStrainExponent() { return 1.5; }
 
-    // LIGGGHTS's pair loop (PairStyles::Granular::compute_force) hands the model one contact at a
-    // time and adds the contact's ForceData to f and torque right after the call. Where nothing
-    // else of the loop reads a contact's force then (contact force storage, the pair/gran/local
-    // compute, the sum of normal forces), the model gathers the contacts instead, one batch per
-    // type pair, runs the law on a full batch in SIMD lanes as the LAMMPS pair does, and adds
-    // each contact's forces as the loop would have (endPass: the last, partial batches)
-    void beginPass(SurfacesIntersectData &sidata, ForceData &, ForceData &)
-    {
-      batching = pair_gran && !pair_gran->storeContactForces() &&
-          !pair_gran->storeContactForcesStress() && !pair_gran->store_sum_normal_force() &&
-          !pair_gran->cpl();
-      step = sidata.shearupdate != 0;
-      if (batches.size() != constants.size()) batches.resize(constants.size());
-    }
-    void endPass(SurfacesIntersectData &, ForceData &, ForceData &)
-    {
-      for (auto &bt : batches)
-        if (bt && bt->n) run_batch(*bt);
-    }
+    // LIGGGHTS's pair loop (PairStyles::Granular::compute_force), where it runs, hands the model
+    // one contact at a time (surfacesIntersect, surfacesClose) and reads the contact's ForceData
+    // right after the call
+    void beginPass(SurfacesIntersectData &, ForceData &, ForceData &) {}
+    void endPass(SurfacesIntersectData &, ForceData &, ForceData &) {}
 
     // material pairs from fix property/global, checked; the contact distance for tension
     void connectToProperties(PropertyRegistry &registry)
@@ -153,10 +155,7 @@ namespace ContactModels {
     void surfacesIntersect(SurfacesIntersectData &sidata, ForceData &i_forces, ForceData &j_forces)
     {
       if (!sidata.contact_history) return;
-      if (batching)
-        gather(sidata);    // the loop adds the (zero) ForceData; run_batch the force
-      else
-        contact(sidata, i_forces, j_forces);
+      contact(sidata, i_forces, j_forces);
     }
 
     // not overlapping, within the contact distance: a touched contact in tension (delta_f < delta
@@ -168,13 +167,47 @@ namespace ContactModels {
       if (!(*scdata.contact_flags & CONTACT_NORMAL_MODEL) &&
           scdata.rsq > scdata.radsum * scdata.radsum)
         return;
-      if (batching) {
-        gather(scdata);
-        scdata.has_force_update = false;    // run_batch adds the force
-      } else {
-        contact(scdata, i_forces, j_forces);
-        scdata.has_force_update = true;
-      }
+      contact(scdata, i_forces, j_forces);
+      scdata.has_force_update = true;
+    }
+
+    // What in this force evaluation needs LIGGGHTS's own pair loop (Granular::compute_force)
+    // rather than pair_loop, named for the user; nullptr: nothing. Contact relaxation and the
+    // history copy of fix insert/stream/predefined are no-ops in Debian's LIGGGHTS 3.8 (its
+    // fix_relax_contacts.h and fix_insert_stream_predefined.h are stubs: the factor is 1, the
+    // copy does nothing), in its loop as in ours
+    const char *liggghts_loop_feature(PairGran &pg) const
+    {
+      if (pg.cpl() || !pg.computeflag()) return "compute pair/gran/local";
+      if (pg.storeContactForces()) return "contact forces stored per contact (requested by a fix)";
+      if (pg.storeContactForcesStress())
+        return "contact forces stored for a stress (fix continuum/weighted)";
+      if (pg.store_sum_normal_force())
+        return "the sum of normal forces (fix property/atom sum_normal_force_)";
+      if (pg.storeSumDelta()) return "multi-contact radii (fix multicontact/halfspace)";
+      if (atom->shapetype_flag) return "non-spherical particles (atom style convex)";
+      return nullptr;
+    }
+
+    // LIGGGHTS's pair loop for this law alone, in place of Granular::compute_force where
+    // liggghts_loop_feature finds nothing (ThorntonYinPair, thornton_yin_register.cpp): the pairs
+    // that loop hands the model, in its order, gathered into batches (one per type pair) that run
+    // in SIMD lanes as in the LAMMPS pair, each contact's force and torques then added as that
+    // loop adds them (run_batch), without its per-pair contact record and calls. A pair is the
+    // law's when it overlaps (rsq < radsum^2: LIGGGHTS's surfacesIntersect) or, within the
+    // contact distance (surfacesClose), was touched before or touches (delta = 0). With one atom
+    // type the forces are summed in LIGGGHTS's order, the same bits; with several, the batches
+    // of the type pairs interleave, the sums in another order (round-off)
+    void pair_loop(PairGran &pg)
+    {
+      step = pg.shearupdate() != 0;
+      if (batches.size() != constants.size()) batches.resize(constants.size());
+      if (damped)
+        pair_loop_of<true>(pg);
+      else
+        pair_loop_of<false>(pg);
+      for (auto &bt : batches)
+        if (bt && bt->n) run_batch(*bt);
     }
 
    private:
@@ -196,8 +229,8 @@ namespace ContactModels {
       int *flags[tycore::batch_lanes];
       double *history[tycore::batch_lanes];
     };
-    PairGran *pair_gran;    // the pair style whose loop calls the model
-    bool batching = false, step = true;
+    PairGran *pair_gran;    // the pair style: its virial and energy tallies
+    bool step = true;       // this pass advances the contacts (not the setup pass)
     std::vector<std::unique_ptr<Batch>> batches;    // per type pair, made at its first contact
     const tycore::Isa isa = tycore::best_isa();
 
@@ -321,9 +354,11 @@ namespace ContactModels {
     }
 
     // lane l after the law: a broken contact is forgotten (false); otherwise its flag and history
-    // are stored and its force and torques written into i_forces, j_forces (zeroed by the caller)
+    // are stored and add(f, lever_i, lever_j) given its force on i and the levers of its
+    // moment (the torque on i is -lever_i moment, on j -lever_j moment)
+    template <class Add>
     bool lane_result(const tycore::ContactBatch &b, int l, int i, int j, int *flags,
-                     double *history, ForceData &i_forces, ForceData &j_forces)
+                     double *history, Add add)
     {
       if (b.broken[l] != 0.0) {    // separated at the break overlap: the contact is forgotten
         *flags &= ~CONTACT_NORMAL_MODEL;
@@ -338,43 +373,83 @@ namespace ContactModels {
              ": the contact force is not finite (a velocity, spin or history value is not)");
       // the tangential force acts at the contact point: levers r - delta/2
       const double delta = b.delta[l];
-      const double lever_i = b.r_i[l] - 0.5 * delta, lever_j = b.r_j[l] - 0.5 * delta;
-      for (int a = 0; a < 3; ++a) {
-        i_forces.delta_F[a] += f[a];
-        j_forces.delta_F[a] -= f[a];
-        i_forces.delta_torque[a] -= lever_i * b.moment[a][l];
-        j_forces.delta_torque[a] -= lever_j * b.moment[a][l];
-      }
+      add(f, b.r_i[l] - 0.5 * delta, b.r_j[l] - 0.5 * delta);
       return true;
     }
 
-    // a contact into the batch of its type pair; the batch runs when full
-    void gather(SurfacesCloseData &d)
+    // the batch of type pair `pair` (itype (ntypes + 1) + jtype), made at its first contact
+    Batch &batch_of(int pair)
     {
-      if (!d.computeflag) return;
-      const int i = d.i, j = d.j;
-      const int pair = d.itype * (ntypes_ + 1) + d.jtype;
       std::unique_ptr<Batch> &slot = batches[pair];
       if (!slot) {
         slot.reset(new Batch{});
         slot->pair = pair;
       }
-      Batch &bt = *slot;
+      return *slot;
+    }
+
+    // contact i-j (del = x_i - x_j, rsq = |del|^2; its flags and this model's history) into
+    // batch bt; the batch runs when full. Damped: the masses too
+    template <bool Damped>
+    void gather_into(Batch &bt, int i, int j, const double del[3], double rsq, int *flags,
+                     double *history)
+    {
       const int l = bt.n;
       const tycore::SphereState si{atom->v[i], atom->omega[i], atom->radius[i], atom->rmass[i]};
       const tycore::SphereState sj{atom->v[j], atom->omega[j], atom->radius[j], atom->rmass[j]};
-      const bool first_touch = !(*d.contact_flags & CONTACT_NORMAL_MODEL);
-      tycore::gather_contact<true>(bt.b, l, d.delta, d.rsq, si, sj, first_touch);
-      bt.history[l] = &d.contact_history[history_offset];
-      tycore::load_history(bt.b, l, bt.history[l]);
+      tycore::gather_contact<Damped>(bt.b, l, del, rsq, si, sj, !(*flags & CONTACT_NORMAL_MODEL));
+      tycore::load_history(bt.b, l, history);
+      bt.history[l] = history;
       bt.i[l] = i, bt.j[l] = j;
-      bt.flags[l] = d.contact_flags;
+      bt.flags[l] = flags;
       if (++bt.n == tycore::batch_lanes) run_batch(bt);
     }
 
-    // the law on a batch, then each contact's forces added as LIGGGHTS's loop adds a contact's
-    // ForceData (Granular::force_update with the relaxation factor; newton off: j's share only
-    // when j is owned) and tallied as its virial (ev_tally_xyz), contact after contact
+    // pair_loop's walk over LIGGGHTS's neighbour list and its contact history (fix
+    // contacthistory: per neighbour a flag and dnum values, this model's from history_offset)
+    template <bool Damped> void pair_loop_of(PairGran &pg)
+    {
+      double **x = atom->x;
+      const double *radius = atom->radius;
+      const int *type = atom->type;
+      const int inum = pg.list->inum;
+      const int *ilist = pg.list->ilist, *numneigh = pg.list->numneigh;
+      int **firstneigh = pg.list->firstneigh;
+      int **firstflags = pg.listgranhistory->firstneigh;
+      double **firsthistory = pg.listgranhistory->firstdouble;
+      const int dnum = pg.dnum();
+      const double close = neighbor->contactDistanceFactor * neighbor->contactDistanceFactor;
+      for (int ii = 0; ii < inum; ++ii) {
+        const int i = ilist[ii];
+        const double xi[3] = {x[i][0], x[i][1], x[i][2]};
+        const double radi = radius[i];
+        std::unique_ptr<Batch> *batch_of_j = &batches[type[i] * (ntypes_ + 1)];
+        int *flags = firstflags[i];
+        double *history = firsthistory[i] + history_offset;
+        const int *jlist = firstneigh[i];
+        const int jnum = numneigh[i];
+        for (int jj = 0; jj < jnum; ++jj) {
+          const int j = jlist[jj] & NEIGHMASK;
+          const double del[3] = {xi[0] - x[j][0], xi[1] - x[j][1], xi[2] - x[j][2]};
+          const double rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+          const double radsum = radi + radius[j];
+          // LIGGGHTS's tests, in its arithmetic: apart, the model's only within the contact
+          // distance, touched before or at delta = 0
+          if (!(rsq < radsum * radsum) &&
+              !(rsq < close * radsum * radsum &&
+                ((flags[jj] & CONTACT_NORMAL_MODEL) || rsq <= radsum * radsum)))
+            continue;
+          Batch *bt = batch_of_j[type[j]].get();
+          if (!bt) bt = &batch_of(type[i] * (ntypes_ + 1) + type[j]);
+          gather_into<Damped>(*bt, i, j, del, rsq, &flags[jj], history + dnum * jj);
+        }
+      }
+    }
+
+    // the law on a batch, then each contact's force and torques added as LIGGGHTS's loop adds
+    // a contact's ForceData (Granular::force_update, its relaxation factor 1 in Debian's
+    // LIGGGHTS; newton off: j's share only when j is owned) and tallied as its virial
+    // (ev_tally_xyz), contact after contact
     void run_batch(Batch &bt)
     {
       const int n = bt.n;
@@ -390,28 +465,24 @@ namespace ContactModels {
       double **f = atom->f, **torque = atom->torque;
       const int nlocal = atom->nlocal;
       const int newton_pair = force->newton_pair;
-      ForceData i_forces, j_forces;
+      const bool tally = pair_gran->evflag;
       for (int l = 0; l < n; ++l) {
         const int i = bt.i[l], j = bt.j[l];
-        i_forces.reset();
-        j_forces.reset();
-        if (!lane_result(b, l, i, j, bt.flags[l], bt.history[l], i_forces, j_forces)) continue;
-        const double relax_i = pair_gran->relax(i);
-        for (int a = 0; a < 3; ++a) {
-          f[i][a] += relax_i * i_forces.delta_F[a];
-          torque[i][a] += relax_i * i_forces.delta_torque[a];
-        }
-        if (newton_pair || j < nlocal) {
-          const double relax_j = pair_gran->relax(j);
+        const auto add = [&](const double *F, double lever_i, double lever_j) {
           for (int a = 0; a < 3; ++a) {
-            f[j][a] += relax_j * j_forces.delta_F[a];
-            torque[j][a] += relax_j * j_forces.delta_torque[a];
+            f[i][a] += F[a];
+            torque[i][a] -= lever_i * b.moment[a][l];
           }
-        }
-        if (pair_gran->evflag)
-          pair_gran->ev_tally_xyz(i, j, nlocal, newton_pair, 0.0, 0.0, i_forces.delta_F[0],
-                                  i_forces.delta_F[1], i_forces.delta_F[2], b.del[0][l],
-                                  b.del[1][l], b.del[2][l]);
+          if (newton_pair || j < nlocal)
+            for (int a = 0; a < 3; ++a) {
+              f[j][a] -= F[a];
+              torque[j][a] -= lever_j * b.moment[a][l];
+            }
+          if (tally)
+            pair_gran->ev_tally_xyz(i, j, nlocal, newton_pair, 0.0, 0.0, F[0], F[1], F[2],
+                                    b.del[0][l], b.del[1][l], b.del[2][l]);
+        };
+        lane_result(b, l, i, j, bt.flags[l], bt.history[l], add);
       }
     }
 
@@ -430,7 +501,15 @@ namespace ContactModels {
       if (!tycore::overlap_valid(b, 0)) overlap_fault(i, j, b.delta[0]);
       tycore::load_history(b, 0, history);
       evaluate(b, 1, d.itype * (ntypes_ + 1) + d.jtype, d.shearupdate != 0, tycore::Isa::scalar);
-      lane_result(b, 0, i, j, d.contact_flags, history, i_forces, j_forces);
+      const auto add = [&](const double *F, double lever_i, double lever_j) {
+        for (int a = 0; a < 3; ++a) {
+          i_forces.delta_F[a] += F[a];
+          j_forces.delta_F[a] -= F[a];
+          i_forces.delta_torque[a] -= lever_i * b.moment[a][0];
+          j_forces.delta_torque[a] -= lever_j * b.moment[a][0];
+        }
+      };
+      lane_result(b, 0, i, j, d.contact_flags, history, add);
     }
   };
 

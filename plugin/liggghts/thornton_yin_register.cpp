@@ -1,7 +1,8 @@
 // Registers `pair_style gran model thornton_yin tangential thornton_yin` into Debian's unmodified
 // libliggghts.so.3 when this library is loaded (a static initialiser, as LIGGGHTS's own
 // granular_styles.h registers its models): the model names into the contact model factory, the
-// pair style of the pairing into the granular pair style factory. Any other pairing with
+// pair style of the pairing (ThorntonYinPair: LIGGGHTS's Granular with the model's own pair
+// loop) into the granular pair style factory. Any other pairing with
 // thornton_yin (another tangential, normal, cohesion or rolling model) is registered as an
 // error that names what to write instead.
 // the include order of LIGGGHTS's granular_styles.h: contact_models.h defines our model classes
@@ -15,6 +16,9 @@
 #include "pair_gran_base.h"
 // clang-format on
 
+#include <cstdio>
+#include <string>
+
 namespace {
 
 using namespace LIGGGHTS;
@@ -22,7 +26,56 @@ using namespace LIGGGHTS::ContactModels;
 
 typedef GranStyle<THORNTON_YIN, TANGENTIAL_THORNTON_YIN, COHESION_OFF, ROLLING_OFF, SURFACE_DEFAULT>
     ThorntonYinStyle;
-typedef PairStyles::Granular<ContactModel<ThorntonYinStyle>> ThorntonYinPair;
+typedef PairStyles::Granular<ContactModel<ThorntonYinStyle>> LiggghtsLoop;
+typedef NormalModel<THORNTON_YIN> ThorntonYinModel;
+
+// The pair style of the pairing: LIGGGHTS's Granular with this model (settings, properties,
+// history, restart as for any LIGGGHTS model), whose force evaluation is the model's own pair
+// loop (ThorntonYinModel::pair_loop) unless the run uses a feature that needs LIGGGHTS's loop
+// (ThorntonYinModel::liggghts_loop_feature; the model then runs in that loop, named once in
+// the log). docs/pair_thornton_yin.md, "LIGGGHTS"
+class ThorntonYinPair : public LiggghtsLoop {
+ public:
+  ThorntonYinPair(LAMMPS_NS::LAMMPS *lmp, LAMMPS_NS::PairGran *parent, int64_t hash) :
+      LiggghtsLoop(lmp, parent, hash), lmp_(lmp), model(ThorntonYinModel::constructed())
+  {
+    if (!model) lmp->error->all(FLERR, "pair gran model thornton_yin: the model was not made");
+  }
+
+  void compute_force(LAMMPS_NS::PairGran *pg, int eflag, int vflag, int addflag) override
+  {
+    const char *feature = model->liggghts_loop_feature(*pg);
+    if (feature != noted) note(feature);
+    if (feature) {
+      LiggghtsLoop::compute_force(pg, eflag, vflag, addflag);
+      return;
+    }
+    if (eflag || vflag)    // as LIGGGHTS's loop starts
+      pg->ev_setup(eflag, vflag);
+    else
+      pg->evflag = pg->vflag_fdotr = 0;
+    model->pair_loop(*pg);
+  }
+
+ private:
+  LAMMPS_NS::LAMMPS *lmp_;
+  ThorntonYinModel *model;
+  const char *noted = nullptr;    // the feature last named
+
+  void note(const char *feature)
+  {
+    noted = feature;
+    if (lmp_->comm->me != 0) return;
+    const std::string line = feature
+        ? std::string("pair gran model thornton_yin: LIGGGHTS's pair loop evaluates the "
+                      "contacts, for ") +
+            feature + " (the model's own loop is faster)\n"
+        : std::string("pair gran model thornton_yin: the model's own pair loop "
+                      "evaluates the contacts\n");
+    for (FILE *out : {lmp_->screen, lmp_->logfile})
+      if (out) std::fputs(line.c_str(), out);
+  }
+};
 
 PairStyles::IGranularPairStyle *create_pair(LAMMPS_NS::LAMMPS *lmp, LAMMPS_NS::PairGran *parent,
                                             int64_t hash)
