@@ -4,7 +4,8 @@ cell"): on the quick dense specimen (500 glass spheres at 100 kPa, the decks' ca
 triclinic, (1) the secant shear stiffness d(sigma_xz)/d(gamma_xz) of a strain-controlled shear
 of 1e-3 1/s over 50 steps against the affine C_55 the fix reports, and (2) the largest
 |sigma_xy|, |sigma_xz|, |sigma_yz| over the second half of 10 000 steps with every component
-held (the normal ones at 100 kPa, the shears at 0) at gain 0.25 and at the default 0.02.
+held (the normal ones at 100 kPa, the shears at 0) at gain 0.25 and at the fix's default for a
+held shear stress.
 
     /usr/bin/python3 bench/shear_servo_gain.py --specimen tylmp_specimens/dense_quick.restart
         [--out bench/results/shear_servo_gain]

@@ -46,11 +46,12 @@ def test_principal_programme_on_a_triclinic_cell_is_the_orthogonal_test(specimen
 
 def test_a_held_shear_stress_with_a_large_gain_is_warned_about(tmp_path):
     deck = small_deck(f"change_box all triclinic\nfix c all cell/servo axes x stress {P0} "
-                      f"y stress {P0} z stress {P0} xz stress 0 gain 0.25")
+                      f"y stress {P0} z stress {P0} xz stress 0 gain 0.02 integral_gain 5e-5")
     rc, out = run_deck(deck, tmp_path)
     assert rc == 0, out[-2000:]
+    # 0.02 is where the shear components start to ring (docs/decks/rotation.md)
     line = next(l for l in out.splitlines() if "WARNING" in l and "cell/servo" in l)
-    assert "gain 0.25 on a held shear stress" in line and "use gain <= 0.05" in line, line
+    assert "gain 0.02 on a held shear stress" in line and "use gain <= 0.015" in line, line
     # the default gains do not warn
     rc, out = run_deck(small_deck(f"change_box all triclinic\nfix c all cell/servo axes x "
                                   f"stress {P0} y stress {P0} z stress {P0} xz stress 0"),

@@ -41,8 +41,10 @@ struct CellCommand {
 };
 
 // the servo's defaults for a held shear stress (docs/theory.md §11.2), and the largest gain
-// that is not warned about
-constexpr double SHEAR_GAIN = 0.02, SHEAR_INTEGRAL_GAIN = 3e-5, MAX_SHEAR_GAIN = 0.05;
+// that is not warned about: from 0.02 on the shear components ring (docs/decks/rotation.md,
+// "The servo's gain")
+constexpr double SHEAR_GAIN = 0.015, SHEAR_INTEGRAL_GAIN = SHEAR_GAIN * SHEAR_GAIN / 8.0,
+                 MAX_SHEAR_GAIN = 0.015;
 
 // an error of the record's columns (`extra`, `csv`): the fix names itself in its message
 struct RecordError : std::invalid_argument {
