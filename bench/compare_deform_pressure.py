@@ -58,6 +58,9 @@ EVERY = 200
 PEER = """{load}read_restart tylmp_specimens/dense_quick.restart
 comm_modify vel yes
 {pair}variable scale index quick
+# the decks' timestep (common/numerics.in) from the glass and the smallest diameter, 0.135 mm
+include inputs/materials/glass.in
+variable d_min string 0.000135
 include inputs/common/numerics.in
 fix integrate all nve/sphere
 compute virial all pressure NULL virial
