@@ -58,10 +58,7 @@ EVERY = 200
 PEER = """{load}read_restart tylmp_specimens/dense_quick.restart
 comm_modify vel yes
 {pair}variable scale index quick
-# the decks' timestep (common/numerics.in) from the glass and the smallest diameter, 0.135 mm
-include inputs/materials/glass.in
-variable d_min string 0.000135
-include inputs/common/numerics.in
+include bench/decks_timestep.in
 fix integrate all nve/sphere
 compute virial all pressure NULL virial
 compute touching all contact/atom
@@ -178,8 +175,9 @@ def main(argv=None):
     with tempfile.TemporaryDirectory() as tmp:
         work = os.path.abspath(args.work or tmp)
         os.makedirs(work, exist_ok=True)
-        if not os.path.exists(os.path.join(work, "inputs")):
-            os.symlink(os.path.join(REPO, "inputs"), os.path.join(work, "inputs"))
+        for tree in ("inputs", "bench"):  # the decks and bench/decks_timestep.in
+            if not os.path.exists(os.path.join(work, tree)):
+                os.symlink(os.path.join(REPO, tree), os.path.join(work, tree))
         records, warnings = {}, {}
         out = lmp_run(lmp, work, "servo", args=(os.path.join("inputs", "axisym.in"), "-var",
                                                  "out", "servo", "-var", "strain",
