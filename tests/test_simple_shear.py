@@ -155,20 +155,20 @@ def test_cyclic_deck_bad_option_is_an_error(tmp_path, name, value, message):
 # ---------------------------------------------------------------------------------------------
 # cyclic constant-volume simple shear (inputs/cyclic_simple_shear.in)
 
-# The loose specimen (e0 0.677) at a rate low enough for the amplitude to be held: at 1e-4 1/s
+# The loose specimen (e0 0.672) at a rate low enough for the amplitude to be held: at 1e-4 1/s
 # a half cycle at CSR 0.11 lasts about 100 steps and tau passes the amplitude by under 2 %
-# (at 2e-4, about 35 steps, by half of it: the packing's response lags the strain). Under the
-# slip-band memory (docs/theory.md §2.3) r_u climbs to 0.21 by N = 2.5; in the half cycle after
-# N = 3 the specimen flows at tau below the amplitude to the deck's gamma_max of 10 %, through the
-# double amplitude 3.75 % (N_L = 3.5), with r_u reaching 0.92 only: a flow liquefaction, whose
-# mean stress need not fall to 5 % of sigma_n0 (docs/decks/cyclic_triaxial.md finds the same of
-# the loose specimen in the triaxial cell), so the deck's r_u criterion of 0.95 is not met. The
-# test needs both detectors to fire to check them against the replay: it passes the criterion
-# r_u >= 0.8, above everything the small amplitude reaches and below the flow's r_u. The small
-# amplitude, CSR 0.055, runs at half the rate (the same period at the same stiffness, as a
-# cyclic device runs at one frequency): r_u about 0.2 after twice the large one's N_L. The
-# monotonic constant-volume peak of this specimen is tau/sigma_n0 = 0.18 at 1e-4 (0.13 at
-# 2e-5), so a CSR above it flows in the first half cycle (docs/decks/cyclic_simple_shear.md).
+# (at 2e-4, about 35 steps, by half of it: the packing's response lags the strain). r_u climbs
+# over the first cycles; then the specimen flows at tau below the amplitude, through the double
+# amplitude 3.75 %, and its mean stress falls towards zero (docs/decks/cyclic_simple_shear.md:
+# N_L = 4.5 by double amplitude, 5 by r_u >= 0.95 at the deck's record interval). A flow
+# liquefaction need not take r_u to 0.95 (docs/decks/cyclic_triaxial.md finds the same of the
+# loose specimen in the triaxial cell), so the test, which needs both detectors to fire to check
+# them against the replay, passes the criterion r_u >= 0.8, above everything the small
+# amplitude reaches and below the flow's r_u. The small amplitude, CSR 0.055, runs at half the
+# rate (the same period at the same stiffness, as a cyclic device runs at one frequency): r_u
+# 0.075 at N = 4.5 and 0.454 after 29 cycles (the deck page). The monotonic constant-volume peak
+# of this specimen is tau/sigma_n0 = 0.145 at 1e-4 (0.107 at 2e-5), so a CSR above it flows in
+# the first half cycle (docs/decks/cyclic_simple_shear.md).
 CSR_LARGE, RATE_LARGE = 0.11, 1e-4
 CSR_SMALL, RATE_SMALL = 0.055, 5e-5
 RU_LIMIT, DA_LIMIT = 0.8, 0.0375            # r_u passed (above); double amplitude the deck's
