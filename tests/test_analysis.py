@@ -1004,3 +1004,13 @@ def test_cycle_work_is_numbered_as_the_cyclic_deck_numbers_cycles(tmp_path):
     assert sorted(works) == [2, 3]
     for k in (2, 3):      # the switch of sign within one row costs s_k x one row's strain
         assert works[k] == pytest.approx(2 / 3 * 4 * A * s_k[k], rel=2 / m)
+
+
+def test_caption_gives_the_range_of_many_rates():
+    """A figure of many records (Fig 3: six) gives the range of their rates, which fits under
+    the figure, and one or two rates as they are."""
+    from tylmp.analysis import figures
+    one = figures.about_text([5.2e-5], 3620, "dense", rate=lambda r: r)
+    assert one.endswith("ε̇_q = 5.2e-05 1/s"), one
+    many = figures.about_text([5.7e-5, 5.2e-5, 5.5e-5, 5.2e-5], 3620, "dense", rate=lambda r: r)
+    assert many.endswith("ε̇_q = 5.2e-05–5.7e-05 1/s"), many

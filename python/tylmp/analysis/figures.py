@@ -87,10 +87,12 @@ def strain_rate(table):
 def about_text(tables, n=None, specimen=None, rate=None, rate_name="deviatoric strain rate ε̇_q"):
     """What the figure shows: number of spheres, specimen and the records' strain rates (by
     default the deviatoric strain rate; a simple-shear figure gives its shear rate)."""
-    rates = sorted({f"{(rate or strain_rate)(t):.2g}" for t in tables})
+    values = sorted({float(f"{(rate or strain_rate)(t):.2g}") for t in tables})
+    rates = (", ".join(f"{v:.2g}" for v in values) if len(values) <= 2 else
+             f"{values[0]:.2g}–{values[-1]:.2g}")   # many records: the range fits the line
     what = [f"N = {n} spheres" if n else "N not given (--n)",
             f"specimen {specimen}" if specimen else "specimen not given (--specimen)",
-            f"{rate_name} = {', '.join(rates)} 1/s"]
+            f"{rate_name} = {rates} 1/s"]
     return "; ".join(what)
 
 
