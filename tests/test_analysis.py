@@ -1014,3 +1014,24 @@ def test_caption_gives_the_range_of_many_rates():
     assert one.endswith("ε̇_q = 5.2e-05 1/s"), one
     many = figures.about_text([5.7e-5, 5.2e-5, 5.5e-5, 5.2e-5], 3620, "dense", rate=lambda r: r)
     assert many.endswith("ε̇_q = 5.2e-05–5.7e-05 1/s"), many
+
+
+def test_reproduce_figures_state_the_spheres_and_specimens_of_their_runs():
+    """Each figure `reproduce` draws names under it the scale's number of spheres (the paper's
+    3620; 500 at the quick scale) and the specimen(s) its runs shear: the paper's Fig 3 and
+    Figs 4-9 are of the dense specimen, Figs 1-2 of both, the loose radial set of the loose."""
+    from tylmp.analysis import reproduce
+
+    def caption_args(cmds):
+        return {c[0] + (" " + c[c.index("--out") + 1].rsplit("/", 1)[-1] if "--out" in c else ""):
+                (c[c.index("--n") + 1], c[c.index("--specimen") + 1])
+                for c in cmds if "--n" in c}
+    paper = caption_args(reproduce.figure_commands("d"))
+    assert paper == {"axisym fig1_2_axisym_paper.png": ("3620", "dense and loose"),
+                     "friction fig3_friction_paper.png": ("3620", "dense"),
+                     "radial fig4_6_radial_dense_paper.png": ("3620", "dense"),
+                     "radial fig4_6_radial_loose_paper.png": ("3620", "loose"),
+                     "pi-plane fig7_cdst_paper.png": ("3620", "dense"),
+                     "pi-plane fig8_9_plane_strain_paper.png": ("3620", "dense")}
+    quick = caption_args(reproduce.figure_commands("d", "quick"))
+    assert {n for n, _ in quick.values()} == {"500"}

@@ -23,6 +23,7 @@ import shlex
 import subprocess
 import time
 
+from ..specimen.paper import SCALES
 from .programmes import PREP_WEIGHT, PROGRAMME, PROGRAMMES, entry, factor_rank, record_name
 
 
@@ -117,27 +118,34 @@ def lmp_environment():
     return env
 
 
-def figure_commands(d):
-    """The tyanalysis commands of validation.md on the records in d (files that exist)."""
+def figure_commands(d, scale="paper"):
+    """The tyanalysis commands of validation.md on the records in d (files that exist); each
+    figure's caption names the scale's number of spheres and the specimen its runs shear."""
     def f(name):
         return os.path.join(d, name)
+
+    def about(*runs):
+        specimens = sorted({specimen_of(n)[0] for n in runs})
+        return ["--n", str(SCALES[scale]), "--specimen", " and ".join(specimens)]
     rec = {n: f(record_name(n)) for n in PROGRAMME}
+    friction = [n for n in PROGRAMME if n.startswith("friction_")]
+    radial = {s: [f"radial_{s}_b{b}" for b in ("0.25", "0.5", "0.75", "1")]
+              for s in ("dense", "loose")}
     cmds = [
         ["axisym", rec["axisym_dense"], rec["axisym_loose"], "--labels", "dense", "loose",
-         "--paper", "--out", f("fig1_2_axisym_paper.png")],
-        ["friction"] + [rec[n] for n in PROGRAMME if n.startswith("friction_")] +
-        ["--paper", "--out", f("fig3_friction_paper.png")],
-        ["radial", rec["axisym_dense"]] + [rec[f"radial_dense_b{b}"] for b in
-                                           ("0.25", "0.5", "0.75", "1")] +
+         "--paper", "--out", f("fig1_2_axisym_paper.png")] + about("axisym_dense", "axisym_loose"),
+        ["friction"] + [rec[n] for n in friction] +
+        ["--paper", "--out", f("fig3_friction_paper.png")] + about(*friction),
+        ["radial", rec["axisym_dense"]] + [rec[n] for n in radial["dense"]] +
         ["--labels", "b=0 (axisym)", "b=0.25", "b=0.5", "b=0.75", "b=1",
-         "--paper", "--out", f("fig4_6_radial_dense_paper.png")],
-        ["radial", rec["axisym_loose"]] + [rec[f"radial_loose_b{b}"] for b in
-                                           ("0.25", "0.5", "0.75", "1")] +
+         "--paper", "--out", f("fig4_6_radial_dense_paper.png")] + about(*radial["dense"]),
+        ["radial", rec["axisym_loose"]] + [rec[n] for n in radial["loose"]] +
         ["--labels", "b=0 (axisym)", "b=0.25", "b=0.5", "b=0.75", "b=1",
-         "--paper", "--out", f("fig4_6_radial_loose_paper.png")],
-        ["pi-plane", rec["cdst"], "--paper", "--out", f("fig7_cdst_paper.png")],
+         "--paper", "--out", f("fig4_6_radial_loose_paper.png")] + about(*radial["loose"]),
+        ["pi-plane", rec["cdst"], "--paper", "--out", f("fig7_cdst_paper.png")] + about("cdst"),
         ["pi-plane", rec["plane_strain_cw"], rec["plane_strain_ccw"],
-         "--paper", "--out", f("fig8_9_plane_strain_paper.png")],
+         "--paper", "--out", f("fig8_9_plane_strain_paper.png")] +
+        about("plane_strain_cw", "plane_strain_ccw"),
         ["compare", "--dense", rec["axisym_dense"], "--loose", rec["axisym_loose"],
          "--radial"] + [rec[f"radial_dense_b{b}"] for b in ("0.25", "0.5", "0.75", "1")] +
         ["--radial-loose"] + [rec[f"radial_loose_b{b}"] for b in ("0.25", "0.5", "0.75", "1")] +
@@ -253,7 +261,7 @@ def main(args, draw):
         for j in list(prep.values()) + shear:
             print(shlex.join(j.cmd))
         if programme == "paper":
-            for c in figure_commands(workdir):
+            for c in figure_commands(workdir, args.scale):
                 print(shlex.join(["tyanalysis"] + c))
         else:
             print(shlex.join(["tyanalysis"] + fidelity_command(workdir)))
@@ -265,7 +273,7 @@ def main(args, draw):
         log(f"{len(failed)} run(s) failed")
         return 1 if failed else 0
     drawn = 0
-    for c in figure_commands(workdir):
+    for c in figure_commands(workdir, args.scale):
         files = [a for a in c if a.endswith(".csv")]
         if all(os.path.exists(p) for p in files):
             draw(c)
