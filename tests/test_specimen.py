@@ -449,3 +449,27 @@ def test_find_overlaps_does_what_its_description_says(tmp_path):
     assert (i.tolist(), j.tolist()) == ([0], [1])
     with pytest.raises(ValueError, match="the cell must be a cube"):
         sp.find_overlaps(xyz, diam, [5e-3, 5e-3, 6e-3])
+
+
+@pytest.mark.parametrize("name", ["maxent", "geometric", "mean-only", "volume-mean"])
+def test_diameters_are_the_same_bits_under_every_blas_kernel(name):
+    """The diameters do not depend on the machine. OpenBLAS picks its kernels at run time by
+    the processor (here forced with OPENBLAS_CORETYPE, as an AMD Zen, an Intel Haswell or
+    Skylake-X, or a generic x86-64 would choose them), and its kernels sum in different
+    orders; the size distribution's solve once went through it, and the interior diameters
+    of the paper's 3620 spheres differed in their last bits between an AMD and an Intel
+    machine, so every specimen, and every record, differed. Each kernel must give the same
+    bits (on a machine without OpenBLAS the variable is ignored and the check still holds)."""
+    code = ("import sys; from tylmp.specimen import sizes; "
+            f"d, c = sizes.size_counts({N_PAPER}, distribution={name!r}); "
+            "print(' '.join(x.hex() for x in d), list(c))")
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.pathsep.join(
+        [MODULE_DIR, SRC_PY] + [p for p in env.get("PYTHONPATH", "").split(os.pathsep) if p])
+    outputs = {}
+    for core in ("Prescott", "Haswell", "SkylakeX", "Zen"):
+        r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                           env=dict(env, OPENBLAS_CORETYPE=core), timeout=120)
+        assert r.returncode == 0, r.stderr
+        outputs[core] = r.stdout
+    assert len(set(outputs.values())) == 1, outputs

@@ -12,32 +12,64 @@ from .paper import D_MAX, D_MEAN, D_MIN, L_PAPER, N_PAPER, N_SIZES, PHI_PAPER
 _TWO_PI_OVER_6 = math.pi / 6.0
 
 
+def _dot(a, b):
+    """Σ a_i b_i, correctly rounded (math.fsum of the exact-rounded products): the same bits on
+    every machine. NumPy's `@` calls the BLAS, whose kernels (chosen at run time by the
+    processor) sum in different orders, and a last-bit change of a diameter makes another
+    specimen (docs/specimen.md "Reproducibility")."""
+    return math.fsum(float(x) * float(y) for x, y in zip(a, b))
+
+
+def _solve(A, b):
+    """x with A x = b for a small dense system (Gaussian elimination, partial pivoting), in
+    plain floating point for the same reason as _dot."""
+    k = len(b)
+    M = [[float(A[r][c]) for c in range(k)] + [float(b[r])] for r in range(k)]
+    for c in range(k):
+        piv = max(range(c, k), key=lambda r: abs(M[r][c]))
+        M[c], M[piv] = M[piv], M[c]
+        for r in range(c + 1, k):
+            f = M[r][c] / M[c][c]
+            M[r] = [M[r][q] - f * M[c][q] for q in range(k + 1)]
+    x = [0.0] * k
+    for r in reversed(range(k)):
+        x[r] = (M[r][k] - math.fsum(M[r][q] * x[q] for q in range(r + 1, k))) / M[r][r]
+    return x
+
+
 def _maxent(d, constraints, targets, iters=200):
     """Maximum-entropy weights p_i ∝ exp(-Σ_k λ_k f_k(d_i)) with Σ p_i f_k(d_i) = t_k.
 
-    Newton's method on the (convex) dual; features are scaled to O(1) for conditioning.
+    Newton's method on the (convex) dual; features are scaled to O(1) for conditioning. Plain
+    floating point with correctly rounded sums (_dot, _solve): the weights, and so the
+    specimen, are the same bits on every machine.
     """
-    F = np.array([f(d) for f in constraints], dtype=float)        # (k, n)
-    t = np.asarray(targets, dtype=float)
-    scale = np.abs(F).max(axis=1)
-    F = F / scale[:, None]
-    t = t / scale
-    lam = np.zeros(len(t))
+    F = [[float(v) for v in f(d)] for f in constraints]            # k rows of n
+    scale = [max(abs(v) for v in row) for row in F]
+    F = [[v / s for v in row] for row, s in zip(F, scale)]
+    t = [float(v) / s for v, s in zip(targets, scale)]
+    n, k = len(F[0]), len(t)
+    cols = [[F[r][i] for r in range(k)] for i in range(n)]        # the features of each d_i
+    lam = [0.0] * k
     for _ in range(iters):
-        a = -lam @ F
-        w = np.exp(a - a.max())
-        p = w / w.sum()
-        m = F @ p
-        g = m - t                                   # gradient of the dual (up to sign)
-        if np.max(np.abs(g)) < 1e-15:
+        a = [-_dot(lam, col) for col in cols]
+        top = max(a)
+        w = [math.exp(v - top) for v in a]
+        total = math.fsum(w)
+        p = [v / total for v in w]
+        m = [_dot(row, p) for row in F]
+        g = [mr - tr for mr, tr in zip(m, t)]       # gradient of the dual (up to sign)
+        if max(abs(v) for v in g) < 1e-15:
             break
-        C = (F * p) @ F.T - np.outer(m, m)          # covariance = Hessian
-        step = np.linalg.solve(C, g)
+        # covariance = Hessian
+        C = [[_dot([x * y for x, y in zip(F[r], F[c])], p) - m[r] * m[c] for c in range(k)]
+             for r in range(k)]
+        step = _solve(C, g)
         # Newton: the dual log Σ exp(-λ·F) + λ·t has gradient t - m and Hessian C
-        lam = lam + step
+        lam = [v + s for v, s in zip(lam, step)]
     else:
         raise RuntimeError("maximum-entropy size distribution did not converge")
-    return p
+    return np.array(p)
 
 
 # Candidate size distributions (docs/specimen.md, "Candidate distributions"): each honours the
@@ -205,14 +237,14 @@ def number_mean(diameters, weights=None):
     """Σ w d / Σ w: the number-mean diameter (weights = counts or number fractions)."""
     d = np.asarray(diameters, float)
     w = np.ones_like(d) if weights is None else np.asarray(weights, float)
-    return float(w @ d / w.sum())
+    return _dot(w, d) / math.fsum(w)
 
 
 def volume_mean(diameters, weights=None):
     """Σ w d⁴ / Σ w d³: the volume- (and, at one density, mass-) weighted mean diameter D[4,3]."""
     d = np.asarray(diameters, float)
     w = np.ones_like(d) if weights is None else np.asarray(weights, float)
-    return float(w @ d ** 4 / (w @ d ** 3))
+    return _dot(w, d ** 4) / _dot(w, d ** 3)
 
 
 def paper_size_distribution(match_cell=True, n_sizes=N_SIZES, distribution=None):
@@ -239,7 +271,7 @@ def paper_size_distribution(match_cell=True, n_sizes=N_SIZES, distribution=None)
     if mean_kind == "number":
         # polish the mean to round-off: move the tiny residual into the end fractions
         # (keeps Σp = 1; the correction is at the 1e-16 level)
-        resid = D_MEAN - float(p @ d)
+        resid = D_MEAN - _dot(p, d)
         dp = resid / (d[-1] - d[0])
         p[-1] += dp
         p[0] -= dp
@@ -270,17 +302,17 @@ def size_counts(n, match_cell=True, distribution=None):
     d = d.copy()
     interior = slice(1, -1)
     if DISTRIBUTIONS[name][1] == "number":
-        delta = (n * D_MEAN - float(counts @ d)) / float(counts[interior].sum())
+        delta = (n * D_MEAN - _dot(counts, d)) / float(counts[interior].sum())
         d[interior] += delta
         # second pass against round-off in the sum
-        delta2 = (n * D_MEAN - float(counts @ d)) / float(counts[interior].sum())
+        delta2 = (n * D_MEAN - _dot(counts, d)) / float(counts[interior].sum())
         d[interior] += delta2
     else:
         # Newton on g(delta) = Σ c d^4 - D Σ c d^3 with the interior diameters shifted
         c = counts[interior].astype(float)
         for _ in range(50):
-            g = float(counts @ d ** 4 - D_MEAN * (counts @ d ** 3))
-            dg = float(c @ (4.0 * d[interior] ** 3 - 3.0 * D_MEAN * d[interior] ** 2))
+            g = _dot(counts, d ** 4) - D_MEAN * _dot(counts, d ** 3)
+            dg = _dot(c, 4.0 * d[interior] ** 3 - 3.0 * D_MEAN * d[interior] ** 2)
             step = g / dg
             d[interior] -= step
             if abs(step) < 1e-17:
@@ -290,13 +322,13 @@ def size_counts(n, match_cell=True, distribution=None):
 
 def box_side(diameters, solid_fraction):
     """Side [m] of the cube in which spheres of these diameters fill ``solid_fraction``."""
-    vs = float(np.sum(_TWO_PI_OVER_6 * np.asarray(diameters, dtype=float) ** 3))
+    vs = math.fsum(_TWO_PI_OVER_6 * np.asarray(diameters, dtype=float) ** 3)
     return (vs / float(solid_fraction)) ** (1.0 / 3.0)
 
 
 def solid_fraction(diameters, box):
     """Σ π d³/6 / V; ``box`` is the cube side or (Lx, Ly, Lz)."""
-    vs = float(np.sum(_TWO_PI_OVER_6 * np.asarray(diameters, dtype=float) ** 3))
+    vs = math.fsum(_TWO_PI_OVER_6 * np.asarray(diameters, dtype=float) ** 3)
     box = np.broadcast_to(np.asarray(box, dtype=float), (3,))
     return vs / float(np.prod(box))
 
