@@ -409,8 +409,13 @@ STRESS_COLUMNS = ("sig1", "sig2", "sig3", "p", "q", "sig_xy", "sig_xz", "sig_yz"
 def test_flip_leaves_the_stress_alone(flipped):
     """The same specimen described by the equivalent cell whose edge c leans one box length
     back (xz = -lx: the same lattice of images) is flipped by the fix at its first step; every
-    stress of its record equals that of the unflipped run to 1e-10 relative over the first
-    steps (then the two drift apart at round-off, as any two orders of arithmetic do)."""
+    stress of its record equals that of the unflipped run to 1e-9 of sigma_n0 over the first
+    steps (then the two drift apart at round-off, as any two orders of arithmetic do). The
+    flip shifts coordinates by a box length, so each branch vector carries the round-off of
+    numbers about twenty contact lengths large, and the stress, a sum of some 10^4 contact
+    terms much larger than their mean, carries that: measured, the difference levels at
+    4e-11 to 1.0e-10 within five steps on the quick specimen (CSV digits included). A flip
+    done wrong (a row of images missed or counted twice) moves the stress by far more."""
     work, restart, dt, ref, _, _ = flipped
     # LAMMPS 29 Sep 2021 refuses a tilt beyond half a box length unless told
     before = 'if "$(version) < 20220324" then "box tilt large"\n'
@@ -430,7 +435,7 @@ def test_flip_leaves_the_stress_alone(flipped):
     for name in STRESS_COLUMNS:
         diff = np.max(np.abs(t[name] - ref[name][:steps + 1])) / scale
         print(f"{name}: max |flipped - unflipped|/sigma_n0 over {steps} steps = {diff:.2g}")
-        assert diff < 1e-10, name
+        assert diff < 1e-9, name
 
 
 
