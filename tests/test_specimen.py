@@ -325,14 +325,20 @@ def test_lammps_reads_data(tmp_path, paper, density):
     assert mtot == pytest.approx(density * 0.5 * L ** 3, rel=1e-12)
 
 
-def test_cli(tmp_path):
-    out = tmp_path / "cli.data"
+def _package_env():
+    """The environment of a child Python that imports this tylmp (the module under test first,
+    then the source tree, then the caller's PYTHONPATH)."""
     env = dict(os.environ)
     env["PYTHONPATH"] = os.pathsep.join(
         [MODULE_DIR, SRC_PY] + [p for p in env.get("PYTHONPATH", "").split(os.pathsep) if p])
+    return env
+
+
+def test_cli(tmp_path):
+    out = tmp_path / "cli.data"
     r = subprocess.run([sys.executable, "-m", "tylmp.specimen", "--scale", "quick",
                         "--seed", "3", "--out", str(out)],
-                       capture_output=True, text=True, env=env, timeout=120)
+                       capture_output=True, text=True, env=_package_env(), timeout=120)
     assert r.returncode == 0, r.stderr
     assert "500 spheres" in r.stdout
     box, d, rho, pos = sp.read_data(out)
@@ -419,9 +425,7 @@ def test_cli_users_distribution(tmp_path):
     """python3 -m tylmp.specimen --distribution lognormal:...: the data file holds those
     diameters; a bad one is a usage error naming it."""
     out = tmp_path / "ln.data"
-    env = dict(os.environ)
-    env["PYTHONPATH"] = os.pathsep.join(
-        [MODULE_DIR, SRC_PY] + [p for p in env.get("PYTHONPATH", "").split(os.pathsep) if p])
+    env = _package_env()
     r = subprocess.run([sys.executable, "-m", "tylmp.specimen", "--n", "150", "--distribution",
                         "lognormal:0.2e-3:0.25", "--out", str(out)],
                        capture_output=True, text=True, env=env, timeout=120)
@@ -460,12 +464,10 @@ def test_diameters_are_the_same_bits_under_every_blas_kernel(name):
     of the paper's 3620 spheres differed in their last bits between an AMD and an Intel
     machine, so every specimen, and every record, differed. Each kernel must give the same
     bits (on a machine without OpenBLAS the variable is ignored and the check still holds)."""
-    code = ("import sys; from tylmp.specimen import sizes; "
+    code = ("from tylmp.specimen import sizes; "
             f"d, c = sizes.size_counts({N_PAPER}, distribution={name!r}); "
             "print(' '.join(x.hex() for x in d), list(c))")
-    env = dict(os.environ)
-    env["PYTHONPATH"] = os.pathsep.join(
-        [MODULE_DIR, SRC_PY] + [p for p in env.get("PYTHONPATH", "").split(os.pathsep) if p])
+    env = _package_env()
     outputs = {}
     for core in ("Prescott", "Haswell", "SkylakeX", "Zen"):
         r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,

@@ -147,8 +147,8 @@ def figure_commands(d, scale="paper"):
          "--paper", "--out", f("fig8_9_plane_strain_paper.png")] +
         about("plane_strain_cw", "plane_strain_ccw"),
         ["compare", "--dense", rec["axisym_dense"], "--loose", rec["axisym_loose"],
-         "--radial"] + [rec[f"radial_dense_b{b}"] for b in ("0.25", "0.5", "0.75", "1")] +
-        ["--radial-loose"] + [rec[f"radial_loose_b{b}"] for b in ("0.25", "0.5", "0.75", "1")] +
+         "--radial"] + [rec[n] for n in radial["dense"]] +
+        ["--radial-loose"] + [rec[n] for n in radial["loose"]] +
         ["--cdst", rec["cdst"], "--plane-strain", rec["plane_strain_cw"],
          "--out", f("summary.md")],
     ]
