@@ -15,15 +15,6 @@ import numpy as np
 from . import compare, io, metrics
 from .programmes import FACTORS, PROGRAMMES, record_name, run_name
 
-# the strain-rate factor: the paper programme's runs at 1e-5 1/s (programmes.PROGRAMME names) in
-# place of the base set's at 5e-5, when both programmes ran in one directory (the plane-strain
-# test runs at 1e-5 in both)
-RATE_FACTOR = "rate_1e-5"
-RATE_RUNS = {"axisym_dense": "axisym_dense", "axisym_loose": "axisym_loose",
-             "radial_loose": "radial_loose_b1"}
-RATE_TEXT = "strain rate 1e-5 1/s, the paper's (base 5e-5): the paper programme's records"
-
-
 # ---- the table ---------------------------------------------------------------------------------
 
 # (label, response key), the responses of docs/fidelity.md
@@ -51,17 +42,11 @@ def responses(directory, factor):
     out = {}
 
     def read(run):
-        if factor == RATE_FACTOR:
-            if run not in RATE_RUNS:
-                return None
-            path = os.path.join(directory, record_name(RATE_RUNS[run], PROGRAMMES["paper"]))
-        else:
-            name = run_name(factor, run)
-            if name not in PROGRAMMES["fidelity"]:
-                return None
-            path = os.path.join(directory, record_name(name, PROGRAMMES["fidelity"]))
-        path = io.find_record(path)              # NAME.csv, or compressed NAME.csv.xz
-        return io.read_servo_csv(path) if path else None
+        name = run_name(factor, run)
+        if name not in PROGRAMMES["fidelity"]:
+            return None
+        path = io.find_record(os.path.join(directory, record_name(name, PROGRAMMES["fidelity"])))
+        return io.read_servo_csv(path) if path else None   # NAME.csv, or compressed NAME.csv.xz
 
     for role in ("dense", "loose"):
         t = read(f"axisym_{role}")
@@ -103,17 +88,16 @@ def table(directory):
     factor has; each cell the value and, but for the base, its shift from the base."""
     if not os.path.isdir(directory):
         raise ValueError(f"{directory}: no such directory")
-    values = {f: responses(directory, f) for f in list(FACTORS) + [RATE_FACTOR]}
+    values = {f: responses(directory, f) for f in FACTORS}
     values = {f: v for f, v in values.items() if v}
     if not values:
         raise ValueError(f"{directory}: no record of tyanalysis reproduce --programme fidelity "
-                         "(fid_<factor>_<run>.csv) or of the paper programme there")
+                         "(fid_<factor>_<run>.csv) there")
     base = values.get("base", {})
     keys = [(label, k) for label, k in RESPONSES if any(k in v for v in values.values())]
     lines = ["| factor | " + " | ".join(label for label, _ in keys) + " |",
              "|---|" + "---|" * len(keys)]
     for f, v in values.items():
         cells = [_cell(v.get(k), None if f == "base" else base.get(k)) for _, k in keys]
-        text = RATE_TEXT if f == RATE_FACTOR else FACTORS[f][4]
-        lines.append(f"| {f}: {text} | " + " | ".join(cells) + " |")
+        lines.append(f"| {f}: {FACTORS[f][4]} | " + " | ".join(cells) + " |")
     return "\n".join(lines)

@@ -64,6 +64,9 @@ FACTORS = {
     # to eps1 - eps3 = 80 %: eps1 = 50 % at constant volume is 75 %, and dilation by 7 % adds 3.5 %
     "n8000": ({"nspheres": "8000"}, {"strain": "0.80"}, ("axisym_dense", "axisym_loose"), 2.5,
               "8000 spheres, sheared to ε1 − ε3 = 80 % (past ε1 = 50 %)"),
+    "rate_1e-5": ({}, {"rate": "1e-5"}, ("axisym_dense", "axisym_loose", "radial_loose"), 5.0,
+                  "strain rate 1e-5 1/s, the paper's (base 5e-5; the plane-strain test runs at "
+                  "1e-5 in both)"),
     "settle": ({}, {"settle": "50000"}, None, 1.0,
                "50 000 steps of isotropic settling at the shearing μ and Γ before the shear"),
     "dt01": ({"dt_fraction": "0.1"}, {}, None, 2.0, "timestep 0.1 of the Rayleigh time (base 0.2)"),
