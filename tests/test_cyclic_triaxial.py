@@ -28,10 +28,9 @@ REPO = test_decks.REPO
 CSR, RATE = 0.15, 1e-4
 # two-way: an amplitude the loose quick specimen withstands for several cycles, so that r_u is
 # seen rising cycle after cycle and the reversals and the cycle count are exercised before it
-# liquefies (how many cycles that takes is the contact law's: under the slip-band memory of
-# docs/theory.md §2.3 it liquefies by r_u >= 0.5 at N = 11 at CSR 0.12 and at N = 2 at 0.15,
-# where it flows in the first extension without reaching -2 CSR p0: test_cyclic_triaxial.py's
-# own run, -var csr 0.12 or 0.15 with the TWO_WAY variables)
+# liquefies (test_cyclic_triaxial.py's own run, `pytest -s`: N_L = 10 by r_u >= 0.5 and 10.5 by
+# the double amplitude 2 %, r_u at most 0.898; at CSR 0.15 the deck page's run, with its
+# criteria, reaches the double amplitude 5 % within 2.5 cycles, too few to exercise the count)
 CSR_TWO_WAY = 0.12
 RU_LIMIT, DA_LIMIT = 0.5, 0.02
 AMPLITUDE_HELD = 0.05        # |q_a| within 5 % of 2 CSR p0 until liquefaction

@@ -479,9 +479,8 @@ def test_plane_strain_legs(plane_strain):
     # the path closes: back at A, the pre-strain state, at the end
     # the path closes in kind: back in axisymmetric compression (Lode 0) at the end. Under
     # true plane strain the volume change holding p is taken by the free axes only, so the
-    # radius differs from A by the dilatancy of the cycle (measured 0.813 R0 cw, 0.798 ccw on
-    # the jammed quick specimen of 858200 preparation steps; 0.87, 0.85 on the unjammed one
-    # of 150000 steps)
+    # radius differs from A by the dilatancy of the cycle (measured 0.806 R0 cw, 0.846 ccw on
+    # the quick dense specimen, whose preparation reaches quasi-equilibrium at step 205800)
     radius = np.hypot(t["pi_ex"][-1], t["pi_ey"][-1]) / R0
     print(f"plane strain {rot}: end radius {radius:.3f} R0, eps_v {t['eps_v'][-1]:.2e}")
     assert abs(radius - 1.0) < 0.25

@@ -155,23 +155,23 @@ def test_cyclic_deck_bad_option_is_an_error(tmp_path, name, value, message):
 # ---------------------------------------------------------------------------------------------
 # cyclic constant-volume simple shear (inputs/cyclic_simple_shear.in)
 
-# The loose specimen (e0 0.672) at a rate low enough for the amplitude to be held: at 1e-4 1/s
-# a half cycle at CSR 0.11 lasts about 100 steps and tau passes the amplitude by under 2 %
-# (at 2e-4, about 35 steps, by half of it: the packing's response lags the strain). r_u climbs
-# over the first cycles; then the specimen flows at tau below the amplitude, through the double
+# The loose specimen (e0 0.671) at a rate low enough for the amplitude to be held: at 1e-4 1/s
+# a half cycle at CSR 0.11 lasts some 110-335 steps and tau passes the amplitude by under 1 %
+# (at 2e-4, 27-39 steps, by 30 %: the packing's response lags the strain). r_u climbs over the
+# first cycles; then the specimen flows at tau below the amplitude, through the double
 # amplitude 3.75 %, and its mean stress falls towards zero (docs/decks/cyclic_simple_shear.md:
-# N_L = 4.5 by double amplitude, 5 by r_u >= 0.95 at the deck's record interval). A flow
+# N_L = 9.5 by both criteria at the deck's record interval). A flow
 # liquefaction need not take r_u to 0.95 (docs/decks/cyclic_triaxial.md finds the same of the
 # loose specimen in the triaxial cell), so the test, which needs both detectors to fire to check
 # them against the replay, passes the criterion r_u >= 0.8, above everything the small
 # amplitude reaches and below the flow's r_u. The small amplitude, CSR 0.055, runs at half the
 # rate (the same period at the same stiffness, as a cyclic device runs at one frequency). The
 # test's own runs (a row every step; `pytest -s tests/test_simple_shear.py -k cyclic`): CSR 0.11
-# liquefies at N_L = 4.5 by both criteria, r_u at most 0.859, |tau| over the amplitude by 1.8 %
-# at most; CSR 0.055 reaches r_u 0.046 by N = 4.5 and 0.111 after its 9 cycles (over 29 cycles
-# the deck page's run reaches 0.454). The monotonic constant-volume peak
-# of this specimen is tau/sigma_n0 = 0.145 at 1e-4 (0.107 at 2e-5), so a CSR above it flows in
-# the first half cycle (docs/decks/cyclic_simple_shear.md).
+# liquefies at N_L = 9 by r_u >= 0.8 and 9.5 by the double amplitude, r_u at most 0.984, |tau|
+# over the amplitude by 0.6 % at most; CSR 0.055 reaches r_u 0.129 by N = 9.5 and 0.219 after its
+# 19 cycles (over 29 cycles the deck page's run reaches 0.314). The monotonic constant-volume
+# peak of this specimen is tau/sigma_n0 = 0.174 at 1e-4 (0.117 at 2e-5), so a CSR above it flows
+# in the first half cycle (docs/decks/cyclic_simple_shear.md).
 CSR_LARGE, RATE_LARGE = 0.11, 1e-4
 CSR_SMALL, RATE_SMALL = 0.055, 5e-5
 RU_LIMIT, DA_LIMIT = 0.8, 0.0375            # r_u passed (above); double amplitude the deck's
