@@ -11,8 +11,9 @@ The rotation turns sigma1 by 90 degrees in the xz plane at 0.5 degree/s after th
     of p on each stress component, the tolerance tests/test_decks.py holds p and b to);
   * sigma1 - sigma3, b and the in-plane shear held, the major principal direction following
     alpha(t) = rate t within the lag that tolerance allows, and the out-of-plane shears at zero:
-    held with the deck's servo gain 0.01 (from gain 0.02 on the shear components ring, sig_xy
-    reaching 2.3 % of p: docs/decks/rotation.md, "The servo's gain").
+    held with the deck's servo gain 0.01 (at gain 0.03 the shear components ring, sig_yz
+    reaching 1.5 % of p; at 0.02 they stay within 0.25 % of p: docs/decks/rotation.md, "The
+    servo's gain").
 About 2 minutes with the specimens' preparation.
 """
 import math

@@ -94,7 +94,7 @@ def test_tutorial_simple_shear_reuses_the_specimen_and_holds_sigma_n(walked):
     """The simple-shear step finds the axisymmetric step's specimen (same options, same key),
     holds sigma_n at 100 kPa on the servo (5 % after the first 0.5 % of strain: on 120 spheres
     one contact's rearrangement is a larger share of the stress than on the decks' 500, where
-    tests/test_simple_shear.py asks 2 %; measured 2.1 %) and draws its figure."""
+    tests/test_simple_shear.py asks 2 %; measured 0.9 %) and draws its figure."""
     work, out = walked
     assert re.search(r"^reusing specimen tylmp_specimens/dense_quick_\w+\.restart", out[4], re.M)
     assert "preparing specimen" not in out[4]
