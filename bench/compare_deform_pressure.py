@@ -206,7 +206,7 @@ def main(argv=None):
             print(f"    WARNING: {w}")
     write_result(args.json, {"lammps": "4 Feb 2025", "rate": RATE, "p0": P0, "gain": args.gain,
                            "max_rate": args.max_rate, "strain": args.strain,
-                           "runs": table, "warnings": warnings}, indent=2)
+                           "runs": table, "warnings": warnings}, indent=2, lmp=args.lmp2025)
     print("wrote", args.json)
     print("wrote", plot(records, args.out))
 
