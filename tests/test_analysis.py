@@ -811,6 +811,20 @@ def test_axisym_figure_labels_records_by_their_parameter(files, drawn, tmp_path)
     assert curves == ["μ = 0.1", "μ = 0.3", "μ = 0.5"]
 
 
+def test_resumed_preparation_keeps_the_log_of_the_first(tmp_path):
+    """A resumed reproduce call runs each preparation again, which only finds its cached
+    specimen; its LAMMPS log goes to a free name, not over the log of the run that prepared it."""
+    from tylmp.analysis import reproduce
+    specimen = ("dense", (("seed", "2"),))
+    first = reproduce.prepare_command(specimen, "paper", "inputs", str(tmp_path))
+    assert first[first.index("-log") + 1] == "prepare_dense_seed2.log"
+    (tmp_path / "prepare_dense_seed2.log").write_text("the preparation\n")
+    (tmp_path / "prepare_dense_seed2.1.log").write_text("a first resumed call\n")
+    again = reproduce.prepare_command(specimen, "paper", "inputs", str(tmp_path))
+    assert again[again.index("-log") + 1] == "prepare_dense_seed2.2.log"
+    assert again[:again.index("-log")] == first[:first.index("-log")]
+
+
 def test_fidelity_table_shifts_from_the_base(tmp_path, capsys):
     """tyanalysis fidelity: each factor's responses and their shifts from the base, from the
     records named as reproduce --programme fidelity names them. Synthetic axisymmetric

@@ -9,7 +9,8 @@ The runs are the decks of inputs/ with the settings validation.md gives for each
 reused by every later run and by a later call); a shear run starts as soon as its specimen is
 ready, longest first, at most `jobs` runs at a time (default: the number of cores). Each run writes its CSV record and a
 LAMMPS log in DIR; a run whose record already ends at its target (a finished earlier call)
-is not run again, so an interrupted call resumes where it stopped. Progress: a line when a
+is not run again, so an interrupted call resumes where it stopped (its preparations find their
+cached specimens and log beside the first call's logs, free_log). Progress: a line when a
 run starts or ends, and every `--every` seconds the progress (fix cell/servo output 27) of each
 running record. Then the figures of validation.md (the `tyanalysis` commands, PNGs in DIR) and
 the summary table paper against ours (summary.md in DIR, `tyanalysis compare`).
@@ -57,13 +58,25 @@ def prepare_name(specimen):
     return "prepare_" + "_".join([name] + [f"{k}{v}" for k, v in prep])
 
 
-def prepare_command(specimen, scale, inputs):
+def free_log(workdir, stem):
+    """STEM.log, or STEM.N.log with the first N free when an earlier call's log is there: a
+    resumed call's preparation only finds its cached specimen, and its log must not replace the
+    log of the preparation that made it."""
+    if workdir is None or not os.path.exists(os.path.join(workdir, f"{stem}.log")):
+        return f"{stem}.log"
+    n = 1
+    while os.path.exists(os.path.join(workdir, f"{stem}.{n}.log")):
+        n += 1
+    return f"{stem}.{n}.log"
+
+
+def prepare_command(specimen, scale, inputs, workdir=None):
     name, prep = specimen
     cmd = ["lmp", "-in", os.path.join(inputs, "prepare_specimen.in"), "-var", "specimen",
            name, "-var", "scale", scale]
     for k, v in prep:
         cmd += ["-var", k, v]
-    return cmd + ["-log", f"{prepare_name(specimen)}.log", "-nocite"]
+    return cmd + ["-log", free_log(workdir, prepare_name(specimen)), "-nocite"]
 
 
 def last_progress(path):
@@ -253,7 +266,7 @@ def main(args, draw):
     for n, _ in sorted(todo, key=lambda t: rank_of(t[0], prog)):
         s = specimen_of(n, prog)
         if s not in prep:       # ranked with the first factor that needs it
-            prep[s] = Job(prepare_name(s), prepare_command(s, args.scale, inputs), None,
+            prep[s] = Job(prepare_name(s), prepare_command(s, args.scale, inputs, workdir), None,
                           PREP_WEIGHT[s[0]], rank=rank_of(n, prog))
     shear = [Job(n, command(n, args.scale, inputs, prog), record, entry(n, prog)[3],
                  needs=prep[specimen_of(n, prog)], rank=rank_of(n, prog)) for n, record in todo]
