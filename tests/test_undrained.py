@@ -162,8 +162,7 @@ def test_loose_undrained_ends_on_drained_critical_state_line(tmp_path_factory, s
     so the line is known to +-4 % of its M; the undrained q/p at constant volume swings by up
     to 12 % from row to row on 500 spheres at p 20-40 kPa (the tail mean of 10 % of the rows
     averages it down); a path still on its way (e.g. the dense specimen's q/p = 1.03 at 4 %)
-    misses it. The loose record now ends with p back at 103 kPa (from 97.3; its least 7.7 kPa),
-    the swing of 500 spheres (docs/decks/undrained.md).
+    misses it.
     The dense specimen (e0 = 0.527, 0.11 below the drained e_cs) is not asserted: at constant
     volume it could reach the critical state only by compressing the grains, and its p grows
     a hundredfold by eps1 = 4 % (docs/decks/undrained.md)."""
