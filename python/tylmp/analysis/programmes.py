@@ -45,9 +45,8 @@ BASE_WEIGHT = {"axisym_dense": 4, "axisym_loose": 5, "radial_loose": 5, "plane_s
 
 # factor -> (preparation variables, shear variables, runs (None: all of BASE_RUNS), weight
 # factor, what it changes), in the order `reproduce` starts them: the base set and its
-# scatter, then the factors likeliest to move the residuals of validation.md, the protocol
-# whose shift the damped and two-stage paper programmes already give (docs/validation/damped/
-# against docs/validation/) last. Preparation variables go to the preparation and to each of its
+# scatter, then the factors likeliest to move the residuals of validation.md, the earlier
+# preparation protocol last. Preparation variables go to the preparation and to each of its
 # runs (the specimen cache is keyed by them); shear variables to the runs only.
 FACTORS = {
     "base": ({}, {}, None, 1.0, "the chosen protocol: two-stage preparation, seed 1, maxent"),
