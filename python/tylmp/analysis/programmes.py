@@ -40,7 +40,8 @@ BASE_RUNS = {
                                    "rate": "5e-5"}),
     "plane_strain_cw": ("plane_strain.in", {"rotation": "cw"}),
 }
-# expected core-minutes of each base run at paper scale (docs/fidelity.md)
+# relative cost of each base run at paper scale, the weight that orders the scheduler (the
+# study's measured wall times are in docs/fidelity.md, "The base set and the factors")
 BASE_WEIGHT = {"axisym_dense": 4, "axisym_loose": 5, "radial_loose": 5, "plane_strain_cw": 2}
 
 # factor -> (preparation variables, shear variables, runs (None: all of BASE_RUNS), weight
