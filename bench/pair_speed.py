@@ -51,9 +51,11 @@ build of tylmp for it, and the 2025 built-ins (`granular jkr ... tangential mind
 `granular hertz/material ...`, `gran/hertz/history`) in the same syntax. The timed comparison:
 
     W=$(TYLMP_LAMMPS2025_NO_TESTS=1 bash scripts/lammps2025.sh | tail -1)
-    /usr/bin/python3 bench/pair_speed.py --lmp2025 "$W" --steps 5000 --repeats 5 \
-        --cases "thornton/yin G=0.6" "thornton/yin G=0" "granular jkr+mindlin" \
-        "granular hertz/material+mindlin" "gran/hertz/history" --out bench/results/pair_speed_lammps2025
+    PYTHONPATH=$PWD/build/python /usr/bin/python3 bench/pair_speed.py --lmp2025 "$W" \
+        --steps 5000 --repeats 7 --cases "thornton/yin G=0.6" "thornton/yin G=0" \
+        "granular jkr+mindlin" "granular hertz/material+mindlin" gran/hertz/history \
+        "liggghts thornton_yin G=0.6" "liggghts thornton_yin G=0" "liggghts hertz+history" \
+        --out bench/results/pair_speed_law_now
 
 Every case runs `repeats` times, the cases taken in alternation so that drifts of the
 machine's speed hit all of them alike; the figure is the median of the loop time ("Loop time

@@ -37,7 +37,10 @@ HEADING = re.compile(r"^#{1,6}\s+(\d+(?:\.\d+)*)\.?\s", re.MULTILINE)
 MD_PATH = re.compile(r"(?<![\w./-])((?:[\w-]+/)+[\w.-]+\.md)\b")
 # a relative markdown link target: [text](performance.md#anchor), [x](docs/theory.md)
 MD_LINK = re.compile(r"\]\((?!https?:|mailto:|#)([^)\s#]+\.md)(?:#[^)\s]*)?\)")
-RESULTS = re.compile(r"bench/results/([\w.-]+)")
+# a results file of the tree; one named as COMMIT:bench/results/NAME (what `git show` takes) is
+# a record of that commit, looked up there instead
+RESULTS = re.compile(r"(?<![0-9a-f]:)bench/results/([\w.-]+)")
+RESULTS_AT = re.compile(r"\b([0-9a-f]{7,40}):(bench/results/[\w.-]+\w)")
 
 
 def theory_sections(text):
@@ -179,6 +182,27 @@ def test_every_results_file_mentioned_exists(files):
     assert not bad, "no such results file:\n" + "\n".join(bad)
 
 
+def in_commit(commit, path):
+    """True if `path` is a file of `commit`, None if git cannot tell (no repository, or a
+    shallow clone without that commit)."""
+    try:
+        if subprocess.run(["git", "cat-file", "-e", commit + "^{commit}"], cwd=ROOT,
+                          capture_output=True).returncode != 0:
+            return None
+        return subprocess.run(["git", "cat-file", "-e", f"{commit}:{path}"], cwd=ROOT,
+                              capture_output=True).returncode == 0
+    except OSError:
+        return None
+
+
+def test_every_results_file_of_a_commit_exists_there(files):
+    found = [(p, text.count("\n", 0, m.start()) + 1, m.group(1), m.group(2))
+             for p, text in files for m in RESULTS_AT.finditer(text)]
+    bad = [f"{p.relative_to(ROOT)}:{line}: {commit}:{path}"
+           for p, line, commit, path in found if in_commit(commit, path) is False]
+    assert not bad, "no such file in that commit:\n" + "\n".join(bad)
+
+
 # ---------------------------------------------------------------- the checks can fail
 
 
@@ -202,6 +226,17 @@ def test_a_citation_of_a_missing_section_is_caught(sections):
     assert "1.4" in sections and "7.3" in sections
     text = "// the closed form (docs/theory.md §1.4)\n// the fabric tensor (docs/theory.md §12.7)\n"
     assert [c for c in cited_theory_sections(text) if c[1] not in sections] == [(2, "12.7")]
+
+
+def test_a_results_file_of_a_commit_is_looked_up_in_that_commit():
+    text = "speed (`git show\n800a0c9:bench/results/pair_speed_plumbing.json`), now bench/results/x.csv"
+    assert [m.groups() for m in RESULTS_AT.finditer(text)] == [
+        ("800a0c9", "bench/results/pair_speed_plumbing.json")]
+    assert [m.group(1) for m in RESULTS.finditer(text)] == ["x.csv"]
+    if in_commit("800a0c9", "README.md") is None:
+        pytest.skip("git cannot read commit 800a0c9 here (no repository or a shallow clone)")
+    assert in_commit("800a0c9", "bench/results/pair_speed_plumbing.json")
+    assert in_commit("800a0c9", "bench/results/no_such_record.json") is False
 
 
 def test_bare_section_parser_skips_the_papers_sections():
