@@ -85,7 +85,7 @@ every case: median and the range of the repeats) and prints a table.
     /usr/bin/python3 bench/pair_speed.py --plot CSV [CSV ...] --png PNG
 
 redraws the figure from earlier runs' CSV files without running anything (one bar per case
-and file, e.g. the 1- and 2-rank runs side by side: docs/performance_throughput.png).
+and file, e.g. two calls side by side: docs/performance_throughput.png).
 """
 import argparse
 import math
@@ -272,9 +272,10 @@ def run_case(data, name, steps, ranks, workdir, library=None, liggghts="liggghts
 
 def plot(csv_paths, png):
     """Horizontal bars: median atom-steps/s of every case in each CSV (one colour per file,
-    labelled by its rank count), whiskers from the slowest to the fastest repeat."""
+    labelled by its name and rank count), whiskers from the slowest to the fastest repeat."""
     import csv
     import matplotlib
+    import matplotlib.ticker
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from tylmp.analysis.figures import save_figure
@@ -285,7 +286,8 @@ def plot(csv_paths, png):
         by_case = {}
         for r in rows:
             by_case.setdefault(r["case"], []).append(float(r["atom_steps_per_s"]))
-        tables.append((f"{rows[0]['ranks']} rank(s)" if rows else path, by_case))
+        name = os.path.splitext(os.path.basename(path))[0]
+        tables.append((f"{name}, {rows[0]['ranks']} rank(s)" if rows else path, by_case))
     cases = list(dict.fromkeys(c for _, t in tables for c in t))
     height = 0.8 / len(tables)
     fig, ax = plt.subplots(figsize=(8, 0.45 * len(cases) * len(tables) + 1.2))
@@ -303,7 +305,8 @@ def plot(csv_paths, png):
     ax.set_yticks(range(len(cases)))
     ax.set_yticklabels(cases)
     ax.invert_yaxis()
-    ax.set_xlabel("atom-steps per second (median; whiskers: range of the repeats)")
+    ax.xaxis.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda x, _: f"{x / 1e6:g}"))
+    ax.set_xlabel("million atom-steps per second\n(median; whiskers: range of the repeats)")
     ax.legend(loc="lower right")
     ax.grid(axis="x", alpha=0.3)
     return save_figure(fig, png)

@@ -53,19 +53,28 @@ def scaled_deck(data, replicate, gamma, steps):
     return text
 
 
-def parse(out):
-    """Loop time, steps, atoms, section shares (% of the loop) and LAMMPS's memory line."""
+def parse(out, ranks):
+    """Loop time, steps, atoms, section shares (% of the loop), LAMMPS's memory line and, on one
+    rank, the peak resident memory (None on more: GNU time would measure mpirun)."""
     run = first_loop(out, "weak scaling run")
     row = {"loop_s": run["seconds"], "procs": run["procs"], "steps": run["steps"],
            "atoms": run["atoms"]}
     for sec in SECTIONS:
         rows = section(out, sec)
-        row[f"pct_{sec.lower()}"] = rows[0]["pct"] if rows else float("nan")
+        if not rows:
+            raise RuntimeError(f"no '{sec}' line in LAMMPS's timing breakdown")
+        row[f"pct_{sec.lower()}"] = rows[0]["pct"]
     mem = re.search(r"Per MPI rank memory allocation \(min/avg/max\) = ([0-9.eE+-]+) \| "
                     r"([0-9.eE+-]+) \| ([0-9.eE+-]+) Mbytes", out)
-    row["lammps_mbytes_per_rank"] = float(mem.group(3)) if mem else float("nan")
-    rss = re.search(r"^tylmp-maxrss-kB (\d+)$", out, re.M)
-    row["maxrss_kB"] = int(rss.group(1)) if rss else float("nan")
+    if not mem:
+        raise RuntimeError("no 'Per MPI rank memory allocation' line in LAMMPS's output")
+    row["lammps_mbytes_per_rank"] = float(mem.group(3))
+    row["maxrss_kB"] = None
+    if ranks == 1:
+        rss = re.search(r"^tylmp-maxrss-kB (\d+)$", out, re.M)
+        if not rss:
+            raise RuntimeError("no peak resident memory from /usr/bin/time")
+        row["maxrss_kB"] = int(rss.group(1))
     return row
 
 
@@ -82,7 +91,7 @@ def run(data, replicate, gamma, steps, ranks, workdir):
     if proc.returncode != 0:
         raise RuntimeError(f"{' '.join(cmd)} failed ({proc.returncode})\n"
                            f"{proc.stdout[-2000:]}{proc.stderr[-2000:]}")
-    return parse(proc.stdout + "\n" + proc.stderr)
+    return parse(proc.stdout + "\n" + proc.stderr, ranks)
 
 
 def main(argv=None):
@@ -123,12 +132,13 @@ def main(argv=None):
     with open(args.out + ".csv.tmp", "w") as fh:    # written whole, then renamed
         fh.write(",".join(keys) + "\n")
         for r in rows:
-            fh.write(",".join(str(r[k]) for k in keys) + "\n")
+            fh.write(",".join("" if r[k] is None else str(r[k]) for k in keys) + "\n")
     os.replace(args.out + ".csv.tmp", args.out + ".csv")
 
     def med(rep, g, ranks, key):
-        return statistics.median(r[key] for r in rows if r["replicate"] == rep and
-                                 r["gamma"] == g and r["ranks"] == ranks)
+        values = [r[key] for r in rows if r["replicate"] == rep and r["gamma"] == g and
+                  r["ranks"] == ranks]
+        return None if None in values else statistics.median(values)
     summary = {"data": os.path.relpath(args.data, pair_speed.REPO), "replicate": args.replicate,
                "spheres": [n_small, n_small * args.replicate ** 3], "repeats": args.repeats,
                "atom_steps_per_run": args.atom_steps, "cases": []}
@@ -149,7 +159,8 @@ def main(argv=None):
                 print(f"| {n} | {g} | {ranks} | {c['atom_steps_per_s']:.4g} | "
                       f"{c['atom_steps_per_s_per_rank']:.4g} | {c['speedup_vs_fewest_ranks']:.3f} | "
                       f"{c['pct_pair']:.1f} | {c['pct_neigh']:.1f} | {c['pct_comm']:.1f} | "
-                      f"{c['lammps_mbytes_per_rank']:.2f} | {c['maxrss_kB'] / 1024:.1f} |")
+                      f"{c['lammps_mbytes_per_rank']:.2f} | "
+                      + ("—" if c["maxrss_kB"] is None else f"{c['maxrss_kB'] / 1024:.1f}") + " |")
         if 1 in args.ranks:
             small = [c for c in summary["cases"] if c["gamma"] == g and c["ranks"] == 1]
             dn = small[1]["spheres"] - small[0]["spheres"]
