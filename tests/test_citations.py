@@ -43,6 +43,11 @@ RESULTS = re.compile(r"(?<![0-9a-f]:)bench/results/([\w.-]+)")
 RESULTS_AT = re.compile(r"\b([0-9a-f]{7,40}):(bench/results/[\w.-]+\w)")
 
 
+def line_of(text, match):
+    """The line number (from 1) at which a regular-expression match starts in text."""
+    return text.count("\n", 0, match.start()) + 1
+
+
 def theory_sections(text):
     """Section numbers of the numbered headings ('## 1.', '### 1.2 ...') of a theory page."""
     return set(HEADING.findall(text))
@@ -52,14 +57,14 @@ def cited_theory_sections(text):
     """(line number, section) for every docs/theory.md or theory.md § citation in text."""
     cited = []
     for m in THEORY_CITATION.finditer(text):
-        line = text.count("\n", 0, m.start()) + 1
+        line = line_of(text, m)
         cited += [(line, s) for s in re.findall(SECTION, m.group(1))]
     return cited
 
 
 def bare_sections(text):
     """(line number, section) for every § reference in text but those of the paper (paper §5)."""
-    return [(text.count("\n", 0, m.start()) + 1, m.group(1))
+    return [(line_of(text, m), m.group(1))
             for m in re.finditer(r"(?<!paper )(?<!paper's )" + SECTION, text)]
 
 
@@ -80,11 +85,11 @@ def missing_markdown_targets(text, source_dir, root=ROOT):
     for m in MD_PATH.finditer(text):
         target = m.group(1)
         if not ((root / target).is_file() or (source_dir / target).is_file()):
-            missing.append((text.count("\n", 0, m.start()) + 1, target))
+            missing.append((line_of(text, m), target))
     for m in MD_LINK.finditer(text):
         target = m.group(1)
         if not (source_dir / target).is_file():
-            missing.append((text.count("\n", 0, m.start()) + 1, target))
+            missing.append((line_of(text, m), target))
     return sorted(set(missing))
 
 
@@ -95,7 +100,7 @@ def missing_results(text, results_dir=ROOT / "bench" / "results"):
     for m in RESULTS.finditer(text):
         name = m.group(1).rstrip(".")
         if not any(f.startswith(name) for f in present):
-            missing.append((text.count("\n", 0, m.start()) + 1, name))
+            missing.append((line_of(text, m), name))
     return missing
 
 
@@ -196,7 +201,7 @@ def in_commit(commit, path):
 
 
 def test_every_results_file_of_a_commit_exists_there(files):
-    found = [(p, text.count("\n", 0, m.start()) + 1, m.group(1), m.group(2))
+    found = [(p, line_of(text, m), m.group(1), m.group(2))
              for p, text in files for m in RESULTS_AT.finditer(text)]
     bad = [f"{p.relative_to(ROOT)}:{line}: {commit}:{path}"
            for p, line, commit, path in found if in_commit(commit, path) is False]
